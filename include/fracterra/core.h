@@ -1,0 +1,314 @@
+/* fracterra — fractal geometry of maps.
+ * core.h: core types (chains, layers, grids, points), errors, progress, RNG, least-squares fits.
+ *
+ * Conventions (see docs/api.md):
+ *  - functions return int: 0 (FT_OK) on success, a negative FT_E_* code on failure, and then
+ *    ft_last_error() holds a thread-local message naming the bad value;
+ *  - the caller owns what it passes in; a function allocates what it returns; ft_*_free releases it;
+ *    ft_*_free(NULL) is a no-op;
+ *  - geometry is double; grids are float cells with a separate nodata mask.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CORE_H
+#define FRACTERRA_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define FT_VERSION_MAJOR 0
+#define FT_VERSION_MINOR 1
+#define FT_VERSION_PATCH 0
+#define FT_VERSION_STRING "0.1.0"
+
+/** The library's version string, e.g. "0.1.0". */
+const char *ft_version(void);
+
+/* ------------------------------------------------------------------------------------------------
+ * Errors
+ * --------------------------------------------------------------------------------------------- */
+
+enum {
+    FT_OK = 0,
+    FT_E_INVALID = -1,     /**< an argument or option is out of range or inconsistent */
+    FT_E_NOMEM = -2,       /**< out of memory */
+    FT_E_IO = -3,          /**< a file cannot be opened, read or written */
+    FT_E_FORMAT = -4,      /**< a file's content is not what was expected (format, kind, field) */
+    FT_E_EMPTY = -5,       /**< no data: empty layer, all-nodata grid, no points */
+    FT_E_CANCELLED = -6,   /**< the progress callback asked to stop */
+    FT_E_NUMERIC = -7,     /**< NaN/Inf or a numerically degenerate case */
+    FT_E_UNSUPPORTED = -8  /**< a valid request this build cannot serve */
+};
+
+/** The message of the last error set on this thread ("" if none). */
+const char *ft_last_error(void);
+/** The code of the last error set on this thread (FT_OK if none). */
+int ft_last_error_code(void);
+/** A short generic description of an FT_E_* code. */
+const char *ft_strerror(int code);
+/** Sets the thread-local error (printf-style) and returns code, so that `return ft_error(...)` reads well. */
+int ft_error(int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/** Clears the thread-local error. */
+void ft_clear_error(void);
+
+/* ------------------------------------------------------------------------------------------------
+ * Progress: GDAL's GDALProgressFunc signature, so GDALTermProgress plugs in directly.
+ * --------------------------------------------------------------------------------------------- */
+
+/** Called with frac in [0,1]; returning 0 asks the caller to stop (it then fails with FT_E_CANCELLED). */
+typedef int (*ft_progress_fn)(double frac, const char *msg, void *arg);
+
+/** Reports progress if fn is not NULL. Returns FT_OK, or FT_E_CANCELLED (error set) if fn returned 0. */
+int ft_progress(ft_progress_fn fn, void *arg, double frac, const char *msg);
+
+/* ------------------------------------------------------------------------------------------------
+ * Chains: open polylines and rings. A ring is stored WITHOUT repeating its first vertex
+ * (closed = 1); readers drop the closing vertex, writers add it back.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double *x;   /**< n x coordinates */
+    double *y;   /**< n y coordinates */
+    size_t n;    /**< number of vertices */
+    size_t cap;  /**< allocated capacity of x and y */
+    int closed;  /**< 1 for a ring (last vertex joins the first), 0 for an open chain */
+} ft_chain;
+
+/** A new empty chain with room for cap vertices (cap may be 0). NULL (error set) if out of memory. */
+ft_chain *ft_chain_create(size_t cap, int closed);
+/** A new chain copied from arrays, with strides in elements (1 for plain arrays, 2 for interleaved xy). */
+ft_chain *ft_chain_from_arrays(const double *x, const double *y, size_t n, size_t stride, int closed);
+/** A deep copy. */
+ft_chain *ft_chain_copy(const ft_chain *c);
+void ft_chain_free(ft_chain *c);
+/** Appends a vertex. */
+int ft_chain_push(ft_chain *c, double x, double y);
+/** Ensures room for at least cap vertices. */
+int ft_chain_reserve(ft_chain *c, size_t cap);
+/** Reverses the vertex order in place. */
+void ft_chain_reverse(ft_chain *c);
+/** Length along the chain, including the closing segment of a ring. */
+double ft_chain_length(const ft_chain *c);
+/** Number of segments: n-1 for an open chain, n for a ring (0 if n < 2). */
+size_t ft_chain_segments(const ft_chain *c);
+/** Signed area by the shoelace formula (positive counter-clockwise); 0 for open chains. */
+double ft_chain_signed_area(const ft_chain *c);
+/** Bounding box; returns FT_E_EMPTY if the chain has no vertex. */
+int ft_chain_bbox(const ft_chain *c, double *xmin, double *ymin, double *xmax, double *ymax);
+/** FT_OK if every coordinate is finite; FT_E_NUMERIC naming the first bad vertex otherwise. */
+int ft_chain_check_finite(const ft_chain *c);
+/** FT_OK if the chain has at least min_vertices vertices; FT_E_INVALID with a message otherwise. */
+int ft_chain_check_min_vertices(const ft_chain *c, size_t min_vertices);
+
+/* ------------------------------------------------------------------------------------------------
+ * Layers: a collection of chains grouped into features with attributes, as read from a vector file.
+ * Parts of feature f are parts[features[f].first .. features[f].first + features[f].count - 1].
+ * A polygon is an outer ring followed by its inner rings (holes), all with the same `polygon` index.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum { FT_GEOM_NONE = 0, FT_GEOM_LINE = 1, FT_GEOM_POLYGON = 2 } ft_geom_type;
+typedef enum { FT_ROLE_LINE = 0, FT_ROLE_OUTER = 1, FT_ROLE_INNER = 2 } ft_part_role;
+typedef enum { FT_FIELD_INT = 0, FT_FIELD_REAL = 1, FT_FIELD_STRING = 2 } ft_field_type;
+
+typedef struct {
+    char *name;
+    ft_field_type type;  /**< how values are held: int64, double or string */
+    int native_type;     /**< the reader's own type code (OGRFieldType), -1 if none; used to write it back */
+    int width, precision;
+} ft_field;
+
+typedef struct {
+    int is_null;  /**< 1 if the value is unset or null */
+    int64_t i;    /**< FT_FIELD_INT */
+    double r;     /**< FT_FIELD_REAL */
+    char *s;      /**< FT_FIELD_STRING (owned); also dates and other native types as text */
+} ft_value;
+
+typedef struct {
+    ft_chain *chain;    /**< owned by the layer */
+    size_t feature;     /**< index of the feature holding this part */
+    int polygon;        /**< polygon index within a multipolygon (0 otherwise) */
+    ft_part_role role;
+} ft_part;
+
+typedef struct {
+    int64_t fid;         /**< the source's feature id, or the index if it had none */
+    ft_geom_type type;   /**< FT_GEOM_NONE for a feature without geometry */
+    int multi;           /**< 1 if the source geometry was a Multi* type */
+    size_t first, count; /**< its parts */
+    ft_value *values;    /**< nfields values (owned) */
+} ft_feature;
+
+/* Arc-node topology: each shared boundary of adjacent polygons is stored once as an arc; every ring
+ * (part) is the ordered list of its arcs, each walked forward or backward. */
+typedef struct {
+    size_t arc;   /**< index into arcs */
+    int reversed; /**< 1 if the ring walks the arc from its last vertex to its first */
+} ft_arc_ref;
+
+typedef struct {
+    ft_chain **arcs;    /**< open chains from node to node (closed if a ring has no node) */
+    size_t narcs;
+    int *arc_left;      /**< per arc: part index on its left (-1 if none) */
+    int *arc_right;     /**< per arc: part index on its right (-1 if none) */
+    ft_arc_ref **rings; /**< per part: its arc references, in ring order */
+    size_t *nrings;     /**< per part: number of arc references */
+    size_t nparts;
+} ft_topology;
+
+typedef struct {
+    char *name;          /**< layer name (may be NULL) */
+    char *crs_wkt;       /**< CRS as WKT (may be NULL) */
+    ft_field *fields;
+    size_t nfields;
+    ft_feature *features;
+    size_t nfeatures, features_cap;
+    ft_part *parts;
+    size_t nparts, parts_cap;
+    ft_topology *topology; /**< NULL unless ft_layer_build_topology was called */
+} ft_layer;
+
+ft_layer *ft_layer_create(const char *name, const char *crs_wkt);
+void ft_layer_free(ft_layer *l);
+ft_layer *ft_layer_copy(const ft_layer *l);
+/** Adds a field; returns its index (>= 0) or a negative error code. */
+int ft_layer_add_field(ft_layer *l, const char *name, ft_field_type type, int native_type, int width,
+                       int precision);
+/** Index of a field by name (case-insensitive), -1 if absent. */
+int ft_layer_field_index(const ft_layer *l, const char *name);
+/** Adds a feature (all values null); returns its index (>= 0) or a negative error code. */
+int64_t ft_layer_add_feature(ft_layer *l, int64_t fid, ft_geom_type type, int multi);
+/** Adds a part to the LAST feature; the layer takes ownership of chain (even on failure). */
+int ft_layer_add_part(ft_layer *l, ft_chain *chain, ft_part_role role, int polygon);
+/** Sets a value of feature f (string values are copied). */
+int ft_layer_set_int(ft_layer *l, size_t f, size_t field, int64_t v);
+int ft_layer_set_real(ft_layer *l, size_t f, size_t field, double v);
+int ft_layer_set_string(ft_layer *l, size_t f, size_t field, const char *v);
+/** Total number of vertices over all parts. */
+size_t ft_layer_vertex_count(const ft_layer *l);
+/** Bounding box of all parts; FT_E_EMPTY if there is no vertex. */
+int ft_layer_bbox(const ft_layer *l, double *xmin, double *ymin, double *xmax, double *ymax);
+/** FT_OK if every coordinate is finite; FT_E_NUMERIC naming the feature, part and vertex otherwise. */
+int ft_layer_check_finite(const ft_layer *l);
+
+/** Builds the arc-node topology of the layer's rings: vertices closer than tol (0 = exact match) are
+ *  the same node; an arc runs between nodes (vertices where the boundary graph does not simply
+ *  continue); a boundary shared by two rings becomes one arc. Replaces any previous topology. */
+int ft_layer_build_topology(ft_layer *l, double tol);
+/** Rebuilds every ring from its (possibly edited) arcs, so that shared boundaries stay identical. */
+int ft_layer_apply_topology(ft_layer *l);
+void ft_topology_free(ft_topology *t);
+
+/* ------------------------------------------------------------------------------------------------
+ * Grids: float cells, row-major, row 0 at the top (north), as GDAL stores them.
+ * Cell (col, row) covers x = gt[0] + col*gt[1] + row*gt[2], y = gt[3] + col*gt[4] + row*gt[5] at its
+ * upper-left corner. Nodata is a mask: mask[i] = 1 valid, 0 nodata; mask == NULL means all valid.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    size_t nx, ny;   /**< columns, rows */
+    float *z;        /**< nx*ny cells */
+    uint8_t *mask;   /**< NULL (all valid) or nx*ny bytes, 1 = valid */
+    double gt[6];    /**< GDAL geotransform; default {0,1,0,0,0,1} */
+    char *crs_wkt;   /**< may be NULL */
+    int has_nodata;  /**< 1 if nodata_value should be written back for masked cells */
+    double nodata_value;
+} ft_grid;
+
+/** A new zero-filled grid, all cells valid. */
+ft_grid *ft_grid_create(size_t nx, size_t ny);
+ft_grid *ft_grid_copy(const ft_grid *g);
+void ft_grid_free(ft_grid *g);
+/** Allocates the mask (all valid) if absent. */
+int ft_grid_ensure_mask(ft_grid *g);
+/** 1 if cell (col,row) is valid. */
+static inline int ft_grid_is_valid(const ft_grid *g, size_t col, size_t row)
+{
+    return g->mask == NULL || g->mask[row * g->nx + col] != 0;
+}
+/** Number of valid cells. */
+size_t ft_grid_count_valid(const ft_grid *g);
+/** Minimum and maximum of valid cells; FT_E_EMPTY if none is valid. */
+int ft_grid_minmax(const ft_grid *g, double *zmin, double *zmax);
+/** Georeferenced centre of a cell. */
+void ft_grid_cell_center(const ft_grid *g, double col, double row, double *x, double *y);
+/** Extent of the grid (corners through the geotransform). */
+void ft_grid_extent(const ft_grid *g, double *xmin, double *ymin, double *xmax, double *ymax);
+/** Sets (copies) the CRS WKT; NULL clears it. */
+int ft_grid_set_crs(ft_grid *g, const char *wkt);
+/** Marks NaN and Inf cells as nodata; returns how many were found (>= 0). */
+long ft_grid_mask_nonfinite(ft_grid *g);
+
+/* ------------------------------------------------------------------------------------------------
+ * Scattered points (x, y, z), with an optional per-point weight (confidence = 1/sigma).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double *x, *y, *z;
+    double *w;       /**< NULL or n weights */
+    size_t n, cap;
+    char *crs_wkt;   /**< may be NULL */
+} ft_points;
+
+ft_points *ft_points_create(size_t cap);
+ft_points *ft_points_copy(const ft_points *p);
+void ft_points_free(ft_points *p);
+int ft_points_push(ft_points *p, double x, double y, double z);
+/** Allocates the weights (all 1) if absent. */
+int ft_points_ensure_weights(ft_points *p);
+int ft_points_bbox(const ft_points *p, double *xmin, double *ymin, double *xmax, double *ymax);
+int ft_points_set_crs(ft_points *p, const char *wkt);
+
+/* ------------------------------------------------------------------------------------------------
+ * Random numbers: a seeded generator built on GSL. Each stochastic call derives its own stream from
+ * (seed, stream id) so that results do not depend on call order or thread count: give every row,
+ * tile or feature its own stream id.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct ft_rng ft_rng;
+
+/** A generator for stream `stream` of `seed` (NULL, error set, if out of memory). */
+ft_rng *ft_rng_create(uint64_t seed, uint64_t stream);
+void ft_rng_free(ft_rng *r);
+/** Uniform in [0, 1). */
+double ft_rng_uniform(ft_rng *r);
+/** Uniform integer in [0, n). */
+uint64_t ft_rng_uint(ft_rng *r, uint64_t n);
+/** Normal with mean 0 and standard deviation sigma. */
+double ft_rng_gaussian(ft_rng *r, double sigma);
+/** The underlying gsl_rng * (as void * so this header does not need GSL's). */
+void *ft_rng_gsl(ft_rng *r);
+/** SplitMix64 mixing of a seed and a stream id, the derivation used by ft_rng_create. */
+uint64_t ft_rng_mix(uint64_t seed, uint64_t stream);
+
+/* ------------------------------------------------------------------------------------------------
+ * Least-squares line fits (log-log regression of every estimator).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double slope, intercept;
+    double r2;               /**< coefficient of determination */
+    double stderr_slope;     /**< standard error of the slope (0 when n == 2) */
+    double stderr_intercept;
+    size_t first, last;      /**< index range used, inclusive */
+    size_t n;                /**< number of points used */
+} ft_fit;
+
+/** Ordinary least squares y = intercept + slope*x over indices [first, last] (inclusive). Needs at
+ *  least 2 points, finite values and x not all equal. */
+int ft_fit_line(const double *x, const double *y, size_t first, size_t last, ft_fit *fit);
+/** Same on log10(scale), log10(value); every scale and value in range must be > 0. */
+int ft_fit_loglog(const double *scale, const double *value, size_t first, size_t last, ft_fit *fit);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FRACTERRA_CORE_H */

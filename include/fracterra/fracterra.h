@@ -1,0 +1,11 @@
+/* fracterra — fractal geometry of maps. Includes every public header.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_H
+#define FRACTERRA_H
+
+#include "core.h"
+#include "io.h"
+#include "render.h"
+
+#endif /* FRACTERRA_H */

@@ -1,0 +1,127 @@
+/* fracterra — io.h: reading and writing chains, polygons, grids and points.
+ *
+ * Vector layers go through OGR (GeoJSON, Shapefile, GeoPackage, any OGR driver), rasters through GDAL,
+ * plus GMT-style plain text chains (`x y` per line, `>` between segments), CSV and whitespace XYZ points.
+ * Every writer writes to a temporary name in the destination folder and renames on success, so a
+ * failed write leaves no file behind. CRS and geotransform are carried through.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_IO_H
+#define FRACTERRA_IO_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it. */
+void ft_io_init(void);
+/** Releases GDAL's global state (call at program exit; optional). */
+void ft_io_cleanup(void);
+
+/* What a path holds, as far as fracterra is concerned. */
+typedef enum {
+    FT_KIND_UNKNOWN = 0,
+    FT_KIND_GRID = 1,         /**< a raster GDAL opens */
+    FT_KIND_CHAINS = 2,       /**< a vector layer of lines or polygons, or GMT text chains */
+    FT_KIND_POINTS = 3,       /**< a vector layer of points, CSV or XYZ text */
+} ft_file_kind;
+
+/** Decides what a file holds without reading it all. FT_E_IO if it cannot be opened, FT_E_FORMAT if
+ *  it is neither a raster nor a vector nor a known text format. layer may be NULL (first layer). */
+int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind);
+
+/** 1 if the path names a plain-text chain file by its extension (.gmt, .xy, .txt). */
+int ft_io_is_text_chains(const char *path);
+/** 1 if the path names a plain-text point file by its extension (.csv, .xyz). */
+int ft_io_is_text_points(const char *path);
+
+/* ------------------------------------------------------------------------------------------------
+ * Chains and polygons
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    const char *layer;   /**< layer name; NULL = the first layer */
+    const char *where;   /**< OGR attribute filter (SQL WHERE clause); NULL = all features */
+    const char *fields;  /**< comma-separated field names to keep; NULL = all, "" = none */
+} ft_read_layer_opts;
+#define FT_READ_LAYER_OPTS_DEFAULT {NULL, NULL, NULL}
+
+/** Reads lines, multilines, polygons (with holes) and multipolygons of a layer, or GMT text chains
+ *  (by extension). Rings lose their repeated closing vertex. Errors: FT_E_IO (missing/unreadable),
+ *  FT_E_FORMAT (a raster, a point layer, unknown layer or field), FT_E_EMPTY (no chain at all),
+ *  FT_E_NUMERIC (NaN/Inf coordinate, named). Chains with fewer than 2 vertices are kept. */
+int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out);
+
+typedef struct {
+    const char *driver;      /**< OGR driver short name; NULL = from the extension */
+    const char *layer;       /**< layer name to write; NULL = the layer's name or the file's stem */
+    const char *const *lco;  /**< NULL-terminated layer creation options, or NULL */
+} ft_write_layer_opts;
+#define FT_WRITE_LAYER_OPTS_DEFAULT {NULL, NULL, NULL}
+
+/** Writes a layer (geometry type per feature, fields, CRS) through OGR, or as GMT text (by extension or
+ *  driver "GMT-text"). Replaces an existing file only when the whole write succeeded. */
+int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts);
+
+/** GMT-style text: `x y` per line (extra columns ignored), `>` lines separate segments, `#` comments.
+ *  A segment whose last vertex equals its first becomes a ring. "-" reads stdin / writes stdout. */
+int ft_io_read_text_chains(const char *path, ft_layer **out);
+int ft_io_write_text_chains(const char *path, const ft_layer *layer);
+
+/* ------------------------------------------------------------------------------------------------
+ * Grids
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    int band;  /**< 1-based band number; default 1 */
+} ft_read_grid_opts;
+#define FT_READ_GRID_OPTS_DEFAULT {1}
+
+/** Reads one band as float with its geotransform, CRS and nodata mask (the band's nodata value, its
+ *  mask band, and NaN cells are nodata). FT_E_FORMAT for a vector file or a bad band number. */
+int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out);
+
+typedef struct {
+    const char *driver;       /**< GDAL driver short name; NULL = from the extension (GTiff default) */
+    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, DEFLATE) */
+    int type;                 /**< GDALDataType of the output band; 0 = Float32 */
+} ft_write_grid_opts;
+#define FT_WRITE_GRID_OPTS_DEFAULT {NULL, NULL, 0}
+
+/** Writes a grid with its geotransform, CRS and nodata (masked cells get nodata_value, or NaN/-9999
+ *  chosen for the type if the grid has none). Drivers without Create use CreateCopy from memory. */
+int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts);
+
+/* ------------------------------------------------------------------------------------------------
+ * Points
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    const char *x, *y, *z;  /**< column names for CSV (defaults "x", "y", "z", case-insensitive) */
+    const char *weight;     /**< optional confidence column/field (1/sigma); NULL = none */
+    const char *layer;      /**< OGR layer; NULL = first */
+    const char *zfield;     /**< OGR point layers: z from this field; NULL = from the geometry's Z */
+} ft_read_points_opts;
+#define FT_READ_POINTS_OPTS_DEFAULT {NULL, NULL, NULL, NULL, NULL, NULL}
+
+/** Reads scattered points from CSV (header row; .csv), whitespace XYZ text (.xyz, `x y z` per line,
+ *  `#` comments), or an OGR point layer. Errors name the file, line and column of a non-numeric or
+ *  non-finite value, and a missing column. */
+int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out);
+/** Writes points as CSV (x,y,z[,w]) or XYZ text by extension, or through OGR otherwise. */
+int ft_io_write_points(const char *path, const ft_points *p);
+
+/* ------------------------------------------------------------------------------------------------
+ * Files
+ * --------------------------------------------------------------------------------------------- */
+
+/** FT_OK if path can be created: its folder exists and is writable (FT_E_IO naming it otherwise). */
+int ft_io_check_writable(const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FRACTERRA_IO_H */

@@ -1,0 +1,52 @@
+/* fracterra — render.h: hillshade, grid images and vector maps (cairo: PNG, SVG, PDF by extension).
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_RENDER_H
+#define FRACTERRA_RENDER_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    double azimuth;   /**< light direction, degrees clockwise from north; default 315 */
+    double altitude;  /**< light elevation above the horizon, degrees; default 45 */
+    double z_factor;  /**< vertical exaggeration; default 1 */
+    double scale;     /**< horizontal units per vertical unit (111120 for degrees and metres); default 1 */
+} ft_hillshade_opts;
+#define FT_HILLSHADE_OPTS_DEFAULT {315.0, 45.0, 1.0, 1.0}
+
+/** Hillshade (Horn's 3x3 slope and aspect, as gdaldem) in [0, 255]; cells whose window touches
+ *  nodata are nodata. The output keeps the input's geotransform and CRS. */
+int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out);
+
+typedef struct {
+    int width;              /**< image width in pixels; 0 = one pixel per cell (height follows) */
+    const ft_grid *shade;   /**< optional hillshade (same size) multiplied into the colours; NULL = none */
+    int colormap;           /**< 0 = grey, 1 = hypsometric (green-brown-white) */
+} ft_grid_image_opts;
+#define FT_GRID_IMAGE_OPTS_DEFAULT {0, NULL, 0}
+
+/** Writes a grid as a PNG image, stretched between its minimum and maximum; nodata is transparent. */
+int ft_render_grid_png(const ft_grid *g, const char *path, const ft_grid_image_opts *opts);
+
+typedef struct {
+    int width, height;       /**< canvas size in points/pixels; default 800 x 600 (aspect kept) */
+    double line_width;       /**< stroke width; default 0.8 */
+    const char *stroke;      /**< stroke colour "#rrggbb"; default "#1f3b73" */
+    const char *fill;        /**< fill colour for polygons, NULL = none; default "#e8eef5" */
+    const char *title;       /**< optional title drawn at the top; NULL = none */
+    int scale_bar;           /**< 1 to draw a scale bar in layer units; default 1 */
+} ft_map_opts;
+#define FT_MAP_OPTS_DEFAULT {800, 600, 0.8, "#1f3b73", "#e8eef5", NULL, 1}
+
+/** Draws a layer's chains (polygons filled even-odd, lines stroked) to SVG, PNG or PDF by extension. */
+int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FRACTERRA_RENDER_H */

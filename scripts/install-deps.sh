@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages fracterra needs to build, test and run its demo and bench, and only those
+# that are missing. Idempotent; needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libgdal-dev gdal-bin        # raster/vector I/O; gdal-bin gives gdalinfo/ogrinfo/gdal_translate (tests, bench peers)
+  libgeos-dev                 # robust polygon operations
+  libfftw3-dev                # FFT
+  libgsl-dev                  # RNG, statistics, least squares
+  libcairo2-dev               # PNG/SVG/PDF rendering
+  libjson-c-dev               # JSON output
+  libcmocka-dev               # unit tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "install-deps: need root to install: ${missing[*]}" >&2; exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
