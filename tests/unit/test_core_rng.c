@@ -1,0 +1,158 @@
+/* fracterra — unit tests of core/rng.c: reproducible streams, distributions, unbiased integers.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "fracterra/core.h"
+
+/* cmocka 1.1 compares floats only: a double comparison that prints both values. */
+static inline void check_near(double a, double b, double tol, const char *file, int line)
+{
+    if (!(fabs(a - b) <= tol)) {
+        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
+        _fail(file, line);
+    }
+}
+#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
+
+static void test_same_seed_and_stream_identical(void **state)
+{
+    (void)state;
+    ft_rng *a = ft_rng_create(42, 7), *b = ft_rng_create(42, 7);
+    assert_non_null(a);
+    assert_non_null(b);
+    for (int i = 0; i < 10000; i++) {
+        double ua = ft_rng_uniform(a), ub = ft_rng_uniform(b);
+        assert_memory_equal(&ua, &ub, sizeof ua);
+        double ga = ft_rng_gaussian(a, 3.0), gb = ft_rng_gaussian(b, 3.0);
+        assert_memory_equal(&ga, &gb, sizeof ga);
+        assert_true(ft_rng_uint(a, UINT64_MAX) == ft_rng_uint(b, UINT64_MAX));
+    }
+    ft_rng_free(a);
+    ft_rng_free(b);
+}
+
+static int count_equal_draws(uint64_t s1, uint64_t t1, uint64_t s2, uint64_t t2)
+{
+    ft_rng *a = ft_rng_create(s1, t1), *b = ft_rng_create(s2, t2);
+    int same = 0;
+    for (int i = 0; i < 1000; i++)
+        same += ft_rng_uint(a, UINT64_MAX) == ft_rng_uint(b, UINT64_MAX);
+    ft_rng_free(a);
+    ft_rng_free(b);
+    return same;
+}
+
+static void test_streams_and_seeds_differ(void **state)
+{
+    (void)state;
+    assert_int_equal(count_equal_draws(42, 0, 42, 1), 0);
+    assert_int_equal(count_equal_draws(42, 0, 43, 0), 0);
+    assert_int_equal(count_equal_draws(0, 1, 1, 0), 0);
+    assert_true(ft_rng_mix(42, 0) != ft_rng_mix(42, 1));
+    assert_true(ft_rng_mix(0, 1) != ft_rng_mix(1, 0));
+    assert_true(ft_rng_mix(5, 9) == ft_rng_mix(5, 9));
+    /* streams 0 .. 9999 of one seed: all mixed seeds distinct (a bijection of the stream id) */
+    static uint64_t m[10000];
+    for (uint64_t s = 0; s < 10000; s++)
+        m[s] = ft_rng_mix(2024, s);
+    for (int i = 0; i < 10000; i++)
+        for (int j = i + 1; j < i + 50 && j < 10000; j++)
+            assert_true(m[i] != m[j]);
+}
+
+static void test_uniform_range_and_moments(void **state)
+{
+    (void)state;
+    ft_rng *r = ft_rng_create(1, 2);
+    const int n = 100000;
+    double sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < n; i++) {
+        double u = ft_rng_uniform(r);
+        assert_true(u >= 0.0 && u < 1.0);
+        sum += u;
+        sum2 += u * u;
+    }
+    double mean = sum / n, var = sum2 / n - mean * mean;
+    assert_near(mean, 0.5, 0.005);     /* sd of the mean: 0.29/316 = 0.0009 */
+    assert_near(var, 1.0 / 12.0, 0.002);
+    ft_rng_free(r);
+}
+
+static void test_gaussian_moments(void **state)
+{
+    (void)state;
+    ft_rng *r = ft_rng_create(123, 0);
+    const int n = 100000;
+    const double sigma = 2.0;
+    double sum = 0.0, sum2 = 0.0;
+    int beyond_2sigma = 0;
+    for (int i = 0; i < n; i++) {
+        double g = ft_rng_gaussian(r, sigma);
+        sum += g;
+        sum2 += g * g;
+        beyond_2sigma += fabs(g) > 2.0 * sigma;
+    }
+    double mean = sum / n, var = sum2 / n - mean * mean;
+    assert_near(mean, 0.0, 0.03);   /* sd of the mean: 2/316 = 0.0063 */
+    assert_near(var, 4.0, 0.1);     /* sd of the variance: 4 sqrt(2/n) = 0.018 */
+    assert_near((double)beyond_2sigma / n, 0.0455, 0.004);
+    ft_rng_free(r);
+}
+
+static void test_uint_in_range_and_unbiased(void **state)
+{
+    (void)state;
+    ft_rng *r = ft_rng_create(9, 9);
+    assert_true(ft_rng_uint(r, 0) == 0);
+    assert_true(ft_rng_uint(r, 1) == 0);
+    int counts[3] = {0, 0, 0};
+    for (int i = 0; i < 30000; i++) {
+        uint64_t v = ft_rng_uint(r, 3);
+        assert_true(v < 3);
+        counts[v]++;
+    }
+    for (int k = 0; k < 3; k++)
+        assert_true(counts[k] > 9500 && counts[k] < 10500);
+    const uint64_t big[] = {UINT64_C(0xffffffff), UINT64_C(0x100000000), UINT64_C(0x100000001),
+                            UINT64_C(1) << 40, (UINT64_C(1) << 63) + 1, UINT64_MAX};
+    for (size_t k = 0; k < sizeof big / sizeof big[0]; k++) {
+        int high = 0;
+        for (int i = 0; i < 2000; i++) {
+            uint64_t v = ft_rng_uint(r, big[k]);
+            assert_true(v < big[k]);
+            high += v >= big[k] / 2;
+        }
+        assert_true(high > 850 && high < 1150); /* both halves of the range are reached */
+    }
+    ft_rng_free(r);
+}
+
+static void test_gsl_handle(void **state)
+{
+    (void)state;
+    ft_rng *r = ft_rng_create(0, 0);
+    assert_non_null(ft_rng_gsl(r));
+    ft_rng_free(r);
+    ft_rng_free(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_same_seed_and_stream_identical),
+        cmocka_unit_test(test_streams_and_seeds_differ),
+        cmocka_unit_test(test_uniform_range_and_moments),
+        cmocka_unit_test(test_gaussian_moments),
+        cmocka_unit_test(test_uint_in_range_and_unbiased),
+        cmocka_unit_test(test_gsl_handle),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
