@@ -1,0 +1,58 @@
+/* fracterra — private helpers of the I/O module (src/io/), not installed.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_IO_INTERNAL_H
+#define FRACTERRA_IO_INTERNAL_H
+
+#include <stdio.h>
+
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "fracterra/io.h"
+
+/* GDAL messages (init.c). The quiet handler keeps the last message of this thread instead of printing it. */
+void ft_io_gdal_reset(void);       /* forgets the stored message and failure flag */
+const char *ft_io_gdal_msg(void);  /* last failure message (else last warning) since the reset, "" if none */
+int ft_io_gdal_failed(void);       /* 1 if GDAL reported a failure since the reset */
+
+/* Sets the error like ft_error(), appending ": <GDAL message>" when GDAL said something. */
+int ft_io_fail(int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Paths (common.c). */
+const char *ft_io_ext(const char *path);             /* extension after the last dot of the file name, "" if none */
+int ft_io_ext_in(const char *path, const char *list); /* 1 if the extension is one of the space-separated list */
+char *ft_io_stem(const char *path);                  /* malloc'd file name without folder and extension */
+int ft_io_is_stdio(const char *path);                 /* 1 for "-" */
+/* FT_E_IO "cannot open 'path': reason" when path is missing or unreadable; FT_OK if it can be read. */
+int ft_io_check_readable(const char *path);
+
+/* Opening (common.c): a dataset of the wanted kind (GDAL_OF_VECTOR or GDAL_OF_RASTER), with the errors
+ * of the module: FT_E_IO for a missing/unreadable file, FT_E_FORMAT for the other kind or an unknown format. */
+int ft_io_open(const char *path, unsigned int kind, GDALDatasetH *ds);
+/* The named layer (or the first); FT_E_FORMAT naming it and listing the layers when absent. */
+int ft_io_get_layer(GDALDatasetH ds, const char *path, const char *name, OGRLayerH *layer);
+
+/* Drivers (common.c): opts driver name, else from the extension among drivers that can create files of
+ * that kind (GDAL_DCAP_VECTOR or GDAL_DCAP_RASTER). FT_E_FORMAT naming the extension or driver otherwise. */
+int ft_io_find_driver(const char *path, const char *name, const char *cap, GDALDriverH *drv);
+
+/* CRS (common.c). */
+char *ft_io_srs_to_wkt(OGRSpatialReferenceH srs);    /* malloc'd WKT2 (or WKT1), NULL if srs is NULL */
+int ft_io_srs_from_wkt(const char *wkt, OGRSpatialReferenceH *srs); /* *srs NULL for NULL/empty wkt */
+
+/* Text (common.c). */
+void ft_io_put_double(FILE *f, double v);            /* shortest text that reads back to exactly v */
+int ft_io_parse_double(const char *s, double *v);    /* 1 if s is one whole number (spaces around allowed) */
+FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
+
+/* Text points (points_text.c): CSV with a header row, whitespace XYZ ("-" = stdin). */
+int ft_io_read_points_csv(const char *path, const ft_read_points_opts *o, ft_points **out);
+int ft_io_read_points_xyz(const char *path, const ft_read_points_opts *o, ft_points **out);
+
+#endif /* FRACTERRA_IO_INTERNAL_H */

@@ -1,0 +1,309 @@
+/* fracterra — io/points_text.c: scattered points from CSV and whitespace XYZ text.
+ *
+ * CSV: the first non-empty line is the header; the separator is the most frequent of `,` `;` tab in
+ * it; fields may be double-quoted ("" escapes a quote); columns are found by name, case-insensitive
+ * (x, y, z by default, plus an optional weight column). With `;` separators a decimal comma is read as
+ * a decimal point. XYZ: `x y z [w]` per line separated by blanks, tabs or commas, `#` comments, one
+ * optional header line. Errors name the file, the line and the column of the bad value.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "internal.h"
+#include "io/io_internal.h"
+
+typedef struct {
+    const char *path;
+    FILE *f;
+    char *buf;
+    size_t cap;
+    long line;
+    ft_points *p;
+    double *w;           /* weights, parallel to p */
+    size_t wcap;
+    char **fields;       /* fields of the current line (point into buf) */
+    size_t nfields, fcap;
+} text_in;
+
+static int next_line(text_in *t)
+{
+    errno = 0;
+    if (getline(&t->buf, &t->cap, t->f) < 0) {
+        if (ferror(t->f))
+            return ft_error(FT_E_IO, "cannot read '%s': %s", t->path, strerror(errno ? errno : EIO));
+        return 0;
+    }
+    t->line++;
+    t->buf[strcspn(t->buf, "\r\n")] = '\0';
+    return 1;
+}
+
+static int is_blank(const char *s)
+{
+    return s[strspn(s, " \t")] == '\0';
+}
+
+static int push_field(text_in *t, char *s)
+{
+    if (t->nfields == t->fcap) {
+        size_t cap = t->fcap ? 2 * t->fcap : 16;
+        char **f = ft_realloc_array(t->fields, cap, sizeof *f);
+        if (f == NULL)
+            return FT_E_NOMEM;
+        t->fields = f;
+        t->fcap = cap;
+    }
+    t->fields[t->nfields++] = s;
+    return FT_OK;
+}
+
+/* Splits a CSV line in place: quotes removed, "" turned into ", fields trimmed of blanks. */
+static int split_csv(text_in *t, char *s, char delim)
+{
+    t->nfields = 0;
+    for (;;) {
+        s += strspn(s, " \t");
+        char *start = s, *dst = s;
+        if (*s == '"') {
+            for (s++; *s && !(*s == '"' && s[1] != '"'); s++) {
+                if (*s == '"')
+                    s++;
+                *dst++ = *s;
+            }
+            if (*s == '"')
+                s++;
+            s += strcspn(s, (char[]){delim, '\0'});
+        } else {
+            s += strcspn(s, (char[]){delim, '\0'});
+            dst = s;
+            while (dst > start && (dst[-1] == ' ' || dst[-1] == '\t'))
+                dst--;
+        }
+        int more = *s == delim;
+        *dst = '\0';
+        if (push_field(t, start) != FT_OK)
+            return FT_E_NOMEM;
+        if (!more)
+            return FT_OK;
+        s++;
+    }
+}
+
+/* Splits a whitespace (or comma) separated line in place. */
+static int split_blanks(text_in *t, char *s)
+{
+    t->nfields = 0;
+    for (;;) {
+        s += strspn(s, " \t,");
+        if (*s == '\0')
+            return FT_OK;
+        char *start = s;
+        s += strcspn(s, " \t,");
+        int more = *s != '\0';
+        *s = '\0';
+        if (push_field(t, start) != FT_OK)
+            return FT_E_NOMEM;
+        if (!more)
+            return FT_OK;
+        s++;
+    }
+}
+
+static char guess_delimiter(const char *header)
+{
+    size_t comma = 0, semi = 0, tab = 0;
+    int quoted = 0;
+    for (const char *s = header; *s; s++) {
+        if (*s == '"')
+            quoted = !quoted;
+        else if (!quoted && *s == ',')
+            comma++;
+        else if (!quoted && *s == ';')
+            semi++;
+        else if (!quoted && *s == '\t')
+            tab++;
+    }
+    if (semi > comma && semi >= tab)
+        return ';';
+    return tab > comma ? '\t' : ',';
+}
+
+/* Parses field col of the current line as a finite number, naming file, line and column otherwise. */
+static int field_value(const text_in *t, size_t col, const char *name, int decimal_comma, double *v)
+{
+    if (col >= t->nfields)
+        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu) is missing: the line has %zu field%s", t->path,
+                        t->line, name, col + 1, t->nfields, t->nfields == 1 ? "" : "s");
+    char *s = t->fields[col];
+    if (decimal_comma && strchr(s, ',') && !strchr(s, '.'))
+        *strchr(s, ',') = '.';
+    if (s[0] == '\0')
+        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu) is empty", t->path, t->line, name, col + 1);
+    if (!ft_io_parse_double(s, v))
+        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu): '%s' is not a number", t->path, t->line, name,
+                        col + 1, s);
+    if (!isfinite(*v))
+        return ft_error(FT_E_NUMERIC, "%s:%ld: column '%s' (%zu): '%s' is not finite", t->path, t->line, name,
+                        col + 1, s);
+    return FT_OK;
+}
+
+/* Appends a point read from columns col[0..2] (x, y, z) and col[3] (weight, if >= 0). */
+static int add_point(text_in *t, const size_t *col, const long weight_col, const char *const *names, int dec_comma)
+{
+    double v[4] = {0, 0, 0, 1};
+    for (int k = 0; k < 4; k++) {
+        if (k == 3 && weight_col < 0)
+            break;
+        int rc = field_value(t, k == 3 ? (size_t)weight_col : col[k], names[k], dec_comma, &v[k]);
+        if (rc != FT_OK)
+            return rc;
+    }
+    if (ft_points_push(t->p, v[0], v[1], v[2]) != FT_OK)
+        return FT_E_NOMEM;
+    if (weight_col < 0)
+        return FT_OK;
+    if (t->p->n > t->wcap) {
+        size_t cap = t->wcap ? 2 * t->wcap : 256;
+        double *w = ft_realloc_array(t->w, cap, sizeof *w);
+        if (w == NULL)
+            return FT_E_NOMEM;
+        t->w = w;
+        t->wcap = cap;
+    }
+    t->w[t->p->n - 1] = v[3];
+    return FT_OK;
+}
+
+static int find_column(const text_in *t, const char *name, size_t *col)
+{
+    for (size_t i = 0; i < t->nfields; i++)
+        if (strcasecmp(t->fields[i], name) == 0) {
+            *col = i;
+            return FT_OK;
+        }
+    char list[1024] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < t->nfields && used < sizeof list - 1; i++) {
+        int k = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", t->fields[i]);
+        if (k < 0)
+            break;
+        used += (size_t)k;
+    }
+    return ft_error(FT_E_FORMAT, "'%s' has no column '%s' (columns: %s)", t->path, name, list);
+}
+
+/* Opens the file and the points; the caller runs the body, then finish() hands the result over. */
+static int start(text_in *t, const char *path)
+{
+    memset(t, 0, sizeof *t);
+    t->path = ft_io_is_stdio(path) ? "(stdin)" : path;
+    int rc = ft_io_check_readable(path);
+    if (rc != FT_OK)
+        return rc;
+    t->f = ft_io_fopen_read(path);
+    if (t->f == NULL)
+        return ft_error(FT_E_IO, "cannot open '%s': %s", path, strerror(errno));
+    t->p = ft_points_create(256);
+    return t->p ? FT_OK : FT_E_NOMEM;
+}
+
+static int finish(text_in *t, int rc, ft_points **out)
+{
+    if (rc == FT_OK && t->p->n == 0)
+        rc = ft_error(FT_E_EMPTY, "'%s' holds no point", t->path);
+    if (rc == FT_OK && t->w != NULL) {
+        rc = ft_points_ensure_weights(t->p);
+        if (rc == FT_OK)
+            memcpy(t->p->w, t->w, t->p->n * sizeof *t->w);
+    }
+    if (t->f != NULL && t->f != stdin)
+        fclose(t->f);
+    free(t->buf);
+    free(t->fields);
+    free(t->w);
+    if (rc != FT_OK) {
+        ft_points_free(t->p);
+        return rc;
+    }
+    *out = t->p;
+    return FT_OK;
+}
+
+static int read_csv_body(text_in *t, const ft_read_points_opts *o)
+{
+    int rc;
+    while ((rc = next_line(t)) == 1 && is_blank(t->buf))
+        ;
+    if (rc != 1)
+        return rc < 0 ? rc : ft_error(FT_E_EMPTY, "'%s' is empty (no header row)", t->path);
+    char *header = t->buf;
+    if ((unsigned char)header[0] == 0xEF && (unsigned char)header[1] == 0xBB && (unsigned char)header[2] == 0xBF)
+        header += 3;
+    char delim = guess_delimiter(header);
+    if (split_csv(t, header, delim) != FT_OK)
+        return FT_E_NOMEM;
+    const char *names[4] = {o->x ? o->x : "x", o->y ? o->y : "y", o->z ? o->z : "z", o->weight};
+    size_t col[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++)
+        if (names[k] != NULL && (rc = find_column(t, names[k], &col[k])) != FT_OK)
+            return rc;
+    long wcol = o->weight ? (long)col[3] : -1;
+    while ((rc = next_line(t)) == 1) {
+        if (is_blank(t->buf))
+            continue;
+        if (split_csv(t, t->buf, delim) != FT_OK)
+            return FT_E_NOMEM;
+        if ((rc = add_point(t, col, wcol, names, delim == ';')) != FT_OK)
+            return rc;
+    }
+    return rc;
+}
+
+static int read_xyz_body(text_in *t, const ft_read_points_opts *o)
+{
+    static const char *const names[4] = {"x", "y", "z", "weight"};
+    static const size_t col[3] = {0, 1, 2};
+    long wcol = o->weight ? 3 : -1;
+    int rc, first = 1;
+    double v;
+    while ((rc = next_line(t)) == 1) {
+        char *s = t->buf + strspn(t->buf, " \t");
+        if (*s == '\0' || *s == '#')
+            continue;
+        if (split_blanks(t, s) != FT_OK)
+            return FT_E_NOMEM;
+        if (first && t->nfields > 0 && !ft_io_parse_double(t->fields[0], &v)) {
+            first = 0;  /* a header line such as "x y z" */
+            continue;
+        }
+        first = 0;
+        if ((rc = add_point(t, col, wcol, names, 0)) != FT_OK)
+            return rc;
+    }
+    return rc;
+}
+
+int ft_io_read_points_csv(const char *path, const ft_read_points_opts *o, ft_points **out)
+{
+    text_in t;
+    int rc = start(&t, path);
+    if (rc == FT_OK)
+        rc = read_csv_body(&t, o);
+    return finish(&t, rc, out);
+}
+
+int ft_io_read_points_xyz(const char *path, const ft_read_points_opts *o, ft_points **out)
+{
+    text_in t;
+    int rc = start(&t, path);
+    if (rc == FT_OK)
+        rc = read_xyz_body(&t, o);
+    return finish(&t, rc, out);
+}

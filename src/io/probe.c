@@ -1,0 +1,125 @@
+/* fracterra — io/probe.c: what a path holds (grid, chains, points) and whether an output can be created.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <errno.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "internal.h"
+#include "io/io_internal.h"
+
+int ft_io_is_text_chains(const char *path)
+{
+    return path != NULL && (ft_io_is_stdio(path) || ft_io_ext_in(path, "gmt xy txt"));
+}
+
+int ft_io_is_text_points(const char *path)
+{
+    return path != NULL && ft_io_ext_in(path, "csv xyz");
+}
+
+/* Kind of a geometry type; FT_KIND_UNKNOWN for none, unknown or mixed collections. */
+static ft_file_kind kind_of_type(OGRwkbGeometryType t)
+{
+    t = wkbFlatten(t);
+    if (t == wkbPoint || t == wkbMultiPoint)
+        return FT_KIND_POINTS;
+    if (t == wkbUnknown || t == wkbNone || t == wkbGeometryCollection)
+        return FT_KIND_UNKNOWN;
+    if (OGR_GT_IsSubClassOf(t, wkbCurve) || OGR_GT_IsSubClassOf(t, wkbSurface) ||
+        OGR_GT_IsSubClassOf(t, wkbMultiCurve) || OGR_GT_IsSubClassOf(t, wkbMultiSurface))
+        return FT_KIND_CHAINS;
+    return FT_KIND_UNKNOWN;
+}
+
+/* A layer of unknown declared type: the kind of its first features' geometries. */
+static ft_file_kind kind_of_features(OGRLayerH layer)
+{
+    ft_file_kind kind = FT_KIND_UNKNOWN;
+    OGR_L_ResetReading(layer);
+    OGRFeatureH f;
+    for (int i = 0; i < 1000 && kind == FT_KIND_UNKNOWN && (f = OGR_L_GetNextFeature(layer)) != NULL; i++) {
+        OGRGeometryH g = OGR_F_GetGeometryRef(f);
+        if (g != NULL)
+            kind = kind_of_type(OGR_G_GetGeometryType(g));
+        OGR_F_Destroy(f);
+    }
+    OGR_L_ResetReading(layer);
+    return kind;
+}
+
+int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind)
+{
+    *kind = FT_KIND_UNKNOWN;
+    int rc = ft_io_check_readable(path);
+    if (rc != FT_OK)
+        return rc;
+    if (ft_io_is_text_chains(path) || ft_io_is_text_points(path)) {
+        *kind = ft_io_is_text_points(path) ? FT_KIND_POINTS : FT_KIND_CHAINS;
+        return FT_OK;
+    }
+    ft_io_init();
+    ft_io_gdal_reset();
+    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    if (ds == NULL)
+        return ft_error(FT_E_FORMAT, "'%s' is neither a raster nor a vector format GDAL reads", path);
+    if (layer == NULL && GDALGetRasterCount(ds) > 0) {
+        GDALClose(ds);
+        *kind = FT_KIND_GRID;
+        return FT_OK;
+    }
+    OGRLayerH l;
+    rc = ft_io_get_layer(ds, path, layer, &l);
+    if (rc == FT_OK) {
+        *kind = kind_of_type(OGR_L_GetGeomType(l));
+        if (*kind == FT_KIND_UNKNOWN)
+            *kind = kind_of_features(l);
+        if (*kind == FT_KIND_UNKNOWN)
+            rc = ft_error(FT_E_FORMAT, "layer '%s' of '%s' holds no line, polygon or point geometry",
+                          OGR_L_GetName(l), path);
+    }
+    GDALClose(ds);
+    return rc;
+}
+
+/* The folder part of path ("." when it has none); malloc'd. */
+static char *folder_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (slash == NULL)
+        return ft_strdup(".");
+    if (slash == path)
+        return ft_strdup("/");
+    char *dir = ft_malloc((size_t)(slash - path) + 1);
+    if (dir) {
+        memcpy(dir, path, (size_t)(slash - path));
+        dir[slash - path] = '\0';
+    }
+    return dir;
+}
+
+int ft_io_check_writable(const char *path)
+{
+    if (path == NULL || path[0] == '\0')
+        return ft_error(FT_E_INVALID, "no output file given");
+    if (ft_io_is_stdio(path))
+        return FT_OK;
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return ft_error(FT_E_IO, "cannot write '%s': it is a folder", path);
+    char *dir = folder_of(path);
+    if (dir == NULL)
+        return FT_E_NOMEM;
+    int rc = FT_OK;
+    if (stat(dir, &st) != 0)
+        rc = ft_error(FT_E_IO, "cannot write '%s': folder '%s' does not exist", path, dir);
+    else if (!S_ISDIR(st.st_mode))
+        rc = ft_error(FT_E_IO, "cannot write '%s': '%s' is not a folder", path, dir);
+    else if (access(dir, W_OK | X_OK) != 0)
+        rc = ft_error(FT_E_IO, "cannot write '%s': folder '%s' is not writable (%s)", path, dir,
+                      strerror(errno));
+    free(dir);
+    return rc;
+}

@@ -1,0 +1,173 @@
+/* fracterra — io/raster_read.c: one raster band into an ft_grid (float cells + nodata mask).
+ *
+ * Cells are read as Float32 in blocks of whole rows (a multiple of the band's block height), so large
+ * rasters stream through GDAL's block cache without per-cell calls. The mask comes from GDAL's mask
+ * band whenever it is not "all valid": it compares the nodata value in the band's own type (e.g. Int16
+ * -32768) and covers per-dataset masks and alpha bands; NaN and infinite cells are nodata too. A band
+ * with a scale or offset is returned in physical units (raw * scale + offset). A grid whose cells are
+ * all nodata is read successfully: ft_grid_count_valid() tells the caller.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cpl_string.h>
+
+#include "internal.h"
+#include "io/io_internal.h"
+
+typedef struct {
+    const char *path;
+    GDALRasterBandH band;
+    GDALRasterBandH mask;  /* NULL when GDAL says every cell is valid */
+    ft_grid *g;
+    uint8_t *mbuf;         /* one block of mask rows */
+    double scale, offset;
+} grid_reader;
+
+static int check_band(GDALDatasetH ds, const char *path, int band)
+{
+    int count = GDALGetRasterCount(ds);
+    if (count == 0) {
+        char **sub = GDALGetMetadata(ds, "SUBDATASETS");
+        const char *first = CSLFetchNameValue(sub, "SUBDATASET_1_NAME");
+        if (first != NULL)
+            return ft_error(FT_E_FORMAT, "'%s' has no band of its own; it holds subdatasets such as '%s'", path,
+                            first);
+        return ft_error(FT_E_FORMAT, "'%s' has no raster band", path);
+    }
+    if (band < 1 || band > count)
+        return ft_error(FT_E_FORMAT, "band %d requested but '%s' has %d band%s", band, path, count,
+                        count == 1 ? "" : "s");
+    return FT_OK;
+}
+
+static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
+{
+    int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
+    if (nx <= 0 || ny <= 0)
+        return ft_error(FT_E_FORMAT, "'%s' has an empty raster (%d x %d)", path, nx, ny);
+    ft_grid *g = ft_grid_create((size_t)nx, (size_t)ny);
+    if (g == NULL)
+        return FT_E_NOMEM;
+    double gt[6];
+    if (GDALGetGeoTransform(ds, gt) == CE_None)
+        memcpy(g->gt, gt, sizeof gt);
+    else
+        memcpy(g->gt, (double[6]){0, 1, 0, 0, 0, 1}, sizeof gt);
+    char *wkt = ft_io_srs_to_wkt(GDALGetSpatialRef(ds));
+    int rc = wkt ? ft_grid_set_crs(g, wkt) : FT_OK;
+    free(wkt);
+    if (rc != FT_OK) {
+        ft_grid_free(g);
+        return rc;
+    }
+    *out = g;
+    return FT_OK;
+}
+
+/* Marks cell i invalid, creating the mask on the first invalid cell. */
+static int set_invalid(ft_grid *g, size_t i)
+{
+    if (g->mask == NULL && ft_grid_ensure_mask(g) != FT_OK)
+        return FT_E_NOMEM;
+    g->mask[i] = 0;
+    return FT_OK;
+}
+
+/* Reads rows [row0, row0 + rows) of cells and mask, then masks and scales them. */
+static int read_rows(grid_reader *r, int row0, int rows)
+{
+    ft_grid *g = r->g;
+    size_t nx = g->nx, base = (size_t)row0 * nx, n = (size_t)rows * nx;
+    int inx = (int)nx;
+    ft_io_gdal_reset();
+    if (GDALRasterIO(r->band, GF_Read, 0, row0, inx, rows, g->z + base, inx, rows, GDT_Float32, 0, 0) != CE_None)
+        return ft_io_fail(FT_E_IO, "cannot read rows %d-%d of '%s'", row0, row0 + rows - 1, r->path);
+    if (r->mask != NULL &&
+        GDALRasterIO(r->mask, GF_Read, 0, row0, inx, rows, r->mbuf, inx, rows, GDT_Byte, 0, 0) != CE_None)
+        return ft_io_fail(FT_E_IO, "cannot read the mask of rows %d-%d of '%s'", row0, row0 + rows - 1, r->path);
+    int scaled = r->scale != 1.0 || r->offset != 0.0;
+    for (size_t k = 0; k < n; k++) {
+        float *z = &g->z[base + k];
+        if ((r->mask != NULL && r->mbuf[k] == 0) || !isfinite(*z)) {
+            if (set_invalid(g, base + k) != FT_OK)
+                return FT_E_NOMEM;
+        } else if (scaled) {
+            *z = (float)(*z * r->scale + r->offset);
+        }
+    }
+    return FT_OK;
+}
+
+/* Rows per read: whole blocks, about 4 M cells at a time. */
+static int rows_per_chunk(GDALRasterBandH band, size_t nx)
+{
+    int bx, by;
+    GDALGetBlockSize(band, &bx, &by);
+    if (by < 1)
+        by = 1;
+    size_t want = ((size_t)1 << 22) / (nx ? nx : 1);
+    size_t blocks = want / (size_t)by;
+    if (blocks < 1)
+        blocks = 1;
+    size_t rows = blocks * (size_t)by;
+    return rows > INT_MAX ? INT_MAX : (int)rows;
+}
+
+static int read_band(grid_reader *r)
+{
+    ft_grid *g = r->g;
+    int flags = GDALGetMaskFlags(r->band);
+    r->mask = (flags & GMF_ALL_VALID) ? NULL : GDALGetMaskBand(r->band);
+    int ok = 0;
+    double v = GDALGetRasterNoDataValue(r->band, &ok);
+    g->has_nodata = ok != 0;
+    g->nodata_value = ok ? v : 0.0;
+    r->scale = GDALGetRasterScale(r->band, &ok);
+    if (!ok || r->scale == 0.0)
+        r->scale = 1.0;
+    r->offset = GDALGetRasterOffset(r->band, &ok);
+    if (!ok)
+        r->offset = 0.0;
+    int chunk = rows_per_chunk(r->band, g->nx), ny = (int)g->ny;
+    if (r->mask != NULL && (r->mbuf = ft_malloc((size_t)chunk * g->nx)) == NULL)
+        return FT_E_NOMEM;
+    for (int row = 0; row < ny; row += chunk) {
+        int rc = read_rows(r, row, row + chunk <= ny ? chunk : ny - row);
+        if (rc != FT_OK)
+            return rc;
+    }
+    return FT_OK;
+}
+
+int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
+{
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    if (opts != NULL)
+        o = *opts;
+    *out = NULL;
+    GDALDatasetH ds;
+    int rc = ft_io_open(path, GDAL_OF_RASTER, &ds);
+    if (rc != FT_OK)
+        return rc;
+    grid_reader r = {.path = path};
+    rc = check_band(ds, path, o.band);
+    if (rc == FT_OK)
+        rc = grid_from_dataset(ds, path, &r.g);
+    if (rc == FT_OK) {
+        r.band = GDALGetRasterBand(ds, o.band);
+        rc = read_band(&r);
+    }
+    free(r.mbuf);
+    GDALClose(ds);
+    if (rc != FT_OK) {
+        ft_grid_free(r.g);
+        return rc;
+    }
+    *out = r.g;
+    return FT_OK;
+}

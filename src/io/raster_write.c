@@ -1,0 +1,232 @@
+/* fracterra — io/raster_write.c: an ft_grid as a one-band raster, atomically.
+ *
+ * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + DEFLATE, .asc Arc/Info ASCII, others
+ * looked up among GDAL's drivers, no extension = GeoTIFF) or is named by the caller. Drivers that can
+ * only CreateCopy (AAIGrid and others) get a copy of an in-memory dataset. Masked and non-finite cells
+ * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
+ * type's maximum for unsigned ones. Rows are written in blocks through a double buffer, so the nodata
+ * value reaches the file exactly whatever the output type. The file (and siblings such as .prj) is
+ * written under a temporary name and renamed on success.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cpl_conv.h>
+#include <cpl_string.h>
+
+#include "internal.h"
+#include "io/io_internal.h"
+
+#define ROWS_PER_WRITE_CELLS ((size_t)1 << 20)
+
+typedef struct {
+    const char *path;
+    const ft_grid *g;
+    GDALDataType type;
+    int use_nodata;
+    double nodata;
+} grid_writer;
+
+static int is_float(GDALDataType t)
+{
+    return t == GDT_Float32 || t == GDT_Float64;
+}
+
+static double default_nodata(GDALDataType t)
+{
+    switch (t) {
+    case GDT_Float32:
+    case GDT_Float64: return NAN;
+    case GDT_Byte: return 255.0;
+    case GDT_UInt16: return 65535.0;
+    case GDT_UInt32: return 4294967295.0;
+    default: return -9999.0;
+    }
+}
+
+static int cell_invalid(const ft_grid *g, size_t i)
+{
+    return (g->mask != NULL && g->mask[i] == 0) || !isfinite(g->z[i]);
+}
+
+static int any_invalid(const ft_grid *g)
+{
+    size_t n = g->nx * g->ny;
+    for (size_t i = 0; i < n; i++)
+        if (cell_invalid(g, i))
+            return 1;
+    return 0;
+}
+
+static int output_type(int requested, GDALDataType *t)
+{
+    *t = requested == 0 ? GDT_Float32 : (GDALDataType)requested;
+    if (requested < 0 || requested >= GDT_TypeCount || *t == GDT_Unknown)
+        return ft_error(FT_E_INVALID, "unknown raster data type code %d", requested);
+    if (GDALDataTypeIsComplex(*t))
+        return ft_error(FT_E_UNSUPPORTED, "complex data type %s cannot hold a grid", GDALGetDataTypeName(*t));
+    return FT_OK;
+}
+
+/* GeoTIFF defaults (tiled, DEFLATE with a predictor, BigTIFF when needed), overridden by the caller's. */
+static char **creation_options(GDALDriverH drv, const char *const *co, GDALDataType t)
+{
+    char **o = NULL;
+    if (EQUAL(GDALGetDriverShortName(drv), "GTiff")) {
+        o = CSLSetNameValue(o, "TILED", "YES");
+        o = CSLSetNameValue(o, "COMPRESS", "DEFLATE");
+        o = CSLSetNameValue(o, "PREDICTOR", is_float(t) ? "3" : "2");
+        o = CSLSetNameValue(o, "BIGTIFF", "IF_SAFER");
+    }
+    for (size_t i = 0; co != NULL && co[i] != NULL; i++) {
+        char *key = NULL;
+        const char *val = CPLParseNameValue(co[i], &key);
+        if (key != NULL && val != NULL)
+            o = CSLSetNameValue(o, key, val);
+        CPLFree(key);
+    }
+    return o;
+}
+
+static void set_nodata(GDALRasterBandH b, GDALDataType t, double v)
+{
+    if (t == GDT_Int64)
+        GDALSetRasterNoDataValueAsInt64(b, (int64_t)v);
+    else if (t == GDT_UInt64)
+        GDALSetRasterNoDataValueAsUInt64(b, (uint64_t)v);
+    else
+        GDALSetRasterNoDataValue(b, v);
+}
+
+static int write_cells(grid_writer *w, GDALRasterBandH b)
+{
+    const ft_grid *g = w->g;
+    size_t chunk = ROWS_PER_WRITE_CELLS / g->nx;
+    if (chunk < 1)
+        chunk = 1;
+    if (chunk > g->ny)
+        chunk = g->ny;
+    double *buf = ft_malloc(chunk * g->nx * sizeof *buf);
+    if (buf == NULL)
+        return FT_E_NOMEM;
+    int rc = FT_OK;
+    for (size_t row = 0; row < g->ny && rc == FT_OK; row += chunk) {
+        size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx;
+        for (size_t k = 0; k < rows * g->nx; k++)
+            buf[k] = cell_invalid(g, base + k) ? w->nodata : (double)g->z[base + k];
+        ft_io_gdal_reset();
+        if (GDALRasterIO(b, GF_Write, 0, (int)row, (int)g->nx, (int)rows, buf, (int)g->nx, (int)rows, GDT_Float64,
+                         0, 0) != CE_None)
+            rc = ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of '%s'", row, row + rows - 1, w->path);
+    }
+    free(buf);
+    return rc;
+}
+
+/* Geotransform, CRS, nodata and cells of band 1 of ds. */
+static int fill_dataset(grid_writer *w, GDALDatasetH ds)
+{
+    const ft_grid *g = w->g;
+    double gt[6];
+    memcpy(gt, g->gt, sizeof gt);
+    ft_io_gdal_reset();
+    if (GDALSetGeoTransform(ds, gt) != CE_None)
+        return ft_io_fail(FT_E_IO, "cannot set the geotransform of '%s'", w->path);
+    if (g->crs_wkt != NULL && g->crs_wkt[0] != '\0') {
+        OGRSpatialReferenceH srs;
+        int rc = ft_io_srs_from_wkt(g->crs_wkt, &srs);
+        if (rc != FT_OK)
+            return rc;
+        CPLErr e = GDALSetSpatialRef(ds, srs);
+        OSRDestroySpatialReference(srs);
+        if (e != CE_None)
+            return ft_io_fail(FT_E_UNSUPPORTED, "the %s format of '%s' cannot store its CRS",
+                              GDALGetDriverShortName(GDALGetDatasetDriver(ds)), w->path);
+    }
+    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+    if (w->use_nodata)
+        set_nodata(b, w->type, w->nodata);
+    return write_cells(w, b);
+}
+
+static int write_direct(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
+{
+    ft_io_gdal_reset();
+    GDALDatasetH ds = GDALCreate(drv, tmp, (int)w->g->nx, (int)w->g->ny, 1, w->type, co);
+    if (ds == NULL)
+        return ft_io_fail(FT_E_IO, "cannot create '%s' (%s)", w->path, GDALGetDriverShortName(drv));
+    int rc = fill_dataset(w, ds);
+    ft_io_gdal_reset();
+    GDALClose(ds);
+    if (rc == FT_OK && ft_io_gdal_failed())
+        rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
+    return rc;
+}
+
+static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
+{
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    ft_io_gdal_reset();
+    GDALDatasetH src = mem ? GDALCreate(mem, "", (int)w->g->nx, (int)w->g->ny, 1, w->type, NULL) : NULL;
+    if (src == NULL)
+        return ft_io_fail(FT_E_NOMEM, "cannot hold '%s' in memory", w->path);
+    int rc = fill_dataset(w, src);
+    if (rc == FT_OK) {
+        ft_io_gdal_reset();
+        GDALDatasetH ds = GDALCreateCopy(drv, tmp, src, FALSE, co, NULL, NULL);
+        if (ds == NULL) {
+            rc = ft_io_fail(FT_E_IO, "cannot write '%s' (%s)", w->path, GDALGetDriverShortName(drv));
+        } else {
+            GDALClose(ds);
+            if (ft_io_gdal_failed())
+                rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
+        }
+    }
+    GDALClose(src);
+    return rc;
+}
+
+static int check_grid(const char *path, const ft_grid *g)
+{
+    if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
+        return ft_error(FT_E_INVALID, "no grid to write to '%s'", path ? path : "(null)");
+    if (g->nx > (size_t)INT32_MAX || g->ny > (size_t)INT32_MAX)
+        return ft_error(FT_E_UNSUPPORTED, "grid of %zu x %zu cells is too large for GDAL", g->nx, g->ny);
+    return FT_OK;
+}
+
+int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
+{
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    if (opts != NULL)
+        o = *opts;
+    grid_writer w = {.path = path, .g = g};
+    GDALDriverH drv;
+    int rc = check_grid(path, g);
+    if (rc == FT_OK)
+        rc = ft_io_check_writable(path);
+    if (rc == FT_OK)
+        rc = output_type(o.type, &w.type);
+    if (rc == FT_OK)
+        rc = ft_io_find_driver(path, o.driver, GDAL_DCAP_RASTER, &drv);
+    if (rc != FT_OK)
+        return rc;
+    w.use_nodata = g->has_nodata || any_invalid(g);
+    w.nodata = g->has_nodata ? g->nodata_value : default_nodata(w.type);
+    char *tmp = ft_tmp_path(path);
+    if (tmp == NULL)
+        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
+    char **co = creation_options(drv, o.co, w.type);
+    int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
+    rc = direct ? write_direct(&w, drv, tmp, co) : write_copy(&w, drv, tmp, co);
+    CSLDestroy(co);
+    if (rc == FT_OK)
+        rc = ft_tmp_commit(tmp, path);
+    if (rc != FT_OK)
+        ft_tmp_discard(tmp);
+    free(tmp);
+    return rc;
+}

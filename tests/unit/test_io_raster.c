@@ -1,0 +1,421 @@
+/* fracterra — tests of io grid reading and writing (GeoTIFF, Arc/Info ASCII, nodata, CRS).
+ * Facts checked against tests/data/README.md.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include "fracterra/io.h"
+
+#define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
+#define LUXEMBOURG FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
+#define STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
+
+static char g_dir[64];
+
+static const char *tmp_file(const char *name)
+{
+    static char buf[4][256];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
+    return buf[k];
+}
+
+static int count_files(const char *dir)
+{
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL)
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
+            n++;
+    closedir(d);
+    return n;
+}
+
+static void empty_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (d == NULL)
+        return;
+    struct dirent *e;
+    char path[512];
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        remove(path);
+    }
+    closedir(d);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    strcpy(g_dir, "/tmp/ft-io-raster-XXXXXX");
+    return mkdtemp(g_dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    empty_dir(g_dir);
+    return rmdir(g_dir);
+}
+
+static int after_each(void **state)
+{
+    (void)state;
+    empty_dir(g_dir);
+    return 0;
+}
+
+static void assert_crs_epsg(const char *wkt, int epsg)
+{
+    assert_non_null(wkt);
+    OGRSpatialReferenceH a = OSRNewSpatialReference(wkt), b = OSRNewSpatialReference(NULL);
+    assert_non_null(a);
+    assert_int_equal(OSRImportFromEPSG(b, epsg), OGRERR_NONE);
+    assert_true(OSRIsSame(a, b));
+    OSRDestroySpatialReference(a);
+    OSRDestroySpatialReference(b);
+}
+
+static ft_grid *read_ok(const char *path, int band)
+{
+    ft_grid *g = NULL;
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    o.band = band;
+    if (ft_io_read_grid(path, &o, &g) != FT_OK)
+        fail_msg("%s: %s", path, ft_last_error());
+    return g;
+}
+
+static void write_ok(const char *path, const ft_grid *g, const ft_write_grid_opts *o)
+{
+    if (ft_io_write_grid(path, g, o) != FT_OK)
+        fail_msg("%s: %s", path, ft_last_error());
+}
+
+/* Same size, geotransform, CRS, nodata, mask and valid cells. */
+static void assert_grids_equal(const ft_grid *a, const ft_grid *b, double tol)
+{
+    assert_int_equal(a->nx, b->nx);
+    assert_int_equal(a->ny, b->ny);
+    for (int i = 0; i < 6; i++)
+        assert_true(a->gt[i] == b->gt[i]);
+    OGRSpatialReferenceH sa = OSRNewSpatialReference(a->crs_wkt), sb = OSRNewSpatialReference(b->crs_wkt);
+    assert_true(OSRIsSame(sa, sb));
+    OSRDestroySpatialReference(sa);
+    OSRDestroySpatialReference(sb);
+    assert_int_equal(a->has_nodata, b->has_nodata);
+    if (a->has_nodata)
+        assert_true(a->nodata_value == b->nodata_value);
+    assert_int_equal(ft_grid_count_valid(a), ft_grid_count_valid(b));
+    for (size_t r = 0; r < a->ny; r++)
+        for (size_t c = 0; c < a->nx; c++) {
+            assert_int_equal(ft_grid_is_valid(a, c, r), ft_grid_is_valid(b, c, r));
+            if (ft_grid_is_valid(a, c, r))
+                assert_true(fabs(a->z[r * a->nx + c] - b->z[r * b->nx + c]) <= tol);
+        }
+}
+
+static GDALDataType file_type(const char *path, double *nodata, int *has_nodata)
+{
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    assert_non_null(ds);
+    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+    GDALDataType t = GDALGetRasterDataType(b);
+    *nodata = GDALGetRasterNoDataValue(b, has_nodata);
+    GDALClose(ds);
+    return t;
+}
+
+/* ---- reading ----------------------------------------------------------------------------------- */
+
+static void test_read_volcano(void **state)
+{
+    (void)state;
+    ft_grid *g = read_ok(VOLCANO, 1);
+    assert_int_equal(g->nx, 61);
+    assert_int_equal(g->ny, 87);
+    assert_null(g->mask);
+    assert_int_equal(g->has_nodata, 0);
+    assert_int_equal(ft_grid_count_valid(g), 61 * 87);
+    assert_true(g->gt[1] == 10.0 && g->gt[5] == -10.0);
+    assert_crs_epsg(g->crs_wkt, 27200);
+    double lo, hi;
+    assert_int_equal(ft_grid_minmax(g, &lo, &hi), FT_OK);
+    /* R's volcano heights run from 94 to 195 m */
+    assert_true(lo == 94.0 && hi == 195.0);
+    ft_grid_free(g);
+}
+
+static void test_read_luxembourg(void **state)
+{
+    (void)state;
+    ft_grid *g = read_ok(LUXEMBOURG, 1);
+    assert_int_equal(g->nx, 95);
+    assert_int_equal(g->ny, 90);
+    assert_int_equal(g->has_nodata, 1);
+    assert_true(g->nodata_value == -32768.0);
+    assert_non_null(g->mask);
+    assert_int_equal(ft_grid_count_valid(g), 4608);
+    assert_crs_epsg(g->crs_wkt, 4326);
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        assert_true((g->mask[i] != 0) == (g->z[i] != -32768.0f));
+    ft_grid_free(g);
+}
+
+/* ---- round trips ------------------------------------------------------------------------------- */
+
+static void test_round_trip_geotiff(void **state)
+{
+    (void)state;
+    const char *inputs[] = {VOLCANO, LUXEMBOURG};
+    for (int k = 0; k < 2; k++) {
+        ft_grid *a = read_ok(inputs[k], 1);
+        const char *path = tmp_file("rt.tif");
+        write_ok(path, a, NULL);
+        ft_grid *b = read_ok(path, 1);
+        assert_grids_equal(a, b, 0.0);
+        double nd;
+        int has;
+        assert_int_equal(file_type(path, &nd, &has), GDT_Float32);
+        assert_int_equal(has, k == 1);
+        ft_grid_free(b);
+        ft_grid_free(a);
+    }
+    /* the Luxembourg DEM back in its own Int16 type */
+    ft_grid *a = read_ok(LUXEMBOURG, 1);
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.type = GDT_Int16;
+    const char *path = tmp_file("lux16.tiff");
+    write_ok(path, a, &o);
+    double nd;
+    int has;
+    assert_int_equal(file_type(path, &nd, &has), GDT_Int16);
+    assert_true(has && nd == -32768.0);
+    ft_grid *b = read_ok(path, 1);
+    assert_grids_equal(a, b, 0.0);
+    ft_grid_free(b);
+    ft_grid_free(a);
+    assert_int_equal(count_files(g_dir), 2);
+}
+
+static void test_round_trip_ascii(void **state)
+{
+    (void)state;
+    ft_grid *a = read_ok(LUXEMBOURG, 1);
+    const char *path = tmp_file("lux.asc");
+    write_ok(path, a, NULL);
+    assert_int_equal(access(tmp_file("lux.prj"), F_OK), 0);
+    ft_grid *b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), 4608);
+    assert_true(b->has_nodata && b->nodata_value == -32768.0);
+    for (size_t i = 0; i < a->nx * a->ny; i++)
+        if (a->mask[i])
+            assert_true(a->z[i] == b->z[i]);
+    for (int i = 0; i < 6; i++)
+        assert_true(fabs(a->gt[i] - b->gt[i]) < 1e-9);
+    ft_grid_free(b);
+    ft_grid_free(a);
+    /* no temporary left behind, only the grid and its companions */
+    DIR *d = opendir(g_dir);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL)
+        assert_null(strstr(e->d_name, "ft-tmp"));
+    closedir(d);
+}
+
+/* ---- nodata ------------------------------------------------------------------------------------ */
+
+static void test_nodata_rules(void **state)
+{
+    (void)state;
+    ft_grid *g = ft_grid_create(4, 3);
+    for (size_t i = 0; i < 12; i++)
+        g->z[i] = (float)i;
+    g->z[5] = NAN;           /* unmasked NaN: nodata on the way out */
+    ft_grid_ensure_mask(g);
+    g->mask[0] = 0;
+
+    const char *path = tmp_file("f.tif");
+    write_ok(path, g, NULL);
+    double nd;
+    int has;
+    assert_int_equal(file_type(path, &nd, &has), GDT_Float32);
+    assert_true(has && isnan(nd));
+    ft_grid *b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), 10);
+    assert_false(ft_grid_is_valid(b, 0, 0));
+    assert_false(ft_grid_is_valid(b, 1, 1));
+    assert_true(b->z[11] == 11.0f);
+    ft_grid_free(b);
+
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.type = GDT_Int16;
+    path = tmp_file("i.tif");
+    write_ok(path, g, &o);
+    file_type(path, &nd, &has);
+    assert_true(has && nd == -9999.0);
+    b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), 10);
+    ft_grid_free(b);
+
+    o.type = GDT_Byte;
+    path = tmp_file("b.tif");
+    write_ok(path, g, &o);
+    file_type(path, &nd, &has);
+    assert_true(has && nd == 255.0);
+    ft_grid_free(g);
+
+    /* an all-nodata grid reads fine; callers see 0 valid cells */
+    g = ft_grid_create(3, 3);
+    ft_grid_ensure_mask(g);
+    memset(g->mask, 0, 9);
+    g->has_nodata = 1;
+    g->nodata_value = -1;
+    path = tmp_file("none.tif");
+    write_ok(path, g, NULL);
+    b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), 0);
+    assert_true(b->nodata_value == -1.0);
+    ft_grid_free(b);
+    ft_grid_free(g);
+
+    /* no geotransform in the file: the default one */
+    g = ft_grid_create(2, 2);
+    path = tmp_file("plain.tif");
+    write_ok(path, g, NULL);
+    b = read_ok(path, 1);
+    assert_true(b->gt[0] == 0 && b->gt[1] == 1 && b->gt[5] == 1 && b->gt[3] == 0);
+    assert_null(b->crs_wkt);
+    assert_int_equal(b->has_nodata, 0);
+    ft_grid_free(b);
+    ft_grid_free(g);
+}
+
+/* ---- failures ---------------------------------------------------------------------------------- */
+
+static void test_bad_inputs(void **state)
+{
+    (void)state;
+    ft_grid *g = NULL;
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    assert_int_equal(ft_io_read_grid("/tmp/ft-missing-file.tif", &o, &g), FT_E_IO);
+    assert_non_null(strstr(ft_last_error(), "cannot open '/tmp/ft-missing-file.tif'"));
+    assert_int_equal(ft_io_read_grid(STATES, &o, &g), FT_E_FORMAT);
+    assert_non_null(strstr(ft_last_error(), "is a vector dataset, not a raster"));
+    o.band = 2;
+    assert_int_equal(ft_io_read_grid(VOLCANO, &o, &g), FT_E_FORMAT);
+    assert_non_null(strstr(ft_last_error(), "band 2"));
+    assert_non_null(strstr(ft_last_error(), "1 band"));
+    o.band = 0;
+    assert_int_equal(ft_io_read_grid(VOLCANO, &o, &g), FT_E_FORMAT);
+    assert_null(g);
+    FILE *f = fopen(tmp_file("junk.tif"), "w");
+    fputs("not a tiff", f);
+    fclose(f);
+    assert_int_equal(ft_io_read_grid(tmp_file("junk.tif"), NULL, &g), FT_E_FORMAT);
+}
+
+static void test_write_failures_leave_nothing(void **state)
+{
+    (void)state;
+    ft_grid *g = read_ok(VOLCANO, 1);
+    assert_int_equal(ft_io_write_grid("/tmp/ft-no-such-folder-xyz/a.tif", g, NULL), FT_E_IO);
+    assert_non_null(strstr(ft_last_error(), "/tmp/ft-no-such-folder-xyz"));
+    assert_int_equal(access("/tmp/ft-no-such-folder-xyz", F_OK), -1);
+
+    /* GTiff creates the file, then refuses the options: the temporary is removed */
+    const char *const bad[] = {"PHOTOMETRIC=YCBCR", NULL};
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.co = bad;
+    assert_int_equal(ft_io_write_grid(tmp_file("bad.tif"), g, &o), FT_E_IO);
+    assert_non_null(strstr(ft_last_error(), "bad.tif"));
+    assert_int_equal(count_files(g_dir), 0);
+
+    /* an existing file survives a failed overwrite */
+    write_ok(tmp_file("keep.tif"), g, NULL);
+    assert_int_equal(ft_io_write_grid(tmp_file("keep.tif"), g, &o), FT_E_IO);
+    assert_int_equal(count_files(g_dir), 1);
+    ft_grid *b = read_ok(tmp_file("keep.tif"), 1);
+    assert_grids_equal(g, b, 0.0);
+    ft_grid_free(b);
+
+    o.co = NULL;
+    o.type = 9999;
+    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_INVALID);
+    o.type = GDT_CFloat32;
+    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_UNSUPPORTED);
+    o.type = 0;
+    assert_int_equal(ft_io_write_grid(tmp_file("t.unknownext"), g, &o), FT_E_FORMAT);
+    o.driver = "NoSuchDriver";
+    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_FORMAT);
+    assert_int_equal(count_files(g_dir), 1);
+    ft_grid_free(g);
+}
+
+static void test_driver_choice(void **state)
+{
+    (void)state;
+    ft_grid *g = read_ok(VOLCANO, 1);
+    const char *path = tmp_file("noext");
+    write_ok(path, g, NULL);
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    assert_non_null(ds);
+    assert_string_equal(GDALGetDriverShortName(GDALGetDatasetDriver(ds)), "GTiff");
+    GDALClose(ds);
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.driver = "AAIGrid";
+    path = tmp_file("forced.txt");
+    write_ok(path, g, &o);
+    ft_grid *b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), 61 * 87);
+    assert_true(b->z[100] == g->z[100]);
+    ft_grid_free(b);
+    path = tmp_file("v.img");
+    write_ok(path, g, NULL); /* Erdas Imagine, found by its extension */
+    b = read_ok(path, 1);
+    assert_true(b->z[7] == g->z[7]);
+    assert_grids_equal(g, b, 0.0);
+    ft_grid_free(b);
+    /* a format that cannot hold the CRS fails rather than dropping it */
+    assert_int_equal(ft_io_write_grid(tmp_file("v.rst"), g, NULL), FT_E_UNSUPPORTED);
+    assert_non_null(strstr(ft_last_error(), "cannot store its CRS"));
+    assert_int_equal(access(tmp_file("v.rst"), F_OK), -1);
+    ft_grid_free(g);
+}
+
+int main(void)
+{
+    ft_io_init();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_teardown(test_read_volcano, after_each),
+        cmocka_unit_test_teardown(test_read_luxembourg, after_each),
+        cmocka_unit_test_teardown(test_round_trip_geotiff, after_each),
+        cmocka_unit_test_teardown(test_round_trip_ascii, after_each),
+        cmocka_unit_test_teardown(test_nodata_rules, after_each),
+        cmocka_unit_test_teardown(test_bad_inputs, after_each),
+        cmocka_unit_test_teardown(test_write_failures_leave_nothing, after_each),
+        cmocka_unit_test_teardown(test_driver_choice, after_each),
+    };
+    int failed = cmocka_run_group_tests(tests, setup, teardown);
+    ft_io_cleanup();
+    return failed;
+}
