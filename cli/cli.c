@@ -1,0 +1,252 @@
+/* fracterra — cli/cli.c: helpers shared by the commands (messages, option parsing, JSON, progress, CRS).
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "cli.h"
+
+#include <cpl_progress.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+void cli_init(void)
+{
+    /* 15 significant digits: exact for every value a file stores in decimal, without 0.1 -> 0.1000000000001. */
+    json_c_set_serialization_double_format("%.15g", JSON_C_OPTION_GLOBAL);
+}
+
+static void vmessage(const cli_command *cmd, const char *prefix, const char *fmt, va_list ap)
+{
+    fflush(stdout);
+    fprintf(stderr, "fracterra: %s: %s", cmd ? cmd->name : "error", prefix);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+}
+
+void cli_error(const cli_command *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(cmd, "", fmt, ap);
+    va_end(ap);
+}
+
+void cli_warn(const cli_command *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(cmd, "warning: ", fmt, ap);
+    va_end(ap);
+}
+
+int cli_fail(const cli_command *cmd)
+{
+    const char *msg = ft_last_error();
+    if (msg == NULL || *msg == '\0')
+        msg = ft_strerror(ft_last_error_code());
+    cli_error(cmd, "%s", msg);
+    return CLI_FAIL;
+}
+
+int cli_usage_error(const cli_command *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(cmd, "", fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "usage: %s\nTry 'fracterra %s --help' for more information.\n", cmd->usage, cmd->name);
+    return CLI_USAGE;
+}
+
+void cli_print_help(const cli_command *cmd)
+{
+    printf("usage: %s\n\n%s", cmd->usage, cmd->help);
+}
+
+/* The option as the user wrote it, for messages: "--name" or "-x". After getopt_long returned '?' or ':',
+ * argv[optind - 1] is the long option's own element when optopt is 0 (unknown long option) or when it
+ * spells a long option whose value is optopt; otherwise the culprit is the short option optopt. */
+static int option_name(char **argv, int after, const struct option *longopts, char *buf, size_t size)
+{
+    const char *el = after > 0 ? argv[after - 1] : "";
+    size_t n = strcspn(el, "=");
+    int is_long = strncmp(el, "--", 2) == 0 && optopt == 0;
+    for (const struct option *o = longopts; !is_long && o && o->name; o++)
+        is_long = strncmp(el, "--", 2) == 0 && o->val == optopt && n > 2 && strlen(o->name) >= n - 2 &&
+                  strncmp(el + 2, o->name, n - 2) == 0; /* getopt_long accepts unambiguous prefixes */
+    if (is_long)
+        snprintf(buf, size, "%.*s", (int)n, el);
+    else
+        snprintf(buf, size, "-%c", optopt);
+    return is_long;
+}
+
+int cli_parse_options(const cli_command *cmd, int argc, char **argv, const struct option *longopts,
+                      const char *shortopts, cli_opt_fn fn, void *ctx, int *first_arg)
+{
+    char optstring[128];
+    snprintf(optstring, sizeof optstring, ":h%s", shortopts ? shortopts : "");
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+        char name[96];
+        if (c == 'h') {
+            cli_print_help(cmd);
+            return CLI_OK;
+        }
+        if (c == '?') {
+            int is_long = option_name(argv, optind, longopts, name, sizeof name);
+            if (is_long && optopt != 0)
+                return cli_usage_error(cmd, "option '%s' takes no value", name);
+            return cli_usage_error(cmd, "unknown option '%s'", name);
+        }
+        if (c == ':') {
+            option_name(argv, optind, longopts, name, sizeof name);
+            return cli_usage_error(cmd, "option '%s' needs a value", name);
+        }
+        int rc = fn ? fn(cmd, c, optarg, ctx) : CLI_USAGE;
+        if (rc != CLI_CONTINUE)
+            return rc;
+    }
+    *first_arg = optind;
+    return CLI_CONTINUE;
+}
+
+int cli_parse_int(const cli_command *cmd, const char *option, const char *arg, long min, long max, int *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(arg, &end, 10);
+    if (errno != 0 || end == arg || *end != '\0' || v < min || v > max || v < INT_MIN || v > INT_MAX)
+        return cli_usage_error(cmd, "%s must be an integer in [%ld,%ld], got '%s'", option, min, max, arg);
+    *out = (int)v;
+    return CLI_CONTINUE;
+}
+
+int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n)
+{
+    int have = argc - first;
+    if (have < n)
+        return cli_usage_error(cmd, "missing %s", names[have]);
+    if (have > n)
+        return cli_usage_error(cmd, "unexpected argument '%s'", argv[first + n]);
+    return CLI_CONTINUE;
+}
+
+int cli_print_json(const cli_command *cmd, json_object *o)
+{
+    const int flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
+    const char *s = json_object_to_json_string_ext(o, flags);
+    int ok = fputs(s, stdout) >= 0 && fputc('\n', stdout) != EOF && fflush(stdout) == 0;
+    json_object_put(o);
+    if (!ok) {
+        cli_error(cmd, "cannot write to standard output: %s", strerror(errno));
+        return CLI_FAIL;
+    }
+    return CLI_OK;
+}
+
+json_object *cli_json_double(double v)
+{
+    return isfinite(v) ? json_object_new_double(v) : NULL;
+}
+
+ft_progress_fn cli_progress(void)
+{
+    return isatty(STDERR_FILENO) ? GDALTermProgress : NULL;
+}
+
+/* Copies the quoted WKT string starting at s (at its opening quote; "" escapes a quote) into buf and
+ * returns the position after the closing quote. */
+static const char *read_quoted(const char *s, char *buf, size_t size)
+{
+    size_t n = 0;
+    for (s++; *s; s++) {
+        if (*s == '"') {
+            if (s[1] != '"') {
+                s++;
+                break;
+            }
+            s++;
+        }
+        if (n + 1 < size)
+            buf[n++] = *s;
+    }
+    if (size)
+        buf[n] = '\0';
+    return s;
+}
+
+static int is_word_char(char c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+/* Parses `ID["EPSG",1234` or `AUTHORITY["EPSG","1234"` at s (just after the '['): the code, or 0. */
+static int parse_authority(const char *s)
+{
+    char auth[32] = "";
+    while (*s == ' ' || *s == '\n')
+        s++;
+    if (*s != '"')
+        return 0;
+    s = read_quoted(s, auth, sizeof auth);
+    if (strcasecmp(auth, "EPSG") != 0)
+        return 0;
+    while (*s == ' ' || *s == ',' || *s == '"' || *s == '\n')
+        s++;
+    long code = strtol(s, NULL, 10);
+    return code > 0 && code < INT_MAX ? (int)code : 0;
+}
+
+/* 1 if the WKT keyword kw ends just before position s (and is a whole word). */
+static int keyword_before(const char *wkt, const char *s, const char *kw)
+{
+    size_t n = strlen(kw);
+    if ((size_t)(s - wkt) < n || strncasecmp(s - n, kw, n) != 0)
+        return 0;
+    return (size_t)(s - wkt) == n || !is_word_char(s[-(ptrdiff_t)n - 1]);
+}
+
+/* The top-level (depth 1) ID[...] or AUTHORITY[...] of the WKT; WKT puts it last, so the last one wins. */
+static int top_level_epsg(const char *wkt)
+{
+    int depth = 0, code = 0;
+    for (const char *s = wkt; *s; s++) {
+        if (*s == '"') {
+            char skip[2];
+            s = read_quoted(s, skip, sizeof skip) - 1;
+            continue;
+        }
+        if (*s == '[' || *s == '(') {
+            if (depth == 1) {
+                if (keyword_before(wkt, s, "ID") || keyword_before(wkt, s, "AUTHORITY"))
+                    code = parse_authority(s + 1);
+            }
+            depth++;
+        } else if (*s == ']' || *s == ')') {
+            depth--;
+        }
+    }
+    return code;
+}
+
+void cli_crs_describe(const char *wkt, char *name, size_t size, int *epsg)
+{
+    if (size)
+        name[0] = '\0';
+    *epsg = 0;
+    if (wkt == NULL || *wkt == '\0')
+        return;
+    const char *q = strchr(wkt, '"');
+    if (q)
+        read_quoted(q, name, size);
+    *epsg = top_level_epsg(wkt);
+}

@@ -1,0 +1,85 @@
+/* fracterra — cli/cli.h: what every command shares: its description, option parsing, error and warning
+ * printing in the form "fracterra: COMMAND: message", exit codes, JSON output, progress, CRS labels.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CLI_H
+#define FRACTERRA_CLI_H
+
+#include <getopt.h>
+#include <json-c/json.h>
+#include <stddef.h>
+
+#include "fracterra/fracterra.h"
+
+/* Exit codes, and CLI_CONTINUE for "parsing went fine, go on". */
+enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_CONTINUE = -1 };
+
+typedef struct cli_command {
+    const char *name;    /**< "info" */
+    const char *summary; /**< one line for `fracterra --help` */
+    const char *usage;   /**< "fracterra info FILE [--layer NAME] [--band N] [--json]" */
+    const char *help;    /**< description, options and at least one example */
+    int (*run)(const struct cli_command *cmd, int argc, char **argv); /**< argv[0] is the command name */
+} cli_command;
+
+/* The commands (one cmd_<name>.c each), listed in fracterra.c's dispatch table. */
+extern const cli_command cli_cmd_info;
+extern const cli_command cli_cmd_demo;
+
+/** Sets up output conventions (JSON number format); called once by main. */
+void cli_init(void);
+
+/* ---- messages (stderr) ---- */
+
+/** "fracterra: CMD: message". */
+void cli_error(const cli_command *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/** "fracterra: CMD: warning: message". */
+void cli_warn(const cli_command *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/** Prints the library's last error for cmd and returns CLI_FAIL. */
+int cli_fail(const cli_command *cmd);
+/** Prints a usage error, the usage line and a hint to --help; returns CLI_USAGE. */
+int cli_usage_error(const cli_command *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/** Prints the command's full help on stdout. */
+void cli_print_help(const cli_command *cmd);
+
+/* ---- options ---- */
+
+/** Every command's long options include this entry (handled by cli_parse_options). */
+#define CLI_OPT_HELP {"help", no_argument, NULL, 'h'}
+#define CLI_OPT_END {NULL, 0, NULL, 0}
+
+/** Called for each option other than --help; returns CLI_CONTINUE or an exit code. */
+typedef int (*cli_opt_fn)(const cli_command *cmd, int opt, const char *arg, void *ctx);
+
+/** getopt_long over argv (argv[0] = command name), with "-h"/"--help" built in and getopt's own messages
+ *  replaced by "fracterra: CMD: ..." ones. Returns CLI_CONTINUE with *first_arg set to the index of the
+ *  first positional argument, CLI_OK after printing the help, or CLI_USAGE (message printed). */
+int cli_parse_options(const cli_command *cmd, int argc, char **argv, const struct option *longopts,
+                      const char *shortopts, cli_opt_fn fn, void *ctx, int *first_arg);
+/** Parses an integer option value in [min, max]: CLI_CONTINUE, or CLI_USAGE naming the option. */
+int cli_parse_int(const cli_command *cmd, const char *option, const char *arg, long min, long max, int *out);
+/** Checks that there are exactly n positional arguments, named in names (for the messages). Returns
+ *  CLI_CONTINUE or CLI_USAGE. */
+int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n);
+
+/* ---- output ---- */
+
+/** Prints o pretty-printed on stdout, then releases it. CLI_OK, or CLI_FAIL if stdout cannot be written. */
+int cli_print_json(const cli_command *cmd, json_object *o);
+/** A JSON number, or null when v is not finite (JSON has no NaN). */
+json_object *cli_json_double(double v);
+/** GDALTermProgress when stderr is a terminal, NULL otherwise (no progress output in pipes and logs). */
+ft_progress_fn cli_progress(void);
+
+/** The CRS's top-level name (first quoted string of the WKT) into name, and its top-level EPSG code
+ *  into *epsg (0 if none). name becomes "" when wkt is NULL or empty. */
+void cli_crs_describe(const char *wkt, char *name, size_t size, int *epsg);
+
+/* ---- shared with other commands ---- */
+
+/** What `fracterra info` reports about a file, as a JSON object (see cmd_info.c); warnings (all-nodata
+ *  grid, short chains) go into its "warnings" array. layer may be NULL; band 0 means the default band. */
+int cli_info_describe(const char *path, const char *layer, int band, json_object **out);
+
+#endif /* FRACTERRA_CLI_H */

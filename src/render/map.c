@@ -1,0 +1,281 @@
+/* fracterra — render/map.c: a layer drawn as a small map (SVG, PDF or PNG by the output's extension).
+ *
+ * The layer's bounding box is fitted into the canvas with its aspect kept and y pointing up (north up for
+ * projected data). Polygon features are filled with the even-odd rule, so holes stay empty, then stroked;
+ * lines are stroked. An optional title sits at the top and an optional scale bar at the bottom left, its
+ * length a round 1, 2 or 5 times a power of ten in layer units (labelled in m or km, or in degrees when the
+ * CRS is geographic). The file is drawn under a temporary name and renamed when complete.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "fracterra/render.h"
+#include "internal.h"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define MAP_MARGIN 16.0
+#define MAP_TITLE_H 30.0
+#define MAP_BAR_H 36.0
+#define MAP_MAX_SIDE 32767
+
+typedef enum { MAP_SVG, MAP_PDF, MAP_PNG } map_format;
+
+typedef struct {
+    double r, g, b;
+} rgb;
+
+/* The placement of layer coordinates on the canvas: X = ox + (x - xmin) k, Y = oy + (ymax - y) k. */
+typedef struct {
+    double xmin, ymax, k, ox, oy;
+    double x0, y0, aw, ah; /* the map area */
+} map_frame;
+
+static int parse_color(const char *what, const char *s, rgb *c)
+{
+    unsigned v = 0;
+    int used = 0;
+    if (s == NULL || s[0] != '#' || strlen(s) != 7 || sscanf(s + 1, "%6x%n", &v, &used) != 1 || used != 6)
+        return ft_error(FT_E_INVALID, "map %s colour must be \"#rrggbb\", got \"%s\"", what, s ? s : "(null)");
+    c->r = ((v >> 16) & 0xff) / 255.0;
+    c->g = ((v >> 8) & 0xff) / 255.0;
+    c->b = (v & 0xff) / 255.0;
+    return FT_OK;
+}
+
+static int format_of(const char *path, map_format *f)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash : path, '.');
+    if (dot && strcasecmp(dot, ".svg") == 0)
+        *f = MAP_SVG;
+    else if (dot && strcasecmp(dot, ".pdf") == 0)
+        *f = MAP_PDF;
+    else if (dot && strcasecmp(dot, ".png") == 0)
+        *f = MAP_PNG;
+    else
+        return ft_error(FT_E_INVALID, "map output must end in .svg, .pdf or .png: %s", path);
+    return FT_OK;
+}
+
+static int check_opts(const ft_map_opts *o, rgb *stroke, rgb *fill)
+{
+    if (o->width < 64 || o->height < 64 || o->width > MAP_MAX_SIDE || o->height > MAP_MAX_SIDE)
+        return ft_error(FT_E_INVALID, "map size must be within 64..%d on each side, got %d x %d", MAP_MAX_SIDE,
+                        o->width, o->height);
+    if (!isfinite(o->line_width) || o->line_width < 0.0)
+        return ft_error(FT_E_INVALID, "map line width must be >= 0, got %g", o->line_width);
+    int rc = parse_color("stroke", o->stroke, stroke);
+    if (rc == FT_OK && o->fill)
+        rc = parse_color("fill", o->fill, fill);
+    return rc;
+}
+
+static void frame_init(const ft_map_opts *o, double bx0, double by0, double bx1, double by1, map_frame *f)
+{
+    f->x0 = MAP_MARGIN;
+    f->y0 = MAP_MARGIN + (o->title ? MAP_TITLE_H : 0.0);
+    f->aw = o->width - 2.0 * MAP_MARGIN;
+    f->ah = o->height - f->y0 - MAP_MARGIN - (o->scale_bar ? MAP_BAR_H : 0.0);
+    double dx = bx1 - bx0, dy = by1 - by0;
+    if (dx <= 0.0 && dy <= 0.0)
+        dx = dy = 1.0; /* a single point: any scale will do */
+    double kx = dx > 0.0 ? f->aw / dx : INFINITY, ky = dy > 0.0 ? f->ah / dy : INFINITY;
+    f->k = kx < ky ? kx : ky;
+    f->xmin = bx0;
+    f->ymax = by1;
+    f->ox = f->x0 + (f->aw - (bx1 - bx0) * f->k) / 2.0;
+    f->oy = f->y0 + (f->ah - (by1 - by0) * f->k) / 2.0;
+}
+
+static void chain_path(cairo_t *cr, const ft_chain *c, const map_frame *f)
+{
+    for (size_t i = 0; i < c->n; i++) {
+        double X = f->ox + (c->x[i] - f->xmin) * f->k, Y = f->oy + (f->ymax - c->y[i]) * f->k;
+        if (i == 0)
+            cairo_move_to(cr, X, Y);
+        else
+            cairo_line_to(cr, X, Y);
+    }
+    if (c->closed)
+        cairo_close_path(cr);
+}
+
+static void draw_feature(cairo_t *cr, const ft_layer *l, const ft_feature *ft, const map_frame *f,
+                         const ft_map_opts *o, const rgb *stroke, const rgb *fill)
+{
+    cairo_new_path(cr);
+    for (size_t p = ft->first; p < ft->first + ft->count && p < l->nparts; p++)
+        if (l->parts[p].chain && l->parts[p].chain->n >= 2)
+            chain_path(cr, l->parts[p].chain, f);
+    if (ft->type == FT_GEOM_POLYGON && o->fill) {
+        cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+        cairo_set_source_rgb(cr, fill->r, fill->g, fill->b);
+        cairo_fill_preserve(cr);
+    }
+    cairo_set_source_rgb(cr, stroke->r, stroke->g, stroke->b);
+    cairo_stroke(cr);
+}
+
+/* 1 if the WKT describes a geographic CRS (coordinates in degrees). */
+static int crs_is_geographic(const char *wkt)
+{
+    if (wkt == NULL)
+        return 0;
+    while (*wkt == ' ' || *wkt == '\n' || *wkt == '\t')
+        wkt++;
+    return strncmp(wkt, "GEOGCS", 6) == 0 || strncmp(wkt, "GEOGCRS", 7) == 0 ||
+           strncmp(wkt, "GEODCRS", 7) == 0 || strncmp(wkt, "GEOGRAPHICCRS", 13) == 0;
+}
+
+/* The largest 1, 2 or 5 times a power of ten not above x (x > 0). */
+static double round_length(double x)
+{
+    double p = pow(10.0, floor(log10(x)));
+    double m = x / p;
+    return (m >= 5.0 ? 5.0 : m >= 2.0 ? 2.0 : 1.0) * p;
+}
+
+static void scale_label(double len, int geographic, char *buf, size_t size)
+{
+    if (geographic)
+        snprintf(buf, size, "%g\xc2\xb0", len);
+    else if (len >= 1000.0)
+        snprintf(buf, size, "%g km", len / 1000.0);
+    else
+        snprintf(buf, size, "%g m", len);
+}
+
+static void draw_scale_bar(cairo_t *cr, const map_frame *f, const ft_map_opts *o, int geographic)
+{
+    double len = round_length(f->aw / 4.0 / f->k);
+    double px = len * f->k, x = f->x0, y = o->height - MAP_MARGIN - 14.0, h = 5.0;
+    for (int s = 0; s < 4; s++) {
+        cairo_rectangle(cr, x + s * px / 4.0, y, px / 4.0, h);
+        double v = (s % 2 == 0) ? 0.1 : 1.0;
+        cairo_set_source_rgb(cr, v, v, v);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+        cairo_set_line_width(cr, 0.6);
+        cairo_stroke(cr);
+    }
+    char label[64];
+    scale_label(len, geographic, label, sizeof label);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 10.0);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, x - 2.0, y + h + 11.0);
+    cairo_show_text(cr, "0");
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, label, &e);
+    cairo_move_to(cr, x + px - e.x_advance / 2.0, y + h + 11.0);
+    cairo_show_text(cr, label);
+}
+
+static void draw_title(cairo_t *cr, const ft_map_opts *o)
+{
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, 16.0);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, o->title, &e);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, (o->width - e.x_advance) / 2.0, MAP_MARGIN + 16.0);
+    cairo_show_text(cr, o->title);
+}
+
+static void draw_map(cairo_t *cr, const ft_layer *l, const map_frame *f, const ft_map_opts *o,
+                     const rgb *stroke, const rgb *fill)
+{
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_paint(cr);
+    cairo_set_line_width(cr, o->line_width);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    for (size_t i = 0; i < l->nfeatures; i++)
+        if (l->features[i].type != FT_GEOM_NONE)
+            draw_feature(cr, l, &l->features[i], f, o, stroke, fill);
+    if (o->title && *o->title)
+        draw_title(cr, o);
+    if (o->scale_bar)
+        draw_scale_bar(cr, f, o, crs_is_geographic(l->crs_wkt));
+}
+
+static cairo_surface_t *open_surface(map_format fmt, const char *tmp, int w, int h)
+{
+    cairo_surface_t *s;
+    if (fmt == MAP_SVG) {
+        s = cairo_svg_surface_create(tmp, w, h);
+        cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
+#if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 15, 10)
+        cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PX);
+#endif
+    } else if (fmt == MAP_PDF) {
+        s = cairo_pdf_surface_create(tmp, w, h);
+    } else {
+        s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
+    }
+    return s;
+}
+
+/* Draws into tmp and finishes the surface; FT_OK or FT_E_IO naming path. */
+static int render_to(const char *tmp, const char *path, map_format fmt, const ft_layer *l, const map_frame *f,
+                     const ft_map_opts *o, const rgb *stroke, const rgb *fill)
+{
+    cairo_surface_t *s = open_surface(fmt, tmp, o->width, o->height);
+    cairo_t *cr = cairo_create(s);
+    draw_map(cr, l, f, o, stroke, fill);
+    cairo_status_t st = cairo_status(cr);
+    cairo_destroy(cr);
+    if (st == CAIRO_STATUS_SUCCESS && fmt == MAP_PNG)
+        st = cairo_surface_write_to_png(s, tmp);
+    cairo_surface_finish(s);
+    if (st == CAIRO_STATUS_SUCCESS)
+        st = cairo_surface_status(s);
+    cairo_surface_destroy(s);
+    if (st != CAIRO_STATUS_SUCCESS)
+        return ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
+    return FT_OK;
+}
+
+int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts)
+{
+    ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
+    const ft_map_opts *o = opts ? opts : &defaults;
+    rgb stroke, fill = {1.0, 1.0, 1.0};
+    map_format fmt;
+    if (layer == NULL)
+        return ft_error(FT_E_INVALID, "map: no layer given");
+    if (path == NULL || *path == '\0')
+        return ft_error(FT_E_INVALID, "map: no output path given");
+    int rc = format_of(path, &fmt);
+    if (rc == FT_OK)
+        rc = check_opts(o, &stroke, &fill);
+    if (rc == FT_OK)
+        rc = ft_layer_check_finite(layer);
+    if (rc != FT_OK)
+        return rc;
+    double bx0, by0, bx1, by1;
+    if (ft_layer_bbox(layer, &bx0, &by0, &bx1, &by1) != FT_OK)
+        return ft_error(FT_E_EMPTY, "map: layer '%s' has no vertex to draw", layer->name ? layer->name : "");
+
+    map_frame f;
+    frame_init(o, bx0, by0, bx1, by1, &f);
+    if (f.aw < 16.0 || f.ah < 16.0)
+        return ft_error(FT_E_INVALID, "map: a %d x %d canvas leaves no room for the map", o->width, o->height);
+    char *tmp = ft_tmp_path(path);
+    if (tmp == NULL)
+        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    rc = render_to(tmp, path, fmt, layer, &f, o, &stroke, &fill);
+    if (rc == FT_OK)
+        rc = ft_tmp_commit(tmp, path);
+    if (rc != FT_OK)
+        ft_tmp_discard(tmp);
+    free(tmp);
+    return rc;
+}
