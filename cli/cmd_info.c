@@ -1,6 +1,6 @@
 /* fracterra — cli/cmd_info.c: `fracterra info FILE`: what fracterra sees in a file.
  *
- * The file is probed (grid, chains or points) and read through the library's readers, so the figures are
+ * The file is read once by ft_io_read_any (grid, chains or points) through the library's readers, so the figures are
  * those every other command will work with: for grids the size, valid and nodata cells, z range, extent,
  * cell size and CRS; for chains the features, parts (rings and lines), vertices and fields; for points the
  * count, extent and z range. Rings are counted without their repeated closing vertex ("vertices", as
@@ -102,18 +102,11 @@ static void warnings_last(json_object *o)
     }
 }
 
-static int describe_grid(const char *path, int band, json_object *o)
+static int describe_grid(const ft_grid *g, int band, json_object *o)
 {
-    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
-    ft_grid *g = NULL;
-    if (band > 0)
-        ro.band = band;
-    int rc = ft_io_read_grid(path, &ro, &g);
-    if (rc != FT_OK)
-        return rc;
     size_t cells = g->nx * g->ny, valid = ft_grid_count_valid(g);
     double zmin, zmax, x0, y0, x1, y1;
-    json_object_object_add(o, "band", json_object_new_int(ro.band));
+    json_object_object_add(o, "band", json_object_new_int(band));
     json_object_object_add(o, "size", json_pair(json_object_new_int64((int64_t)g->nx),
                                                 json_object_new_int64((int64_t)g->ny)));
     add_size(o, "cells", cells);
@@ -133,7 +126,6 @@ static int describe_grid(const char *path, int band, json_object *o)
     json_object_object_add(o, "cell_size",
                            json_pair(cli_json_double(fabs(g->gt[1])), cli_json_double(fabs(g->gt[5]))));
     json_object_object_add(o, "crs", json_crs(g->crs_wkt));
-    ft_grid_free(g);
     return FT_OK;
 }
 
@@ -154,18 +146,11 @@ static json_object *json_fields(const ft_layer *l)
     return a;
 }
 
-static int describe_chains(const char *path, const char *layer, json_object *o)
+static int describe_chains(const ft_layer *l, json_object *o)
 {
-    ft_read_layer_opts ro = FT_READ_LAYER_OPTS_DEFAULT;
-    ft_layer *l = NULL;
-    ro.layer = layer;
-    int rc = ft_io_read_layer(path, &ro, &l);
-    if (rc == FT_OK)
-        rc = ft_layer_check_finite(l);
-    if (rc != FT_OK) {
-        ft_layer_free(l);
+    int rc = ft_layer_check_finite(l);
+    if (rc != FT_OK)
         return rc;
-    }
     size_t rings = 0, holes = 0, lines = 0, shorts = 0;
     for (size_t i = 0; i < l->nparts; i++) {
         const ft_part *p = &l->parts[i];
@@ -196,18 +181,11 @@ static int describe_chains(const char *path, const char *layer, json_object *o)
         snprintf(msg, sizeof msg, "%zu %s fewer than 2 vertices", shorts, shorts == 1 ? "chain has" : "chains have");
         add_warning(o, msg);
     }
-    ft_layer_free(l);
     return FT_OK;
 }
 
-static int describe_points(const char *path, const char *layer, json_object *o)
+static int describe_points(const ft_points *p, json_object *o)
 {
-    ft_read_points_opts ro = FT_READ_POINTS_OPTS_DEFAULT;
-    ft_points *p = NULL;
-    ro.layer = layer;
-    int rc = ft_io_read_points(path, &ro, &p);
-    if (rc != FT_OK)
-        return rc;
     double x0, y0, x1, y1, zmin = INFINITY, zmax = -INFINITY;
     for (size_t i = 0; i < p->n; i++) {
         if (isfinite(p->z[i])) {
@@ -224,25 +202,29 @@ static int describe_points(const char *path, const char *layer, json_object *o)
                                                       : NULL);
     json_object_object_add(o, "weights", json_object_new_boolean(p->w != NULL));
     json_object_object_add(o, "crs", json_crs(p->crs_wkt));
-    ft_points_free(p);
     return FT_OK;
 }
 
 int cli_info_describe(const char *path, const char *layer, int band, json_object **out)
 {
-    ft_file_kind kind = FT_KIND_UNKNOWN;
     *out = NULL;
-    int rc = ft_io_probe(path, layer, &kind);
-    if (rc != FT_OK)
-        return rc;
-    if (kind == FT_KIND_UNKNOWN)
-        return ft_error(FT_E_FORMAT, "%s: not a grid, chains or points file fracterra can read", path);
-    if (kind == FT_KIND_GRID && layer)
-        return ft_error(FT_E_INVALID, "--layer applies to vector files, but %s is a grid", path);
     if (layer && (ft_io_is_text_chains(path) || ft_io_is_text_points(path)))
         return ft_error(FT_E_INVALID, "--layer applies to vector files, but %s is a text file", path);
-    if (kind != FT_KIND_GRID && band > 0)
+    /* One open and one parse of the file: the kind and the content come from the same read. */
+    ft_read_layer_opts lo = FT_READ_LAYER_OPTS_DEFAULT;
+    ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
+    ft_data data;
+    lo.layer = layer;
+    if (band > 0)
+        go.band = band;
+    int rc = ft_io_read_any(path, &lo, &go, NULL, &data);
+    if (rc != FT_OK)
+        return rc;
+    ft_file_kind kind = data.kind;
+    if (kind != FT_KIND_GRID && band > 0) {
+        ft_data_clear(&data);
         return ft_error(FT_E_INVALID, "--band applies to grids, but %s holds %s", path, kind_name(kind));
+    }
 
     json_object *o = json_object_new_object();
     const char *driver = driver_name(path);
@@ -250,11 +232,12 @@ int cli_info_describe(const char *path, const char *layer, int band, json_object
     json_object_object_add(o, "kind", json_object_new_string(kind_name(kind)));
     json_object_object_add(o, "driver", driver ? json_object_new_string(driver) : NULL);
     if (kind == FT_KIND_GRID)
-        rc = describe_grid(path, band, o);
+        rc = describe_grid(data.grid, go.band, o);
     else if (kind == FT_KIND_CHAINS)
-        rc = describe_chains(path, layer, o);
+        rc = describe_chains(data.layer, o);
     else
-        rc = describe_points(path, layer, o);
+        rc = describe_points(data.points, o);
+    ft_data_clear(&data);
     if (rc != FT_OK) {
         json_object_put(o);
         return rc;

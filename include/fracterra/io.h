@@ -33,6 +33,14 @@ typedef enum {
  *  it is neither a raster nor a vector nor a known text format. layer may be NULL (first layer). */
 int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind);
 
+/** What a file held, as read by ft_io_read_any: exactly one of grid, layer, points is set. */
+typedef struct {
+    ft_file_kind kind;
+    ft_grid *grid;
+    ft_layer *layer;
+    ft_points *points;
+} ft_data;
+
 /** 1 if the path names a plain-text chain file by its extension (.gmt, .xy, .txt). */
 int ft_io_is_text_chains(const char *path);
 /** 1 if the path names a plain-text point file by its extension (.csv, .xyz). */
@@ -113,6 +121,18 @@ typedef struct {
 int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out);
 /** Writes points as CSV (x,y,z[,w]) or XYZ text by extension, or through OGR otherwise. */
 int ft_io_write_points(const char *path, const ft_points *p);
+
+/* ------------------------------------------------------------------------------------------------
+ * Any kind
+ * --------------------------------------------------------------------------------------------- */
+
+/** Opens a file once and reads what it holds: a grid (band go->band) when it is a raster and no layer is
+ *  named, else the layer's lines/polygons or points. Options may be NULL (defaults); the layer name is taken
+ *  from lo, else po. Same errors as the single-kind readers. Release with ft_data_clear. */
+int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                   const ft_read_points_opts *po, ft_data *out);
+/** Frees what ft_io_read_any read and zeroes *d; NULL is a no-op. */
+void ft_data_clear(ft_data *d);
 
 /* ------------------------------------------------------------------------------------------------
  * Files

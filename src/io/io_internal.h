@@ -38,6 +38,14 @@ int ft_io_open(const char *path, unsigned int kind, GDALDatasetH *ds);
 /* The named layer (or the first); FT_E_FORMAT naming it and listing the layers when absent. */
 int ft_io_get_layer(GDALDatasetH ds, const char *path, const char *name, OGRLayerH *layer);
 
+/* Readers working on an open dataset (vector_read.c, points_read.c, raster_read.c), so that a file is opened
+ * (and, for GeoJSON, parsed) once when its kind is probed and its content read (ft_io_read_any). */
+int ft_io_read_layer_ds(GDALDatasetH ds, const char *path, const ft_read_layer_opts *o, ft_layer **out);
+int ft_io_read_points_ds(GDALDatasetH ds, const char *path, const ft_read_points_opts *o, ft_points **out);
+int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *o, ft_grid **out);
+/* What an open dataset holds (probe.c): a grid unless a layer is named, else the kind of the layer. */
+int ft_io_dataset_kind(GDALDatasetH ds, const char *path, const char *layer, ft_file_kind *kind);
+
 /* Drivers (common.c): opts driver name, else from the extension among drivers that can create files of
  * that kind (GDAL_DCAP_VECTOR or GDAL_DCAP_RASTER). FT_E_FORMAT naming the extension or driver otherwise. */
 int ft_io_find_driver(const char *path, const char *name, const char *cap, GDALDriverH *drv);

@@ -147,12 +147,19 @@ int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_poin
     int rc = ft_io_open(path, GDAL_OF_VECTOR, &ds);
     if (rc != FT_OK)
         return rc;
-    point_reader r = {.path = path, .zfield = -1, .wfield = -1};
-    rc = ft_io_get_layer(ds, path, o.layer, &r.ogr);
-    if (rc == FT_OK)
-        rc = read_ogr_points(&r, &o);
-    free(r.w);
+    rc = ft_io_read_points_ds(ds, path, &o, out);
     GDALClose(ds);
+    return rc;
+}
+
+int ft_io_read_points_ds(GDALDatasetH ds, const char *path, const ft_read_points_opts *o, ft_points **out)
+{
+    *out = NULL;
+    point_reader r = {.path = path, .zfield = -1, .wfield = -1};
+    int rc = ft_io_get_layer(ds, path, o->layer, &r.ogr);
+    if (rc == FT_OK)
+        rc = read_ogr_points(&r, o);
+    free(r.w);
     if (rc != FT_OK) {
         ft_points_free(r.p);
         return rc;

@@ -50,37 +50,118 @@ static ft_file_kind kind_of_features(OGRLayerH layer)
     return kind;
 }
 
+int ft_io_dataset_kind(GDALDatasetH ds, const char *path, const char *layer, ft_file_kind *kind)
+{
+    *kind = FT_KIND_UNKNOWN;
+    if (layer == NULL && GDALGetRasterCount(ds) > 0) {
+        *kind = FT_KIND_GRID;
+        return FT_OK;
+    }
+    OGRLayerH l;
+    int rc = ft_io_get_layer(ds, path, layer, &l);
+    if (rc != FT_OK)
+        return rc;
+    *kind = kind_of_type(OGR_L_GetGeomType(l));
+    if (*kind == FT_KIND_UNKNOWN)
+        *kind = kind_of_features(l);
+    if (*kind == FT_KIND_UNKNOWN)
+        return ft_error(FT_E_FORMAT, "layer '%s' of '%s' holds no line, polygon or point geometry", OGR_L_GetName(l),
+                        path);
+    return FT_OK;
+}
+
+/* Kind of a plain-text file by its extension; FT_KIND_UNKNOWN if it is not one. */
+static ft_file_kind text_kind(const char *path)
+{
+    if (ft_io_is_text_points(path))
+        return FT_KIND_POINTS;
+    if (ft_io_is_text_chains(path))
+        return FT_KIND_CHAINS;
+    return FT_KIND_UNKNOWN;
+}
+
+/* Opens path as raster or vector, with a clear error when GDAL reads neither. */
+static int open_any(const char *path, GDALDatasetH *ds)
+{
+    ft_io_init();
+    ft_io_gdal_reset();
+    *ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    if (*ds == NULL)
+        return ft_error(FT_E_FORMAT, "'%s' is neither a raster nor a vector format GDAL reads", path);
+    return FT_OK;
+}
+
 int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind)
 {
     *kind = FT_KIND_UNKNOWN;
     int rc = ft_io_check_readable(path);
     if (rc != FT_OK)
         return rc;
-    if (ft_io_is_text_chains(path) || ft_io_is_text_points(path)) {
-        *kind = ft_io_is_text_points(path) ? FT_KIND_POINTS : FT_KIND_CHAINS;
+    if ((*kind = text_kind(path)) != FT_KIND_UNKNOWN)
         return FT_OK;
-    }
-    ft_io_init();
-    ft_io_gdal_reset();
-    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
-    if (ds == NULL)
-        return ft_error(FT_E_FORMAT, "'%s' is neither a raster nor a vector format GDAL reads", path);
-    if (layer == NULL && GDALGetRasterCount(ds) > 0) {
-        GDALClose(ds);
-        *kind = FT_KIND_GRID;
-        return FT_OK;
-    }
-    OGRLayerH l;
-    rc = ft_io_get_layer(ds, path, layer, &l);
-    if (rc == FT_OK) {
-        *kind = kind_of_type(OGR_L_GetGeomType(l));
-        if (*kind == FT_KIND_UNKNOWN)
-            *kind = kind_of_features(l);
-        if (*kind == FT_KIND_UNKNOWN)
-            rc = ft_error(FT_E_FORMAT, "layer '%s' of '%s' holds no line, polygon or point geometry",
-                          OGR_L_GetName(l), path);
-    }
+    GDALDatasetH ds;
+    if ((rc = open_any(path, &ds)) != FT_OK)
+        return rc;
+    rc = ft_io_dataset_kind(ds, path, layer, kind);
     GDALClose(ds);
+    return rc;
+}
+
+void ft_data_clear(ft_data *d)
+{
+    if (d == NULL)
+        return;
+    ft_grid_free(d->grid);
+    ft_layer_free(d->layer);
+    ft_points_free(d->points);
+    memset(d, 0, sizeof *d);
+}
+
+/* Reads a plain-text file of the given kind. */
+static int read_text(const char *path, ft_file_kind kind, const ft_read_points_opts *po, ft_data *out)
+{
+    out->kind = kind;
+    if (kind == FT_KIND_POINTS)
+        return ft_io_read_points(path, po, &out->points);
+    return ft_io_read_text_chains(path, &out->layer);
+}
+
+int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                   const ft_read_points_opts *po, ft_data *out)
+{
+    ft_read_layer_opts l = FT_READ_LAYER_OPTS_DEFAULT;
+    ft_read_grid_opts g = FT_READ_GRID_OPTS_DEFAULT;
+    ft_read_points_opts p = FT_READ_POINTS_OPTS_DEFAULT;
+    if (lo != NULL)
+        l = *lo;
+    if (go != NULL)
+        g = *go;
+    if (po != NULL)
+        p = *po;
+    memset(out, 0, sizeof *out);
+    int rc = ft_io_check_readable(path);
+    if (rc != FT_OK)
+        return rc;
+    ft_file_kind kind = text_kind(path);
+    if (kind != FT_KIND_UNKNOWN)
+        rc = read_text(path, kind, &p, out);
+    else {
+        const char *layer = l.layer != NULL ? l.layer : p.layer;
+        GDALDatasetH ds;
+        if ((rc = open_any(path, &ds)) != FT_OK)
+            return rc;
+        rc = ft_io_dataset_kind(ds, path, layer, &out->kind);
+        l.layer = p.layer = layer;
+        if (rc == FT_OK && out->kind == FT_KIND_GRID)
+            rc = ft_io_read_grid_ds(ds, path, &g, &out->grid);
+        else if (rc == FT_OK && out->kind == FT_KIND_CHAINS)
+            rc = ft_io_read_layer_ds(ds, path, &l, &out->layer);
+        else if (rc == FT_OK)
+            rc = ft_io_read_points_ds(ds, path, &p, &out->points);
+        GDALClose(ds);
+    }
+    if (rc != FT_OK)
+        ft_data_clear(out);
     return rc;
 }
 

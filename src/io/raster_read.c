@@ -154,8 +154,17 @@ int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **o
     int rc = ft_io_open(path, GDAL_OF_RASTER, &ds);
     if (rc != FT_OK)
         return rc;
+    rc = ft_io_read_grid_ds(ds, path, &o, out);
+    GDALClose(ds);
+    return rc;
+}
+
+int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *opts, ft_grid **out)
+{
+    ft_read_grid_opts o = *opts;
+    *out = NULL;
     grid_reader r = {.path = path};
-    rc = check_band(ds, path, o.band);
+    int rc = check_band(ds, path, o.band);
     if (rc == FT_OK)
         rc = grid_from_dataset(ds, path, &r.g);
     if (rc == FT_OK) {
@@ -163,7 +172,6 @@ int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **o
         rc = read_band(&r);
     }
     free(r.mbuf);
-    GDALClose(ds);
     if (rc != FT_OK) {
         ft_grid_free(r.g);
         return rc;

@@ -277,12 +277,19 @@ int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer 
     int rc = ft_io_open(path, GDAL_OF_VECTOR, &ds);
     if (rc != FT_OK)
         return rc;
-    reader r = {.path = path};
-    rc = ft_io_get_layer(ds, path, o.layer, &r.ogr);
-    if (rc == FT_OK)
-        rc = read_ogr_layer(&r, &o);
-    free(r.src);
+    rc = ft_io_read_layer_ds(ds, path, &o, out);
     GDALClose(ds);
+    return rc;
+}
+
+int ft_io_read_layer_ds(GDALDatasetH ds, const char *path, const ft_read_layer_opts *o, ft_layer **out)
+{
+    *out = NULL;
+    reader r = {.path = path};
+    int rc = ft_io_get_layer(ds, path, o->layer, &r.ogr);
+    if (rc == FT_OK)
+        rc = read_ogr_layer(&r, o);
+    free(r.src);
     if (rc != FT_OK) {
         ft_layer_free(r.out);
         return rc;
