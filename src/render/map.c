@@ -248,7 +248,7 @@ int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *op
     ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
     const ft_map_opts *o = opts ? opts : &defaults;
     rgb stroke, fill = {1.0, 1.0, 1.0};
-    map_format fmt;
+    map_format fmt = MAP_SVG;
     if (layer == NULL)
         return ft_error(FT_E_INVALID, "map: no layer given");
     if (path == NULL || *path == '\0')
