@@ -308,6 +308,141 @@ int ft_fit_line(const double *x, const double *y, size_t first, size_t last, ft_
 /** Same on log10(scale), log10(value); every scale and value in range must be > 0. */
 int ft_fit_loglog(const double *scale, const double *value, size_t first, size_t last, ft_fit *fit);
 
+/* ------------------------------------------------------------------------------------------------
+ * Log-log tables and their segmentation, shared by every dimension estimator (Arakawa & Krotkov,
+ * "Fractal modeling of natural terrain", §2.4; docs/loglog.md). An estimator measures value(scale)
+ * at several scales, pushes one row per scale, sorts the table if its scales were not increasing,
+ * and calls ft_loglog_fit_auto with its physical scale limits and its slope-to-D map. The result
+ * keeps the whole table (local slopes, used flags) and every linear segment found.
+ * All distances to a line are vertical, in log10 units of value: 0.02 means a factor 10^0.02 = 1.047.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double scale;  /**< > 0: step length, box side, lag, frequency, ... */
+    double value;  /**< > 0: length, box count, variogram, power, ... */
+    double count;  /**< >= 0: pairs, boxes or samples behind value (0 when it does not apply) */
+    double slope;  /**< local slope d log10(value) / d log10(scale): centred difference between the two
+                        neighbouring rows, one-sided at the ends; NaN while the table has one row */
+    int used;      /**< 1 if the row is in the fitted range */
+} ft_loglog_row;
+
+typedef struct {
+    ft_loglog_row *rows;
+    size_t n, cap;
+} ft_loglog;
+
+/** A new empty table with room for cap rows (cap may be 0). NULL (error set) if out of memory. */
+ft_loglog *ft_loglog_create(size_t cap);
+/** A deep copy (NULL in, NULL out with an error). */
+ft_loglog *ft_loglog_copy(const ft_loglog *t);
+void ft_loglog_free(ft_loglog *t);
+/** Appends a row (used = 0) and updates the local slopes of the last two rows. scale and value must
+ *  be finite and > 0, count finite and >= 0; the error names the bad value. */
+int ft_loglog_push(ft_loglog *t, double scale, double value, double count);
+/** Sorts the rows by increasing scale and recomputes every local slope. */
+int ft_loglog_sort(ft_loglog *t);
+/** Recomputes every row's local slope (after rows were edited directly). */
+void ft_loglog_update_slopes(ft_loglog *t);
+/** FT_OK if the table has >= 2 rows, scales and values finite and > 0, counts finite and >= 0 and
+ *  scales strictly increasing; otherwise an error naming the row and the value. */
+int ft_loglog_check(const ft_loglog *t);
+/** Robust noise estimate of rows [first, last] of a checked table, in log10 units of value: each
+ *  interior point's vertical distance to the chord through its two neighbours, scaled to unit
+ *  variance for i.i.d. noise, then 1.4826 * median absolute deviation. A straight table gives 0; a
+ *  break in slope moves one distance only, so it barely moves the median. 0 if fewer than 3 rows. */
+double ft_loglog_noise(const ft_loglog *t, size_t first, size_t last);
+
+/** How a slope becomes a dimension: D = a + b * slope. */
+typedef struct {
+    double a, b;
+} ft_dim_map;
+#define FT_DIM_MAP_DIVIDER {1.0, -1.0}          /**< length L(step) ~ step^(1 - D) */
+#define FT_DIM_MAP_BOXCOUNT {0.0, -1.0}         /**< boxes N(side) ~ side^-D */
+#define FT_DIM_MAP_PRISM {2.0, -1.0}            /**< surface area A(step) ~ step^(2 - D) */
+#define FT_DIM_MAP_VARIOGRAM_SURFACE {3.0, -0.5} /**< gamma(lag) ~ lag^(2H), D = 3 - H */
+#define FT_DIM_MAP_INCREMENT_SURFACE {3.0, -1.0} /**< E|dz| or sd(dz) at distance d ~ d^H, D = 3 - H */
+#define FT_DIM_MAP_SPECTRUM_SURFACE {4.0, 0.5}  /**< radial power P(f) ~ f^-beta (scale = frequency),
+                                                      D = (8 - beta) / 2 */
+
+typedef enum {
+    FT_LOGLOG_ILS = 0,    /**< iterative least squares: the longest run within tol of its LS line */
+    FT_LOGLOG_MINIMAX = 1 /**< minimax polyline: the longest segment within width of its minimax line */
+} ft_loglog_method;
+
+typedef struct {
+    ft_loglog_method method; /**< how ft_loglog_fit_auto chooses the range; default FT_LOGLOG_ILS */
+    double tol;        /**< ILS: a point is on the line if its distance to it is at most
+                            max(tol, tol_sigma * noise); > 0; default 0.02 */
+    double width;      /**< minimax: every point of a segment lies within max(width / 2,
+                            tol_sigma * noise) of the segment's minimax line; > 0; default 0.04 */
+    double tol_sigma;  /**< multiple of ft_loglog_noise widening both tolerances on noisy tables;
+                            >= 0 (0 = absolute tolerances only); default 3 */
+    size_t min_points; /**< fewest rows in the chosen range; >= 2; default 3 */
+    int max_iter;      /**< ILS: iterations per start; >= 1; default 50 */
+} ft_loglog_opts;
+#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_ILS, 0.02, 0.04, 3.0, 3, 50}
+
+/** One linear segment of a log-log table. */
+typedef struct {
+    size_t first, last; /**< inclusive row range; neighbouring segments may share one row */
+    size_t n;           /**< rows in the segment */
+    double scale_lo, scale_hi;
+    double slope, intercept; /**< least squares on (log10 scale, log10 value) */
+    double D;           /**< map.a + map.b * slope */
+    double r2;          /**< r² of the least-squares line */
+    double stderr_D;    /**< |map.b| * standard error of the slope (0 for 2 rows) */
+    double max_err;     /**< fitting error: half-width of the thinnest band holding the rows, i.e. the
+                             largest distance to the minimax (Chebyshev) line, log10 units */
+    double D_minimax;   /**< map applied to the slope of the minimax line */
+} ft_loglog_segment;
+
+#define FT_LOGLOG_NONE ((size_t)-1)
+
+/** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */
+typedef struct {
+    const char *method;       /**< static name, "range", "ils" or "minimax"; an estimator may point it
+                                   at its own static name ("divider") for its JSON "method" */
+    const char *segmentation; /**< static name of how the range was chosen: "range", "ils", "minimax" */
+    double D;                 /**< map.a + map.b * fit.slope */
+    double r2;                /**< r² of the least-squares fit over the used rows */
+    double stderr_D;          /**< |map.b| * fit.stderr_slope */
+    double range[2];          /**< scales of the first and last used rows */
+    double max_err;           /**< fitting error of the used rows (see ft_loglog_segment.max_err) */
+    double noise;             /**< ft_loglog_noise over the rows that were searched */
+    double tol;               /**< tolerance ILS used (0 if ILS did not run) */
+    double width;             /**< width minimax used, 2 x its half-width (0 if it did not run) */
+    ft_fit fit;               /**< least squares of log10 value on log10 scale; fit.first..fit.last are
+                                   the used rows */
+    ft_dim_map map;
+    ft_loglog *table;         /**< owned copy of the input table, used flags set */
+    ft_loglog_segment *segments; /**< owned; minimax segments by increasing scale (NULL if none) */
+    size_t nsegments;
+    size_t best;              /**< index in segments of the one that gave D, or FT_LOGLOG_NONE */
+} ft_dim_result;
+
+void ft_dim_result_free(ft_dim_result *r);
+void ft_loglog_segments_free(ft_loglog_segment *s);
+
+/** Least squares over the rows with lo <= scale <= hi (0 = no limit on that side; limits are inclusive
+ *  within a relative 1e-9, so a limit equal to a computed scale keeps that row); needs >= 2 rows. */
+int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map,
+                        ft_dim_result **out);
+/** Iterative least squares over the whole table: from the whole table and from every run of
+ *  min_points rows, fit a line, keep the longest contiguous run of rows within the tolerance of it,
+ *  refit, until the run stops changing; the longest converged run wins (ties: smaller rms). */
+int ft_loglog_segment_ils(const ft_loglog *t, const ft_loglog_opts *opts, const ft_dim_map *map,
+                          ft_dim_result **out);
+/** Minimax polyline over the whole table: every row is covered by segments whose rows lie within the
+ *  half-width of their minimax line, chosen longest first (ties: smaller max_err). Release the
+ *  segments with ft_loglog_segments_free. */
+int ft_loglog_segment_minimax(const ft_loglog *t, const ft_loglog_opts *opts, const ft_dim_map *map,
+                              ft_loglog_segment **segments, size_t *nsegments);
+/** The estimators' entry: restricts to lo_limit <= scale <= hi_limit (0 = no limit), segments those
+ *  rows by minimax (all segments kept in the result), and fits D over the range opts->method picks:
+ *  the ILS run, or the longest minimax segment (ties: smaller max_err). */
+int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, const ft_loglog_opts *opts,
+                       const ft_dim_map *map, ft_dim_result **out);
+
 #ifdef __cplusplus
 }
 #endif

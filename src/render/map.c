@@ -9,23 +9,19 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "fracterra/render.h"
-#include "internal.h"
+#include "render/render_internal.h"
 
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
 #include <cairo.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #define MAP_MARGIN 16.0
 #define MAP_TITLE_H 30.0
 #define MAP_BAR_H 36.0
 #define MAP_MAX_SIDE 32767
 
-typedef enum { MAP_SVG, MAP_PDF, MAP_PNG } map_format;
 
 typedef struct {
     double r, g, b;
@@ -46,21 +42,6 @@ static int parse_color(const char *what, const char *s, rgb *c)
     c->r = ((v >> 16) & 0xff) / 255.0;
     c->g = ((v >> 8) & 0xff) / 255.0;
     c->b = (v & 0xff) / 255.0;
-    return FT_OK;
-}
-
-static int format_of(const char *path, map_format *f)
-{
-    const char *slash = strrchr(path, '/');
-    const char *dot = strrchr(slash ? slash : path, '.');
-    if (dot && strcasecmp(dot, ".svg") == 0)
-        *f = MAP_SVG;
-    else if (dot && strcasecmp(dot, ".pdf") == 0)
-        *f = MAP_PDF;
-    else if (dot && strcasecmp(dot, ".png") == 0)
-        *f = MAP_PNG;
-    else
-        return ft_error(FT_E_INVALID, "map output must end in .svg, .pdf or .png: %s", path);
     return FT_OK;
 }
 
@@ -206,41 +187,18 @@ static void draw_map(cairo_t *cr, const ft_layer *l, const map_frame *f, const f
         draw_scale_bar(cr, f, o, crs_is_geographic(l->crs_wkt));
 }
 
-static cairo_surface_t *open_surface(map_format fmt, const char *tmp, int w, int h)
-{
-    cairo_surface_t *s;
-    if (fmt == MAP_SVG) {
-        s = cairo_svg_surface_create(tmp, w, h);
-        cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
-#if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 15, 10)
-        cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PX);
-#endif
-    } else if (fmt == MAP_PDF) {
-        s = cairo_pdf_surface_create(tmp, w, h);
-    } else {
-        s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
-    }
-    return s;
-}
+/* What draw_map needs, passed through the canvas writer. */
+typedef struct {
+    const ft_layer *layer;
+    const map_frame *frame;
+    const ft_map_opts *opts;
+    const rgb *stroke, *fill;
+} map_job;
 
-/* Draws into tmp and finishes the surface; FT_OK or FT_E_IO naming path. */
-static int render_to(const char *tmp, const char *path, map_format fmt, const ft_layer *l, const map_frame *f,
-                     const ft_map_opts *o, const rgb *stroke, const rgb *fill)
+static void draw_job(cairo_t *cr, const void *arg)
 {
-    cairo_surface_t *s = open_surface(fmt, tmp, o->width, o->height);
-    cairo_t *cr = cairo_create(s);
-    draw_map(cr, l, f, o, stroke, fill);
-    cairo_status_t st = cairo_status(cr);
-    cairo_destroy(cr);
-    if (st == CAIRO_STATUS_SUCCESS && fmt == MAP_PNG)
-        st = cairo_surface_write_to_png(s, tmp);
-    cairo_surface_finish(s);
-    if (st == CAIRO_STATUS_SUCCESS)
-        st = cairo_surface_status(s);
-    cairo_surface_destroy(s);
-    if (st != CAIRO_STATUS_SUCCESS)
-        return ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
-    return FT_OK;
+    const map_job *j = arg;
+    draw_map(cr, j->layer, j->frame, j->opts, j->stroke, j->fill);
 }
 
 int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts)
@@ -248,12 +206,12 @@ int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *op
     ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
     const ft_map_opts *o = opts ? opts : &defaults;
     rgb stroke, fill = {1.0, 1.0, 1.0};
-    map_format fmt = MAP_SVG;
+    ft_canvas_format fmt = FT_CANVAS_SVG;
     if (layer == NULL)
         return ft_error(FT_E_INVALID, "map: no layer given");
     if (path == NULL || *path == '\0')
         return ft_error(FT_E_INVALID, "map: no output path given");
-    int rc = format_of(path, &fmt);
+    int rc = ft_canvas_format_of("map", path, &fmt);
     if (rc == FT_OK)
         rc = check_opts(o, &stroke, &fill);
     if (rc == FT_OK)
@@ -268,14 +226,6 @@ int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *op
     frame_init(o, bx0, by0, bx1, by1, &f);
     if (f.aw < 16.0 || f.ah < 16.0)
         return ft_error(FT_E_INVALID, "map: a %d x %d canvas leaves no room for the map", o->width, o->height);
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    rc = render_to(tmp, path, fmt, layer, &f, o, &stroke, &fill);
-    if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    map_job job = {layer, &f, o, &stroke, &fill};
+    return ft_canvas_write(path, fmt, o->width, o->height, draw_job, &job);
 }

@@ -1,0 +1,248 @@
+/* fracterra — core/loglog_fit.c: the dimension from a log-log table, step 3 of Arakawa & Krotkov §2.4
+ * ("estimate fractal dimension from the slope of linear segments"): a least-squares line over the
+ * chosen rows (a user range, the iterative least-squares run, or the longest minimax segment), D =
+ * a + b * slope by the estimator's map, and a result that keeps the table with its used rows and every
+ * segment found, so that users can judge the straightness themselves.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "internal.h"
+#include "loglog_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
+{
+    ft_loglog_opts defaults = FT_LOGLOG_OPTS_DEFAULT;
+    *o = opts ? *opts : defaults;
+    if (o->method != FT_LOGLOG_ILS && o->method != FT_LOGLOG_MINIMAX)
+        return ft_error(FT_E_INVALID, "log-log segmentation: unknown method %d (0 = ILS, 1 = minimax)",
+                        (int)o->method);
+    if (!isfinite(o->tol) || !(o->tol > 0.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: tol must be > 0 (log10 units), got %g", o->tol);
+    if (!isfinite(o->width) || !(o->width > 0.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: width must be > 0 (log10 units), got %g", o->width);
+    if (!isfinite(o->tol_sigma) || o->tol_sigma < 0.0)
+        return ft_error(FT_E_INVALID, "log-log segmentation: tol_sigma must be >= 0, got %g", o->tol_sigma);
+    if (o->min_points < 2)
+        return ft_error(FT_E_INVALID, "log-log segmentation: min_points must be >= 2, got %zu", o->min_points);
+    if (o->max_iter < 1)
+        return ft_error(FT_E_INVALID, "log-log segmentation: max_iter must be >= 1, got %d", o->max_iter);
+    return FT_OK;
+}
+
+int ft_ll_describe(const ft_ll_data *d, size_t first, size_t last, ft_loglog_segment *seg)
+{
+    ft_fit fit;
+    int rc = ft_fit_line(d->lx, d->ly, first, last, &fit);
+    if (rc != FT_OK)
+        return rc;
+    double ms, mc, err;
+    ft_ll_chebyshev(d->lx + first, d->ly + first, last - first + 1, d->work, &ms, &mc, &err);
+    seg->first = first;
+    seg->last = last;
+    seg->n = last - first + 1;
+    seg->scale_lo = d->t->rows[first].scale;
+    seg->scale_hi = d->t->rows[last].scale;
+    seg->slope = fit.slope;
+    seg->intercept = fit.intercept;
+    seg->D = d->map.a + d->map.b * fit.slope;
+    seg->r2 = fit.r2;
+    seg->stderr_D = fabs(d->map.b) * fit.stderr_slope;
+    seg->max_err = err;
+    seg->D_minimax = d->map.a + d->map.b * ms;
+    return FT_OK;
+}
+
+void ft_loglog_segments_free(ft_loglog_segment *s)
+{
+    free(s);
+}
+
+void ft_dim_result_free(ft_dim_result *r)
+{
+    if (r == NULL)
+        return;
+    ft_loglog_free(r->table);
+    free(r->segments);
+    free(r);
+}
+
+/* A new result holding a copy of the table with no row used. */
+static int result_new(const ft_ll_data *d, const char *name, ft_dim_result **out)
+{
+    ft_dim_result *r = ft_calloc(1, sizeof *r);
+    if (r == NULL)
+        return FT_E_NOMEM;
+    r->table = ft_loglog_copy(d->t);
+    if (r->table == NULL) {
+        free(r);
+        return FT_E_NOMEM;
+    }
+    for (size_t i = 0; i < r->table->n; i++)
+        r->table->rows[i].used = 0;
+    ft_loglog_update_slopes(r->table);
+    r->method = r->segmentation = name;
+    r->map = d->map;
+    r->best = FT_LOGLOG_NONE;
+    r->noise = ft_loglog_noise(d->t, d->a, d->b);
+    *out = r;
+    return FT_OK;
+}
+
+/* Fits D over rows [first, last] and marks them used. */
+static int result_fit(ft_dim_result *r, const ft_ll_data *d, size_t first, size_t last)
+{
+    ft_loglog_segment seg;
+    int rc = ft_ll_describe(d, first, last, &seg);
+    if (rc != FT_OK)
+        return rc;
+    rc = ft_fit_line(d->lx, d->ly, first, last, &r->fit);
+    if (rc != FT_OK)
+        return rc;
+    r->D = seg.D;
+    r->r2 = seg.r2;
+    r->stderr_D = seg.stderr_D;
+    r->max_err = seg.max_err;
+    r->range[0] = seg.scale_lo;
+    r->range[1] = seg.scale_hi;
+    for (size_t i = first; i <= last; i++)
+        r->table->rows[i].used = 1;
+    return FT_OK;
+}
+
+/* Common tail: on failure frees the result and the data, on success hands the result out. */
+static int finish(int rc, ft_ll_data *d, ft_dim_result *r, ft_dim_result **out)
+{
+    ft_ll_data_free(d);
+    if (rc != FT_OK) {
+        ft_dim_result_free(r);
+        return rc;
+    }
+    *out = r;
+    return FT_OK;
+}
+
+static int check_out(ft_dim_result **out)
+{
+    if (out == NULL)
+        return ft_error(FT_E_INVALID, "log-log fit: NULL result pointer");
+    *out = NULL;
+    return FT_OK;
+}
+
+int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map, ft_dim_result **out)
+{
+    int rc = check_out(out);
+    if (rc != FT_OK)
+        return rc;
+    ft_ll_data d;
+    ft_dim_result *r = NULL;
+    rc = ft_ll_data_init(&d, t, lo, hi, map, 2);
+    if (rc == FT_OK)
+        rc = result_new(&d, "range", &r);
+    if (rc == FT_OK)
+        rc = result_fit(r, &d, d.a, d.b);
+    return finish(rc, &d, r, out);
+}
+
+/* The ILS run of d's window into r. */
+static int fit_ils(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+{
+    size_t first, last;
+    int rc = ft_ll_ils(d, o, &first, &last, &r->tol);
+    if (rc == FT_OK)
+        rc = result_fit(r, d, first, last);
+    return rc;
+}
+
+int ft_loglog_segment_ils(const ft_loglog *t, const ft_loglog_opts *opts, const ft_dim_map *map,
+                          ft_dim_result **out)
+{
+    ft_loglog_opts o;
+    int rc = check_out(out);
+    if (rc == FT_OK)
+        rc = ft_ll_opts_check(opts, &o);
+    if (rc != FT_OK)
+        return rc;
+    ft_ll_data d;
+    ft_dim_result *r = NULL;
+    rc = ft_ll_data_init(&d, t, 0.0, 0.0, map, o.min_points);
+    if (rc == FT_OK)
+        rc = result_new(&d, "ils", &r);
+    if (rc == FT_OK)
+        rc = fit_ils(r, &d, &o);
+    return finish(rc, &d, r, out);
+}
+
+int ft_loglog_segment_minimax(const ft_loglog *t, const ft_loglog_opts *opts, const ft_dim_map *map,
+                              ft_loglog_segment **segments, size_t *nsegments)
+{
+    if (segments == NULL || nsegments == NULL)
+        return ft_error(FT_E_INVALID, "minimax segmentation: NULL output pointer");
+    *segments = NULL;
+    *nsegments = 0;
+    ft_loglog_opts o;
+    int rc = ft_ll_opts_check(opts, &o);
+    if (rc != FT_OK)
+        return rc;
+    ft_ll_data d;
+    rc = ft_ll_data_init(&d, t, 0.0, 0.0, map, 2);
+    size_t longest;
+    double width;
+    if (rc == FT_OK)
+        rc = ft_ll_minimax(&d, &o, segments, nsegments, &longest, &width);
+    ft_ll_data_free(&d);
+    return rc;
+}
+
+/* Minimax segments of d's window into r and, for FT_LOGLOG_MINIMAX, D over the longest of them. */
+static int fit_minimax(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+{
+    size_t longest;
+    int rc = ft_ll_minimax(d, o, &r->segments, &r->nsegments, &longest, &r->width);
+    if (rc != FT_OK || o->method != FT_LOGLOG_MINIMAX)
+        return rc;
+    const ft_loglog_segment *s = &r->segments[longest];
+    if (s->n < o->min_points)
+        return ft_error(FT_E_NUMERIC,
+                        "minimax segmentation: the longest segment within width %g (log10 units) has %zu rows, "
+                        "fewer than min_points = %zu; widen the width or check the table",
+                        r->width, s->n, o->min_points);
+    r->best = longest;
+    return result_fit(r, d, s->first, s->last);
+}
+
+/* Index of the segment spanning exactly the used rows, or FT_LOGLOG_NONE. */
+static size_t matching_segment(const ft_dim_result *r)
+{
+    for (size_t k = 0; k < r->nsegments; k++)
+        if (r->segments[k].first == r->fit.first && r->segments[k].last == r->fit.last)
+            return k;
+    return FT_LOGLOG_NONE;
+}
+
+int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, const ft_loglog_opts *opts,
+                       const ft_dim_map *map, ft_dim_result **out)
+{
+    ft_loglog_opts o;
+    int rc = check_out(out);
+    if (rc == FT_OK)
+        rc = ft_ll_opts_check(opts, &o);
+    if (rc != FT_OK)
+        return rc;
+    ft_ll_data d;
+    ft_dim_result *r = NULL;
+    const char *name = o.method == FT_LOGLOG_ILS ? "ils" : "minimax";
+    rc = ft_ll_data_init(&d, t, lo_limit, hi_limit, map, o.min_points);
+    if (rc == FT_OK)
+        rc = result_new(&d, name, &r);
+    if (rc == FT_OK)
+        rc = fit_minimax(r, &d, &o);
+    if (rc == FT_OK && o.method == FT_LOGLOG_ILS) {
+        rc = fit_ils(r, &d, &o);
+        if (rc == FT_OK)
+            r->best = matching_segment(r);
+    }
+    return finish(rc, &d, r, out);
+}

@@ -1,0 +1,78 @@
+/* fracterra — render/canvas.c: vector and raster canvases (SVG, PDF, PNG by extension) written atomically,
+ * shared by the map and the log-log plot.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "render/render_internal.h"
+
+#include "fracterra/core.h"
+#include "internal.h"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+int ft_canvas_format_of(const char *what, const char *path, ft_canvas_format *fmt)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash : path, '.');
+    if (dot && strcasecmp(dot, ".svg") == 0)
+        *fmt = FT_CANVAS_SVG;
+    else if (dot && strcasecmp(dot, ".pdf") == 0)
+        *fmt = FT_CANVAS_PDF;
+    else if (dot && strcasecmp(dot, ".png") == 0)
+        *fmt = FT_CANVAS_PNG;
+    else
+        return ft_error(FT_E_INVALID, "%s output must end in .svg, .pdf or .png: %s", what, path);
+    return FT_OK;
+}
+
+static cairo_surface_t *open_surface(ft_canvas_format fmt, const char *tmp, int w, int h)
+{
+    if (fmt == FT_CANVAS_SVG) {
+        cairo_surface_t *s = cairo_svg_surface_create(tmp, w, h);
+        cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
+#if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 15, 10)
+        cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PX);
+#endif
+        return s;
+    }
+    if (fmt == FT_CANVAS_PDF)
+        return cairo_pdf_surface_create(tmp, w, h);
+    return cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
+}
+
+/* Draws into tmp and finishes the surface; FT_OK or FT_E_IO naming path. */
+static int draw_to(const char *tmp, const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw,
+                   const void *arg)
+{
+    cairo_surface_t *s = open_surface(fmt, tmp, w, h);
+    cairo_t *cr = cairo_create(s);
+    draw(cr, arg);
+    cairo_status_t st = cairo_status(cr);
+    cairo_destroy(cr);
+    if (st == CAIRO_STATUS_SUCCESS && fmt == FT_CANVAS_PNG)
+        st = cairo_surface_write_to_png(s, tmp);
+    cairo_surface_finish(s);
+    if (st == CAIRO_STATUS_SUCCESS)
+        st = cairo_surface_status(s);
+    cairo_surface_destroy(s);
+    if (st != CAIRO_STATUS_SUCCESS)
+        return ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
+    return FT_OK;
+}
+
+int ft_canvas_write(const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw, const void *arg)
+{
+    char *tmp = ft_tmp_path(path);
+    if (tmp == NULL)
+        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    int rc = draw_to(tmp, path, fmt, w, h, draw, arg);
+    if (rc == FT_OK)
+        rc = ft_tmp_commit(tmp, path);
+    if (rc != FT_OK)
+        ft_tmp_discard(tmp);
+    free(tmp);
+    return rc;
+}
