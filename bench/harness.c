@@ -97,26 +97,13 @@ static double median(const double *v, size_t n)
     return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
 }
 
-static int write_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t k = write(fd, p, n);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0)
-            return -1;
-        p += k;
-        n -= (size_t)k;
-    }
-    return 0;
-}
-
-static int read_all(int fd, void *buf, size_t n)
+/* Moves all n bytes through fd with read (writing = 0) or write (writing = 1), retrying short transfers
+ * and EINTR; -1 on error or end of file. */
+static int transfer_all(int fd, void *buf, size_t n, int writing)
 {
     char *p = buf;
     while (n > 0) {
-        ssize_t k = read(fd, p, n);
+        ssize_t k = writing ? write(fd, p, n) : read(fd, p, n);
         if (k < 0 && errno == EINTR)
             continue;
         if (k <= 0)
@@ -386,6 +373,20 @@ static void describe_status(int status, char *err, size_t size)
         snprintf(err, size, "stopped");
 }
 
+/* Waits for the child pid: its status in *status, its peak memory in r->rss_mb; -1 (r->err set) if the
+ * wait fails. */
+static int wait_rep(pid_t pid, int *status, rep_result *r)
+{
+    struct rusage ru;
+    memset(&ru, 0, sizeof ru);
+    if (wait_child(pid, status, &ru) < 0) {
+        snprintf(r->err, sizeof r->err, "wait: %s", strerror(errno));
+        return -1;
+    }
+    r->rss_mb = rss_mb_of(&ru);
+    return 0;
+}
+
 /* An in-process workload: prepare (untimed) and run (timed) in a forked child. */
 static void run_inprocess(const ft_bench_workload *w, ft_bench_case *c, rep_result *r)
 {
@@ -419,21 +420,16 @@ static void run_inprocess(const ft_bench_workload *w, ft_bench_case *c, rep_resu
         m.work = c->work;
         if (rc != FT_OK)
             snprintf(m.err, sizeof m.err, "%s", ft_last_error()[0] ? ft_last_error() : ft_strerror(rc));
-        int wrote = write_all(fd[1], &m, sizeof m);
+        int wrote = transfer_all(fd[1], &m, sizeof m, 1);
         _exit(rc == FT_OK && wrote == 0 ? 0 : 1);
     }
     close(fd[1]);
     child_msg m;
-    int got = read_all(fd[0], &m, sizeof m);
+    int got = transfer_all(fd[0], &m, sizeof m, 0);
     close(fd[0]);
     int status = 0;
-    struct rusage ru;
-    memset(&ru, 0, sizeof ru);
-    if (wait_child(pid, &status, &ru) < 0) {
-        snprintf(r->err, sizeof r->err, "wait: %s", strerror(errno));
+    if (wait_rep(pid, &status, r) < 0)
         return;
-    }
-    r->rss_mb = rss_mb_of(&ru);
     if (got != 0) {
         describe_status(status, r->err, sizeof r->err);
         return;
@@ -487,14 +483,9 @@ static void run_command(char *const argv[], const char *errpath, rep_result *r)
         _exit(127);
     }
     int status = 0;
-    struct rusage ru;
-    memset(&ru, 0, sizeof ru);
-    if (wait_child(pid, &status, &ru) < 0) {
-        snprintf(r->err, sizeof r->err, "wait: %s", strerror(errno));
+    if (wait_rep(pid, &status, r) < 0)
         return;
-    }
     r->seconds = now_seconds() - t0;
-    r->rss_mb = rss_mb_of(&ru);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
         r->ok = 1;
         return;

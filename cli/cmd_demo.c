@@ -10,6 +10,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli.h"
+#include "demo.h"
 #include "internal.h"
 
 #include <errno.h>
@@ -26,37 +27,15 @@
 #define FT_INSTALL_DATADIR ""
 #endif
 
-#define DEMO_MAX_OUTPUTS 32
 #define DEMO_VOLCANO "dem_volcano_maunga_whau_10m.tif"
 #define DEMO_NEWFOUNDLAND "gshhg_newfoundland_utm21n.geojson"
 #define SOURCE_VOLCANO                                                                                     \
     "R <code>datasets::volcano</code>: Maunga Whau (Mt Eden), Auckland, digitized by Ross Ihaka; "          \
     "GPL-2 | GPL-3"
-#define SOURCE_GSHHG "GSHHG 2.3.7 full resolution shoreline, Wessel &amp; Smith (1996); LGPL-3+"
-
-typedef struct {
-    char *path;          /* OUTDIR/file */
-    const char *file;    /* name inside OUTDIR, as index.html links it */
-    const char *title;   /* short title */
-    const char *caption; /* what it shows (HTML) */
-    int image;           /* 1 if index.html shows it with <img> */
-} demo_output;
-
-typedef struct {
-    const cli_command *cmd;
-    const char *data;    /* the data folder */
-    const char *outdir;
-    demo_output out[DEMO_MAX_OUTPUTS];
-    size_t nout;
-    json_object *inputs; /* array: `fracterra info` of each input, plus "source" */
-    ft_grid *volcano;    /* shared by the volcano steps */
-} demo_ctx;
-
-typedef int (*demo_step_fn)(demo_ctx *ctx);
 
 /* ---- helpers ---- */
 
-static char *join_path(const char *dir, const char *file)
+char *demo_join_path(const char *dir, const char *file)
 {
     size_t n = strlen(dir);
     int slash = n > 0 && dir[n - 1] == '/';
@@ -75,7 +54,7 @@ static int is_dir(const char *path)
 
 static int has_demo_data(const char *dir)
 {
-    char *p = join_path(dir, DEMO_VOLCANO);
+    char *p = demo_join_path(dir, DEMO_VOLCANO);
     int ok = p && access(p, R_OK) == 0;
     free(p);
     return ok;
@@ -120,13 +99,13 @@ static int make_outdir(const cli_command *cmd, const char *dir, int *created)
 }
 
 /* Registers an output that a step is about to write; returns its path (owned by ctx) or NULL. */
-static const char *add_output(demo_ctx *ctx, const char *file, const char *title, const char *caption, int image)
+const char *demo_add_output(demo_ctx *ctx, const char *file, const char *title, const char *caption, int image)
 {
     if (ctx->nout == DEMO_MAX_OUTPUTS) {
         ft_error(FT_E_INVALID, "demo: too many outputs (at most %d)", DEMO_MAX_OUTPUTS);
         return NULL;
     }
-    char *path = join_path(ctx->outdir, file);
+    char *path = demo_join_path(ctx->outdir, file);
     if (path == NULL) {
         ft_error(FT_E_NOMEM, "demo: out of memory");
         return NULL;
@@ -141,9 +120,9 @@ static const char *add_output(demo_ctx *ctx, const char *file, const char *title
 }
 
 /* Records the `fracterra info` figures of an input for index.html and the JSON output. */
-static int add_input(demo_ctx *ctx, const char *file, const char *source)
+int demo_add_input(demo_ctx *ctx, const char *file, const char *source)
 {
-    char *path = join_path(ctx->data, file);
+    char *path = demo_join_path(ctx->data, file);
     json_object *info = NULL;
     int rc = path ? cli_info_describe(path, NULL, 0, &info) : ft_error(FT_E_NOMEM, "demo: out of memory");
     free(path);
@@ -161,16 +140,16 @@ static int step_volcano_tif(demo_ctx *ctx)
 {
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
     ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
-    char *in = join_path(ctx->data, DEMO_VOLCANO);
+    char *in = demo_join_path(ctx->data, DEMO_VOLCANO);
     if (in == NULL)
         return ft_error(FT_E_NOMEM, "demo: out of memory");
     int rc = ft_io_read_grid(in, &ro, &ctx->volcano);
     free(in);
     if (rc == FT_OK)
-        rc = add_input(ctx, DEMO_VOLCANO, SOURCE_VOLCANO);
+        rc = demo_add_input(ctx, DEMO_VOLCANO, SOURCE_VOLCANO);
     if (rc != FT_OK)
         return rc;
-    const char *out = add_output(ctx, "volcano.tif", "Maunga Whau DEM (GeoTIFF)",
+    const char *out = demo_add_output(ctx, "volcano.tif", "Maunga Whau DEM (GeoTIFF)",
                                  "The 10 m DEM of Maunga Whau read and written back through fracterra's GeoTIFF "
                                  "writer: same cells, geotransform and CRS.",
                                  0);
@@ -189,7 +168,7 @@ static int step_volcano_hillshade(demo_ctx *ctx)
     io.width = 600;
     io.colormap = 1;
     io.shade = shade;
-    const char *out = add_output(ctx, "volcano_hillshade.png", "Maunga Whau, shaded relief",
+    const char *out = demo_add_output(ctx, "volcano_hillshade.png", "Maunga Whau, shaded relief",
                                  "Hypsometric tints multiplied by a hillshade (Horn's method, light from the "
                                  "north-west at 45&deg;, "
                                  "vertical exaggeration 2), enlarged from 61 &times; 87 cells to 600 pixels wide.",
@@ -204,15 +183,15 @@ static int step_newfoundland_map(demo_ctx *ctx)
     ft_read_layer_opts ro = FT_READ_LAYER_OPTS_DEFAULT;
     ft_map_opts mo = FT_MAP_OPTS_DEFAULT;
     ft_layer *l = NULL;
-    char *in = join_path(ctx->data, DEMO_NEWFOUNDLAND);
+    char *in = demo_join_path(ctx->data, DEMO_NEWFOUNDLAND);
     if (in == NULL)
         return ft_error(FT_E_NOMEM, "demo: out of memory");
     int rc = ft_io_read_layer(in, &ro, &l);
     free(in);
     if (rc == FT_OK)
-        rc = add_input(ctx, DEMO_NEWFOUNDLAND, SOURCE_GSHHG);
+        rc = demo_add_input(ctx, DEMO_NEWFOUNDLAND, SOURCE_GSHHG);
     if (rc == FT_OK) {
-        const char *out = add_output(ctx, "newfoundland.svg", "Newfoundland shoreline",
+        const char *out = demo_add_output(ctx, "newfoundland.svg", "Newfoundland shoreline",
                                      "The island's full-resolution GSHHG shoreline, one ring, drawn as an SVG "
                                      "map with a scale bar.",
                                      1);
@@ -340,7 +319,7 @@ static void html_page(FILE *f, const demo_ctx *ctx)
 
 static int step_index_html(demo_ctx *ctx)
 {
-    const char *out = add_output(ctx, "index.html", "the gallery page", "This page.", 0);
+    const char *out = demo_add_output(ctx, "index.html", "the gallery page", "This page.", 0);
     if (out == NULL)
         return ft_last_error_code();
     char *tmp = ft_tmp_path(out);

@@ -17,42 +17,10 @@
 #include <sys/stat.h>
 
 #include "fracterra/fracterra.h"
-#include "ft_test_run.h"
+#include "ft_test_util.h"
 
 #define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
-
-typedef struct {
-    char *dir;
-} fixture;
-
-static int setup(void **state)
-{
-    fixture *f = calloc(1, sizeof *f);
-    if (f == NULL || (f->dir = ft_test_mkdtemp()) == NULL)
-        return -1;
-    *state = f;
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    fixture *f = *state;
-    ft_test_rmtree(f->dir);
-    free(f->dir);
-    free(f);
-    return 0;
-}
-
-/* Writes text to dir/name and returns the malloc'd path. */
-static char *fixture_file(void **state, const char *name, const char *text)
-{
-    fixture *f = *state;
-    char *p = ft_test_path(f->dir, name);
-    assert_non_null(p);
-    assert_int_equal(ft_test_write_text(p, text), 0);
-    return p;
-}
 
 /* Runs `fracterra info [extra] path` and checks a failure: exit code in {1, 2} (or exactly `code` if > 0),
  * nothing on stdout, "fracterra: info: " then each of the NULL-terminated needles in stderr. */
@@ -89,8 +57,7 @@ static void test_missing_file(void **state)
 
 static void test_garbage_bytes(void **state)
 {
-    fixture *f = *state;
-    char *p = ft_test_path(f->dir, "garbage.dat");
+    const char *p = ft_test_tmp("garbage.dat");
     unsigned char bytes[4096];
     uint32_t s = 12345u;
     for (size_t i = 0; i < sizeof bytes; i++) {
@@ -99,7 +66,6 @@ static void test_garbage_bytes(void **state)
     }
     assert_int_equal(ft_test_write_file(p, bytes, sizeof bytes), 0);
     expect_info_failure(NULL, NULL, p, 1, "garbage.dat", NULL);
-    free(p);
 }
 
 /* A raster where a vector layer is expected (--layer on a GeoTIFF), and the reverse (--band on GeoJSON). */
@@ -141,9 +107,8 @@ static void test_library_kind_mismatch(void **state)
 
 static void test_empty_layer(void **state)
 {
-    char *p = fixture_file(state, "empty.geojson", "{\"type\":\"FeatureCollection\",\"features\":[]}\n");
+    const char *p = ft_test_tmp_text("empty.geojson", "{\"type\":\"FeatureCollection\",\"features\":[]}\n");
     expect_info_failure(NULL, NULL, p, 1, "empty.geojson", NULL);
-    free(p);
 }
 
 /* Runs info --json on path and expects success with a warning naming the file and `warning`. */
@@ -163,60 +128,52 @@ static json_object *expect_info_warning(const char *path, const char *name, cons
 
 static void test_one_vertex_chain_gmt(void **state)
 {
-    char *p = fixture_file(state, "short.gmt", ">\n0 0\n1 1\n2 2\n>\n5 5\n");
+    const char *p = ft_test_tmp_text("short.gmt", ">\n0 0\n1 1\n2 2\n>\n5 5\n");
     json_object *o = expect_info_warning(p, "short.gmt", "1 chain has fewer than 2 vertices");
-    json_object *v;
-    assert_true(json_object_object_get_ex(o, "short_chains", &v));
-    assert_int_equal(json_object_get_int(v), 1);
-    assert_true(json_object_object_get_ex(o, "vertices", &v));
-    assert_int_equal(json_object_get_int(v), 4);
+    assert_int_equal(ft_test_json_int(o, "short_chains"), 1);
+    assert_int_equal(ft_test_json_int(o, "vertices"), 4);
     json_object_put(o);
-    free(p);
 }
 
 static void test_one_vertex_chains_geojson(void **state)
 {
-    char *p = fixture_file(state, "short.geojson",
-                           "{\"type\":\"FeatureCollection\",\"features\":["
-                           "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
-                           "\"coordinates\":[[0,0]]}},"
-                           "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
-                           "\"coordinates\":[[1,1]]}},"
-                           "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
-                           "\"coordinates\":[[0,0],[1,1],[2,0]]}}]}\n");
+    const char *p = ft_test_tmp_text("short.geojson",
+                                     "{\"type\":\"FeatureCollection\",\"features\":["
+                                     "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
+                                     "\"coordinates\":[[0,0]]}},"
+                                     "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
+                                     "\"coordinates\":[[1,1]]}},"
+                                     "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\","
+                                     "\"coordinates\":[[0,0],[1,1],[2,0]]}}]}\n");
     json_object *o = expect_info_warning(p, "short.geojson", "2 chains have fewer than 2 vertices");
     json_object_put(o);
-    free(p);
 }
 
 static void test_nan_geojson(void **state)
 {
-    char *p = fixture_file(state, "nan.geojson",
-                           "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
-                           "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,NaN],[2,2]]}}]}\n");
+    const char *p = ft_test_tmp_text("nan.geojson",
+                                     "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
+                                     "\"properties\":{},\"geometry\":{\"type\":\"LineString\","
+                                     "\"coordinates\":[[0,0],[1,NaN],[2,2]]}}]}\n");
     expect_info_failure(NULL, NULL, p, 1, "nan.geojson", "vertex 1", NULL);
-    free(p);
 }
 
 static void test_nan_gmt_text(void **state)
 {
-    char *p = fixture_file(state, "nan.gmt", "0 0\n1 nan\n2 2\n");
+    const char *p = ft_test_tmp_text("nan.gmt", "0 0\n1 nan\n2 2\n");
     expect_info_failure(NULL, NULL, p, 1, "nan.gmt:2", "nan", NULL);
-    free(p);
 }
 
 static void test_non_numeric_csv(void **state)
 {
-    char *p = fixture_file(state, "bad.csv", "x,y,z\n1,2,3\n4,abc,6\n");
+    const char *p = ft_test_tmp_text("bad.csv", "x,y,z\n1,2,3\n4,abc,6\n");
     expect_info_failure(NULL, NULL, p, 1, "bad.csv:3", "'y'", "abc", NULL);
-    free(p);
 }
 
 /* An all-nodata grid is reported (exit 0, valid 0, z_range null) with a warning. */
 static void test_all_nodata_grid(void **state)
 {
-    fixture *f = *state;
-    char *p = ft_test_path(f->dir, "all_nodata.tif");
+    const char *p = ft_test_tmp("all_nodata.tif");
     GDALAllRegister();
     GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), p, 8, 6, 1, GDT_Float32, NULL);
     assert_non_null(ds);
@@ -226,21 +183,15 @@ static void test_all_nodata_grid(void **state)
     GDALClose(ds);
 
     json_object *o = expect_info_warning(p, "all_nodata.tif", "nodata");
-    json_object *v;
-    assert_true(json_object_object_get_ex(o, "valid", &v));
-    assert_int_equal(json_object_get_int(v), 0);
-    assert_true(json_object_object_get_ex(o, "nodata", &v));
-    assert_int_equal(json_object_get_int(v), 48);
-    assert_true(json_object_object_get_ex(o, "z_range", &v));
-    assert_null(v);
+    assert_int_equal(ft_test_json_int(o, "valid"), 0);
+    assert_int_equal(ft_test_json_int(o, "nodata"), 48);
+    assert_null(ft_test_json_key(o, "z_range"));
     json_object_put(o);
-    free(p);
 }
 
 static void test_demo_missing_parent(void **state)
 {
-    fixture *f = *state;
-    char *parent = ft_test_path(f->dir, "no_such_parent");
+    const char *parent = ft_test_tmp("no_such_parent");
     char *out = ft_test_path(parent, "out");
     ft_run_result r;
     assert_int_equal(ft_run(&r, "demo", out, NULL), 0);
@@ -249,48 +200,41 @@ static void test_demo_missing_parent(void **state)
     assert_non_null(strstr(r.err, "fracterra: demo: "));
     assert_non_null(strstr(r.err, out));
     assert_false(ft_test_exists(parent));
-    assert_int_equal(ft_test_count_entries(f->dir), 0);
+    assert_int_equal(ft_test_dir_count(), 0);
     ft_run_free(&r);
     free(out);
-    free(parent);
 }
 
-/* A demo step that fails (broken input data) removes what the demo wrote, and OUTDIR it created. */
-static void test_demo_failure_leaves_nothing(void **state)
+/* Runs `fracterra demo out` with FRACTERRA_DATA=data and expects a failure (exit 1, "fracterra: demo: "
+ * and needle in stderr) that leaves no OUTDIR behind. */
+static void expect_demo_failure(const char *data, const char *out, const char *needle)
 {
-    fixture *f = *state;
-    char *data = ft_test_path(f->dir, "data");
-    char *tif = ft_test_path(data, "dem_volcano_maunga_whau_10m.tif");
-    char *out = ft_test_path(f->dir, "out");
-    assert_int_equal(mkdir(data, 0777), 0);
-    assert_int_equal(ft_test_write_text(tif, "this is not a GeoTIFF\n"), 0);
     setenv("FRACTERRA_DATA", data, 1);
     ft_run_result r;
     assert_int_equal(ft_run(&r, "demo", out, NULL), 0);
     unsetenv("FRACTERRA_DATA");
     assert_int_equal(r.status, 1);
     assert_non_null(strstr(r.err, "fracterra: demo: "));
-    assert_non_null(strstr(r.err, "dem_volcano_maunga_whau_10m.tif"));
+    assert_non_null(strstr(r.err, needle));
     assert_false(ft_test_exists(out));
     ft_run_free(&r);
-    free(out);
+}
+
+/* A demo step that fails (broken input data) removes what the demo wrote, and OUTDIR it created. */
+static void test_demo_failure_leaves_nothing(void **state)
+{
+    const char *data = ft_test_tmp("data");
+    char *tif = ft_test_path(data, "dem_volcano_maunga_whau_10m.tif");
+    assert_int_equal(mkdir(data, 0777), 0);
+    assert_int_equal(ft_test_write_text(tif, "this is not a GeoTIFF\n"), 0);
+    expect_demo_failure(data, ft_test_tmp("out"), "dem_volcano_maunga_whau_10m.tif");
     free(tif);
-    free(data);
 }
 
 static void test_demo_bad_data_dir(void **state)
 {
-    fixture *f = *state;
-    char *out = ft_test_path(f->dir, "out");
-    setenv("FRACTERRA_DATA", "/nonexistent/fracterra-data", 1);
-    ft_run_result r;
-    assert_int_equal(ft_run(&r, "demo", out, NULL), 0);
-    unsetenv("FRACTERRA_DATA");
-    assert_int_equal(r.status, 1);
-    assert_non_null(strstr(r.err, "fracterra: demo: FRACTERRA_DATA=/nonexistent/fracterra-data"));
-    assert_false(ft_test_exists(out));
-    ft_run_free(&r);
-    free(out);
+    expect_demo_failure("/nonexistent/fracterra-data", ft_test_tmp("out"),
+                        "fracterra: demo: FRACTERRA_DATA=/nonexistent/fracterra-data");
 }
 
 static void test_unknown_option_and_missing_argument(void **state)
@@ -314,26 +258,24 @@ static void test_unknown_option_and_missing_argument(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(test_missing_file, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_garbage_bytes, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_raster_as_vector, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_vector_as_raster, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_bad_layer_name, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_bad_band, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_library_kind_mismatch, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_empty_layer, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_one_vertex_chain_gmt, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_one_vertex_chains_geojson, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_nan_geojson, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_nan_gmt_text, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_non_numeric_csv, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_all_nodata_grid, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_demo_missing_parent, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_demo_failure_leaves_nothing, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_demo_bad_data_dir, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_unknown_option_and_missing_argument, setup, teardown),
+        cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_garbage_bytes),
+        cmocka_unit_test(test_raster_as_vector),
+        cmocka_unit_test(test_vector_as_raster),
+        cmocka_unit_test(test_bad_layer_name),
+        cmocka_unit_test(test_bad_band),
+        cmocka_unit_test(test_library_kind_mismatch),
+        cmocka_unit_test(test_empty_layer),
+        cmocka_unit_test(test_one_vertex_chain_gmt),
+        cmocka_unit_test(test_one_vertex_chains_geojson),
+        cmocka_unit_test(test_nan_geojson),
+        cmocka_unit_test(test_nan_gmt_text),
+        cmocka_unit_test(test_non_numeric_csv),
+        cmocka_unit_test(test_all_nodata_grid),
+        cmocka_unit_test(test_demo_missing_parent),
+        cmocka_unit_test(test_demo_failure_leaves_nothing),
+        cmocka_unit_test(test_demo_bad_data_dir),
+        cmocka_unit_test(test_unknown_option_and_missing_argument),
     };
-    int rc = cmocka_run_group_tests(tests, NULL, NULL);
-    ft_io_cleanup();
-    return rc;
+    return FT_TEST_RUN_IO(tests, FT_TEST_DIR_EACH);
 }

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ft_test_run.h"
+#include "ft_test_util.h"
 
 static const char *const outputs[] = {"volcano.tif", "volcano_hillshade.png", "newfoundland.svg", "index.html"};
 #define NOUTPUTS (sizeof outputs / sizeof outputs[0])
@@ -68,8 +68,7 @@ static char *out_path(void **state, const char *name)
 static void test_outputs_exist(void **state)
 {
     fixture *f = *state;
-    json_object *outs = NULL;
-    assert_true(json_object_object_get_ex(f->json, "outputs", &outs));
+    json_object *outs = ft_test_json_key(f->json, "outputs");
     assert_int_equal(json_object_array_length(outs), NOUTPUTS);
     for (size_t i = 0; i < NOUTPUTS; i++) {
         char *p = out_path(state, outputs[i]);
@@ -87,14 +86,11 @@ static void test_outputs_exist(void **state)
 static void test_inputs_reported(void **state)
 {
     fixture *f = *state;
-    json_object *ins = NULL, *v = NULL;
-    assert_true(json_object_object_get_ex(f->json, "inputs", &ins));
+    json_object *ins = ft_test_json_key(f->json, "inputs");
     assert_int_equal(json_object_array_length(ins), 2);
     json_object *volcano = json_object_array_get_idx(ins, 0), *nf = json_object_array_get_idx(ins, 1);
-    assert_true(json_object_object_get_ex(volcano, "cells", &v));
-    assert_int_equal(json_object_get_int(v), 5307);
-    assert_true(json_object_object_get_ex(nf, "vertices", &v));
-    assert_int_equal(json_object_get_int(v), 64193);
+    assert_int_equal(ft_test_json_int(volcano, "cells"), 5307);
+    assert_int_equal(ft_test_json_int(nf, "vertices"), 64193);
 }
 
 static float *read_cells(GDALDatasetH ds)
@@ -167,12 +163,8 @@ static void test_svg(void **state)
 {
     char *p = out_path(state, "newfoundland.svg");
     size_t size = 0;
-    char *s = ft_test_read_file(p, &size);
-    assert_non_null(s);
+    char *s = ft_test_read_svg(p, &size);
     assert_true(size > 100000); /* 64,193 vertices drawn */
-    assert_true(strncmp(s, "<?xml", 5) == 0);
-    assert_non_null(strstr(s, "<svg"));
-    assert_non_null(strstr(s, "</svg>"));
     assert_non_null(strstr(s, "<path"));
     free(s);
     free(p);

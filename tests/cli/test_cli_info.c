@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ft_test_run.h"
+#include "ft_test_util.h"
 
 #define DATA(f) FT_TEST_DATA "/" f
 
@@ -37,23 +37,6 @@ static json_object *info_json(const char *path)
     return o;
 }
 
-static json_object *key(json_object *o, const char *k)
-{
-    json_object *v = NULL;
-    assert_true(json_object_object_get_ex(o, k, &v));
-    return v;
-}
-
-static int64_t ikey(json_object *o, const char *k)
-{
-    return json_object_get_int64(key(o, k));
-}
-
-static const char *skey(json_object *o, const char *k)
-{
-    return json_object_get_string(key(o, k));
-}
-
 static double at(json_object *a, size_t i)
 {
     return json_object_get_double(json_object_array_get_idx(a, i));
@@ -61,25 +44,25 @@ static double at(json_object *a, size_t i)
 
 static void assert_crs(json_object *o, const char *name, int epsg)
 {
-    json_object *crs = key(o, "crs");
+    json_object *crs = ft_test_json_key(o, "crs");
     assert_non_null(crs);
-    assert_string_equal(skey(crs, "name"), name);
-    assert_int_equal(ikey(crs, "epsg"), epsg);
+    assert_string_equal(ft_test_json_str(crs, "name"), name);
+    assert_int_equal(ft_test_json_int(crs, "epsg"), epsg);
 }
 
 static void test_newfoundland(void **state)
 {
     json_object *o = info_json(DATA("gshhg_newfoundland_utm21n.geojson"));
-    assert_string_equal(skey(o, "kind"), "chains");
-    assert_string_equal(skey(o, "driver"), "GeoJSON");
-    assert_int_equal(ikey(o, "features"), 1);
-    assert_int_equal(ikey(o, "parts"), 1);
-    assert_int_equal(ikey(o, "rings"), 1);
-    assert_int_equal(ikey(o, "lines"), 0);
-    assert_int_equal(ikey(o, "vertices"), 64193);
-    assert_int_equal(ikey(o, "file_vertices"), 64194);
-    assert_int_equal(ikey(o, "short_chains"), 0);
-    json_object *e = key(o, "extent");
+    assert_string_equal(ft_test_json_str(o, "kind"), "chains");
+    assert_string_equal(ft_test_json_str(o, "driver"), "GeoJSON");
+    assert_int_equal(ft_test_json_int(o, "features"), 1);
+    assert_int_equal(ft_test_json_int(o, "parts"), 1);
+    assert_int_equal(ft_test_json_int(o, "rings"), 1);
+    assert_int_equal(ft_test_json_int(o, "lines"), 0);
+    assert_int_equal(ft_test_json_int(o, "vertices"), 64193);
+    assert_int_equal(ft_test_json_int(o, "file_vertices"), 64194);
+    assert_int_equal(ft_test_json_int(o, "short_chains"), 0);
+    json_object *e = ft_test_json_key(o, "extent");
     assert_int_equal(json_object_array_length(e), 4);
     assert_true(fabs(at(e, 0) - 319701.72) < 0.01 && fabs(at(e, 3) - 5720600.84) < 0.01);
     assert_crs(o, "WGS 84 / UTM zone 21N", 32621);
@@ -90,16 +73,17 @@ static void test_newfoundland(void **state)
 static void test_us_states(void **state)
 {
     json_object *o = info_json(DATA("dcw_us_states_small_albers5070.geojson"));
-    assert_string_equal(skey(o, "kind"), "chains");
-    assert_int_equal(ikey(o, "features"), 4);
-    assert_true(ikey(o, "rings") >= 4);
-    assert_int_equal(ikey(o, "lines"), 0);
-    assert_int_equal(ikey(o, "file_vertices"), ikey(o, "vertices") + ikey(o, "rings"));
+    assert_string_equal(ft_test_json_str(o, "kind"), "chains");
+    assert_int_equal(ft_test_json_int(o, "features"), 4);
+    assert_true(ft_test_json_int(o, "rings") >= 4);
+    assert_int_equal(ft_test_json_int(o, "lines"), 0);
+    assert_int_equal(ft_test_json_int(o, "file_vertices"),
+                     ft_test_json_int(o, "vertices") + ft_test_json_int(o, "rings"));
     assert_crs(o, "NAD83 / Conus Albers", 5070);
-    json_object *fields = key(o, "fields");
+    json_object *fields = ft_test_json_key(o, "fields");
     int have_code = 0;
     for (size_t i = 0; i < json_object_array_length(fields); i++)
-        have_code |= strcmp(skey(json_object_array_get_idx(fields, i), "name"), "code") == 0;
+        have_code |= strcmp(ft_test_json_str(json_object_array_get_idx(fields, i), "name"), "code") == 0;
     assert_true(have_code);
     json_object_put(o);
 }
@@ -107,19 +91,19 @@ static void test_us_states(void **state)
 static void test_volcano(void **state)
 {
     json_object *o = info_json(DATA("dem_volcano_maunga_whau_10m.tif"));
-    assert_string_equal(skey(o, "kind"), "grid");
-    assert_string_equal(skey(o, "driver"), "GTiff");
-    json_object *size = key(o, "size");
+    assert_string_equal(ft_test_json_str(o, "kind"), "grid");
+    assert_string_equal(ft_test_json_str(o, "driver"), "GTiff");
+    json_object *size = ft_test_json_key(o, "size");
     assert_int_equal(at(size, 0), 61);
     assert_int_equal(at(size, 1), 87);
-    assert_int_equal(ikey(o, "cells"), 5307);
-    assert_int_equal(ikey(o, "valid"), 5307);
-    assert_int_equal(ikey(o, "nodata"), 0);
-    json_object *z = key(o, "z_range");
+    assert_int_equal(ft_test_json_int(o, "cells"), 5307);
+    assert_int_equal(ft_test_json_int(o, "valid"), 5307);
+    assert_int_equal(ft_test_json_int(o, "nodata"), 0);
+    json_object *z = ft_test_json_key(o, "z_range");
     assert_true(at(z, 0) == 94.0 && at(z, 1) == 195.0); /* R's volcano: range 94..195 m */
-    json_object *cs = key(o, "cell_size");
+    json_object *cs = ft_test_json_key(o, "cell_size");
     assert_true(at(cs, 0) == 10.0 && at(cs, 1) == 10.0);
-    json_object *e = key(o, "extent");
+    json_object *e = ft_test_json_key(o, "extent");
     assert_true(fabs((at(e, 2) - at(e, 0)) - 610.0) < 1e-6 && fabs((at(e, 3) - at(e, 1)) - 870.0) < 1e-6);
     assert_crs(o, "NZGD49 / New Zealand Map Grid", 27200);
     json_object_put(o);
@@ -128,15 +112,15 @@ static void test_volcano(void **state)
 static void test_luxembourg(void **state)
 {
     json_object *o = info_json(DATA("dem_luxembourg_terra_30s.tif"));
-    assert_string_equal(skey(o, "kind"), "grid");
-    json_object *size = key(o, "size");
+    assert_string_equal(ft_test_json_str(o, "kind"), "grid");
+    json_object *size = ft_test_json_key(o, "size");
     assert_int_equal(at(size, 0), 95);
     assert_int_equal(at(size, 1), 90);
-    assert_int_equal(ikey(o, "cells"), 8550);
-    assert_int_equal(ikey(o, "valid"), 4608);
-    assert_int_equal(ikey(o, "nodata"), 3942);
-    assert_true(json_object_get_double(key(o, "nodata_value")) == -32768.0);
-    json_object *z = key(o, "z_range");
+    assert_int_equal(ft_test_json_int(o, "cells"), 8550);
+    assert_int_equal(ft_test_json_int(o, "valid"), 4608);
+    assert_int_equal(ft_test_json_int(o, "nodata"), 3942);
+    assert_true(json_object_get_double(ft_test_json_key(o, "nodata_value")) == -32768.0);
+    json_object *z = ft_test_json_key(o, "z_range");
     assert_true(at(z, 0) == 141.0 && at(z, 1) == 547.0);
     assert_crs(o, "WGS 84", 4326);
     json_object_put(o);
@@ -145,11 +129,11 @@ static void test_luxembourg(void **state)
 static void test_mass_points(void **state)
 {
     json_object *o = info_json(DATA("points_mass_topo_davis1973.csv"));
-    assert_string_equal(skey(o, "kind"), "points");
-    assert_int_equal(ikey(o, "points"), 52);
-    json_object *z = key(o, "z_range");
+    assert_string_equal(ft_test_json_str(o, "kind"), "points");
+    assert_int_equal(ft_test_json_int(o, "points"), 52);
+    json_object *z = ft_test_json_key(o, "z_range");
     assert_true(at(z, 0) == 690.0 && at(z, 1) == 960.0); /* MASS::topo: z from 690 to 960 ft */
-    json_object *e = key(o, "extent");
+    json_object *e = ft_test_json_key(o, "extent");
     assert_true(at(e, 0) >= 0.0 && at(e, 2) <= 6.5 && at(e, 1) >= 0.0 && at(e, 3) <= 6.5);
     json_object_put(o);
 }
@@ -180,7 +164,7 @@ static void test_band_option(void **state)
     assert_int_equal(r.status, 0);
     json_object *o = ft_run_json(&r);
     assert_non_null(o);
-    assert_int_equal(ikey(o, "band"), 1);
+    assert_int_equal(ft_test_json_int(o, "band"), 1);
     json_object_put(o);
     ft_run_free(&r);
 }
@@ -189,9 +173,7 @@ static void test_band_option(void **state)
 static void test_large_line(void **state)
 {
     const size_t n = 1000000;
-    char *dir = ft_test_mkdtemp();
-    assert_non_null(dir);
-    char *path = ft_test_path(dir, "long_line.geojson");
+    const char *path = ft_test_tmp("long_line.geojson");
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     fputs("{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
@@ -203,26 +185,21 @@ static void test_large_line(void **state)
     assert_int_equal(fclose(f), 0);
 
     json_object *o = info_json(path);
-    assert_string_equal(skey(o, "kind"), "chains");
-    assert_int_equal(ikey(o, "lines"), 1);
-    assert_int_equal(ikey(o, "rings"), 0);
-    assert_int_equal(ikey(o, "vertices"), (int64_t)n);
-    assert_int_equal(ikey(o, "file_vertices"), (int64_t)n);
-    json_object *e = key(o, "extent");
+    assert_string_equal(ft_test_json_str(o, "kind"), "chains");
+    assert_int_equal(ft_test_json_int(o, "lines"), 1);
+    assert_int_equal(ft_test_json_int(o, "rings"), 0);
+    assert_int_equal(ft_test_json_int(o, "vertices"), (int64_t)n);
+    assert_int_equal(ft_test_json_int(o, "file_vertices"), (int64_t)n);
+    json_object *e = ft_test_json_key(o, "extent");
     assert_true(at(e, 0) == 0.5 && at(e, 2) == (double)(n - 1) + 0.5);
     json_object_put(o);
-    ft_test_rmtree(dir);
-    free(path);
-    free(dir);
 }
 
 /* A 4096 x 4096 Float32 GeoTIFF with a known nodata block. */
 static void test_large_grid(void **state)
 {
     const int side = 4096, hole = 100;
-    char *dir = ft_test_mkdtemp();
-    assert_non_null(dir);
-    char *path = ft_test_path(dir, "big.tif");
+    const char *path = ft_test_tmp("big.tif");
     GDALAllRegister();
     GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path, side, side, 1, GDT_Float32, NULL);
     assert_non_null(ds);
@@ -239,15 +216,12 @@ static void test_large_grid(void **state)
     GDALClose(ds);
 
     json_object *o = info_json(path);
-    assert_int_equal(ikey(o, "cells"), (int64_t)side * side);
-    assert_int_equal(ikey(o, "nodata"), hole * hole);
-    assert_int_equal(ikey(o, "valid"), (int64_t)side * side - hole * hole);
-    json_object *z = key(o, "z_range");
+    assert_int_equal(ft_test_json_int(o, "cells"), (int64_t)side * side);
+    assert_int_equal(ft_test_json_int(o, "nodata"), hole * hole);
+    assert_int_equal(ft_test_json_int(o, "valid"), (int64_t)side * side - hole * hole);
+    json_object *z = ft_test_json_key(o, "z_range");
     assert_true(at(z, 0) == hole && at(z, 1) == 2.0 * (side - 1));
     json_object_put(o);
-    ft_test_rmtree(dir);
-    free(path);
-    free(dir);
 }
 
 int main(void)
@@ -255,7 +229,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_newfoundland), cmocka_unit_test(test_us_states),   cmocka_unit_test(test_volcano),
         cmocka_unit_test(test_luxembourg),   cmocka_unit_test(test_mass_points), cmocka_unit_test(test_human_table),
-        cmocka_unit_test(test_band_option),  cmocka_unit_test(test_large_line),  cmocka_unit_test(test_large_grid),
+        cmocka_unit_test(test_band_option),  FT_TEST_OWN_DIR(test_large_line),  FT_TEST_OWN_DIR(test_large_grid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "fracterra/core.h"
+#include "ft_test_util.h"
 #include "internal.h"
 
 static void test_version(void **state)
@@ -155,54 +156,15 @@ static void test_progress(void **state)
 
 /* ---- temporary output files ---------------------------------------------------------------- */
 
-static char dir[256];
-
-static int make_dir(void **state)
-{
-    (void)state;
-    snprintf(dir, sizeof dir, "/tmp/ft-test-tmpfile-XXXXXX");
-    return mkdtemp(dir) == NULL ? -1 : 0;
-}
-
-static int remove_dir(void **state)
-{
-    (void)state;
-    DIR *d = opendir(dir);
-    struct dirent *e;
-    char p[512];
-    while (d != NULL && (e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        if (remove(p) != 0) { /* the one sub-folder a test makes */
-            char q[600];
-            snprintf(q, sizeof q, "%s/keep", p);
-            remove(q);
-            remove(p);
-        }
-    }
-    if (d != NULL)
-        closedir(d);
-    return rmdir(dir);
-}
-
+/* Writes a file holding its own path. */
 static void touch(const char *path)
 {
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(path, f);
-    fclose(f);
-}
-
-static int exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
+    ft_test_put_text(path, path);
 }
 
 static int count_entries(const char *needle)
 {
-    DIR *d = opendir(dir);
+    DIR *d = opendir(ft_test_dir());
     struct dirent *e;
     int n = 0;
     while ((e = readdir(d)) != NULL)
@@ -221,11 +183,11 @@ static void test_tmp_path_form(void **state)
 {
     (void)state;
     char path[512], prefix[512];
-    snprintf(path, sizeof path, "%s/a.b.tif", dir);
+    snprintf(path, sizeof path, "%s/a.b.tif", ft_test_dir());
     char *t1 = ft_tmp_path(path), *t2 = ft_tmp_path(path);
     assert_non_null(t1);
     assert_non_null(t2);
-    snprintf(prefix, sizeof prefix, "%s/.a.b.ft-tmp-%ld-", dir, (long)getpid());
+    snprintf(prefix, sizeof prefix, "%s/.a.b.ft-tmp-%ld-", ft_test_dir(), (long)getpid());
     assert_memory_equal(t1, prefix, strlen(prefix));
     assert_string_equal(t1 + strlen(t1) - 4, ".tif"); /* the LAST extension only */
     assert_string_not_equal(t1, t2);
@@ -239,9 +201,9 @@ static void test_tmp_path_form(void **state)
     assert_string_equal(t1 + strlen(t1) - 5, ".gpkg");
     free(t1);
 
-    snprintf(path, sizeof path, "%s/noext", dir);
+    snprintf(path, sizeof path, "%s/noext", ft_test_dir());
     t1 = ft_tmp_path(path);
-    snprintf(prefix, sizeof prefix, "%s/.noext.ft-tmp-", dir);
+    snprintf(prefix, sizeof prefix, "%s/.noext.ft-tmp-", ft_test_dir());
     assert_memory_equal(t1, prefix, strlen(prefix));
     assert_null(strchr(t1 + strlen(prefix), '.'));
     free(t1);
@@ -251,13 +213,13 @@ static void test_tmp_path_missing_folder(void **state)
 {
     (void)state;
     char path[512];
-    snprintf(path, sizeof path, "%s/no-such-folder/out.tif", dir);
+    snprintf(path, sizeof path, "%s/no-such-folder/out.tif", ft_test_dir());
     assert_null(ft_tmp_path(path));
     assert_int_equal(ft_last_error_code(), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "no-such-folder"));
     assert_null(ft_tmp_path(""));
     assert_int_equal(ft_last_error_code(), FT_E_INVALID);
-    snprintf(path, sizeof path, "%s/", dir);
+    snprintf(path, sizeof path, "%s/", ft_test_dir());
     assert_null(ft_tmp_path(path));
     assert_int_equal(ft_last_error_code(), FT_E_INVALID);
 }
@@ -266,7 +228,7 @@ static void test_commit_renames_siblings(void **state)
 {
     (void)state;
     char path[512], tmp_sib[600], other[600], final[600];
-    snprintf(path, sizeof path, "%s/roads.shp", dir);
+    snprintf(path, sizeof path, "%s/roads.shp", ft_test_dir());
     char *tmp = ft_tmp_path(path);
     assert_non_null(tmp);
     touch(tmp);
@@ -279,13 +241,13 @@ static void test_commit_renames_siblings(void **state)
     sibling(other, sizeof other, tmp, "0.shx");
     touch(other);
     assert_int_equal(ft_tmp_commit(tmp, path), FT_OK);
-    assert_true(exists(path));
-    assert_false(exists(tmp));
+    assert_true(ft_test_exists(path));
+    assert_false(ft_test_exists(tmp));
     for (int i = 0; i < 4; i++) {
-        snprintf(final, sizeof final, "%s/roads%s", dir, exts[i]);
-        assert_true(exists(final));
+        snprintf(final, sizeof final, "%s/roads%s", ft_test_dir(), exts[i]);
+        assert_true(ft_test_exists(final));
     }
-    assert_true(exists(other));
+    assert_true(ft_test_exists(other));
     assert_int_equal(count_entries("ft-tmp"), 1);
     remove(other);
     free(tmp);
@@ -295,7 +257,7 @@ static void test_commit_replaces_existing(void **state)
 {
     (void)state;
     char path[512];
-    snprintf(path, sizeof path, "%s/dem.tif", dir);
+    snprintf(path, sizeof path, "%s/dem.tif", ft_test_dir());
     touch(path);
     char *tmp = ft_tmp_path(path);
     FILE *f = fopen(tmp, "w");
@@ -314,7 +276,7 @@ static void test_discard_removes_all(void **state)
 {
     (void)state;
     char path[512], tmp_sib[600];
-    snprintf(path, sizeof path, "%s/parcels.shp", dir);
+    snprintf(path, sizeof path, "%s/parcels.shp", ft_test_dir());
     char *tmp = ft_tmp_path(path);
     touch(tmp);
     sibling(tmp_sib, sizeof tmp_sib, tmp, ".shx");
@@ -324,7 +286,7 @@ static void test_discard_removes_all(void **state)
     ft_error(FT_E_FORMAT, "writer failed");
     ft_tmp_discard(tmp);
     assert_int_equal(count_entries("parcels"), 0);
-    assert_false(exists(path));
+    assert_false(ft_test_exists(path));
     /* discarding keeps the error that caused it */
     assert_int_equal(ft_last_error_code(), FT_E_FORMAT);
     assert_string_equal(ft_last_error(), "writer failed");
@@ -337,7 +299,7 @@ static void test_commit_failure_names_path_and_cleans_up(void **state)
 {
     (void)state;
     char path[512], keep[600];
-    snprintf(path, sizeof path, "%s/busy.tif", dir);
+    snprintf(path, sizeof path, "%s/busy.tif", ft_test_dir());
     assert_int_equal(mkdir(path, 0700), 0); /* a non-empty folder where the file should go */
     snprintf(keep, sizeof keep, "%s/keep", path);
     touch(keep);
@@ -345,16 +307,16 @@ static void test_commit_failure_names_path_and_cleans_up(void **state)
     touch(tmp);
     assert_int_equal(ft_tmp_commit(tmp, path), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), path));
-    assert_false(exists(tmp));
+    assert_false(ft_test_exists(tmp));
     assert_int_equal(count_entries("ft-tmp"), 0);
     free(tmp);
 
     /* a temp that was never written */
-    snprintf(path, sizeof path, "%s/never.tif", dir);
+    snprintf(path, sizeof path, "%s/never.tif", ft_test_dir());
     tmp = ft_tmp_path(path);
     assert_int_equal(ft_tmp_commit(tmp, path), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "never.tif"));
-    assert_false(exists(path));
+    assert_false(ft_test_exists(path));
     free(tmp);
     assert_int_equal(ft_tmp_commit("/tmp/not-a-temp.tif", path), FT_E_INVALID);
 }
@@ -379,6 +341,6 @@ int main(void)
         cmocka_unit_test(test_commit_failure_names_path_and_cleans_up),
     };
     int failed = cmocka_run_group_tests_name("errors", tests, NULL, NULL);
-    failed += cmocka_run_group_tests_name("tmpfile", tmp_tests, make_dir, remove_dir);
+    failed += cmocka_run_group_tests_name("tmpfile", tmp_tests, ft_test_dir_setup, ft_test_dir_teardown);
     return failed;
 }

@@ -18,82 +18,11 @@
 #include <ogr_srs_api.h>
 
 #include "fracterra/io.h"
+#include "ft_test_util.h"
 
 #define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
 #define LUXEMBOURG FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
 #define STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
-
-static char g_dir[64];
-
-static const char *tmp_file(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
-}
-
-static int count_files(const char *dir)
-{
-    DIR *d = opendir(dir);
-    assert_non_null(d);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL)
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-            n++;
-    closedir(d);
-    return n;
-}
-
-static void empty_dir(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d == NULL)
-        return;
-    struct dirent *e;
-    char path[512];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        remove(path);
-    }
-    closedir(d);
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    strcpy(g_dir, "/tmp/ft-io-raster-XXXXXX");
-    return mkdtemp(g_dir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    empty_dir(g_dir);
-    return rmdir(g_dir);
-}
-
-static int after_each(void **state)
-{
-    (void)state;
-    empty_dir(g_dir);
-    return 0;
-}
-
-static void assert_crs_epsg(const char *wkt, int epsg)
-{
-    assert_non_null(wkt);
-    OGRSpatialReferenceH a = OSRNewSpatialReference(wkt), b = OSRNewSpatialReference(NULL);
-    assert_non_null(a);
-    assert_int_equal(OSRImportFromEPSG(b, epsg), OGRERR_NONE);
-    assert_true(OSRIsSame(a, b));
-    OSRDestroySpatialReference(a);
-    OSRDestroySpatialReference(b);
-}
 
 static ft_grid *read_ok(const char *path, int band)
 {
@@ -157,7 +86,7 @@ static void test_read_volcano(void **state)
     assert_int_equal(g->has_nodata, 0);
     assert_int_equal(ft_grid_count_valid(g), 61 * 87);
     assert_true(g->gt[1] == 10.0 && g->gt[5] == -10.0);
-    assert_crs_epsg(g->crs_wkt, 27200);
+    ft_test_assert_crs_epsg(g->crs_wkt, 27200);
     double lo, hi;
     assert_int_equal(ft_grid_minmax(g, &lo, &hi), FT_OK);
     /* R's volcano heights run from 94 to 195 m */
@@ -175,7 +104,7 @@ static void test_read_luxembourg(void **state)
     assert_true(g->nodata_value == -32768.0);
     assert_non_null(g->mask);
     assert_int_equal(ft_grid_count_valid(g), 4608);
-    assert_crs_epsg(g->crs_wkt, 4326);
+    ft_test_assert_crs_epsg(g->crs_wkt, 4326);
     for (size_t i = 0; i < g->nx * g->ny; i++)
         assert_true((g->mask[i] != 0) == (g->z[i] != -32768.0f));
     ft_grid_free(g);
@@ -189,7 +118,7 @@ static void test_round_trip_geotiff(void **state)
     const char *inputs[] = {VOLCANO, LUXEMBOURG};
     for (int k = 0; k < 2; k++) {
         ft_grid *a = read_ok(inputs[k], 1);
-        const char *path = tmp_file("rt.tif");
+        const char *path = ft_test_tmp("rt.tif");
         write_ok(path, a, NULL);
         ft_grid *b = read_ok(path, 1);
         assert_grids_equal(a, b, 0.0);
@@ -204,7 +133,7 @@ static void test_round_trip_geotiff(void **state)
     ft_grid *a = read_ok(LUXEMBOURG, 1);
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
     o.type = GDT_Int16;
-    const char *path = tmp_file("lux16.tiff");
+    const char *path = ft_test_tmp("lux16.tiff");
     write_ok(path, a, &o);
     double nd;
     int has;
@@ -214,16 +143,16 @@ static void test_round_trip_geotiff(void **state)
     assert_grids_equal(a, b, 0.0);
     ft_grid_free(b);
     ft_grid_free(a);
-    assert_int_equal(count_files(g_dir), 2);
+    assert_int_equal(ft_test_dir_count(), 2);
 }
 
 static void test_round_trip_ascii(void **state)
 {
     (void)state;
     ft_grid *a = read_ok(LUXEMBOURG, 1);
-    const char *path = tmp_file("lux.asc");
+    const char *path = ft_test_tmp("lux.asc");
     write_ok(path, a, NULL);
-    assert_int_equal(access(tmp_file("lux.prj"), F_OK), 0);
+    assert_int_equal(access(ft_test_tmp("lux.prj"), F_OK), 0);
     ft_grid *b = read_ok(path, 1);
     assert_int_equal(ft_grid_count_valid(b), 4608);
     assert_true(b->has_nodata && b->nodata_value == -32768.0);
@@ -235,7 +164,7 @@ static void test_round_trip_ascii(void **state)
     ft_grid_free(b);
     ft_grid_free(a);
     /* no temporary left behind, only the grid and its companions */
-    DIR *d = opendir(g_dir);
+    DIR *d = opendir(ft_test_dir());
     struct dirent *e;
     while ((e = readdir(d)) != NULL)
         assert_null(strstr(e->d_name, "ft-tmp"));
@@ -254,7 +183,7 @@ static void test_nodata_rules(void **state)
     ft_grid_ensure_mask(g);
     g->mask[0] = 0;
 
-    const char *path = tmp_file("f.tif");
+    const char *path = ft_test_tmp("f.tif");
     write_ok(path, g, NULL);
     double nd;
     int has;
@@ -269,7 +198,7 @@ static void test_nodata_rules(void **state)
 
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
     o.type = GDT_Int16;
-    path = tmp_file("i.tif");
+    path = ft_test_tmp("i.tif");
     write_ok(path, g, &o);
     file_type(path, &nd, &has);
     assert_true(has && nd == -9999.0);
@@ -278,7 +207,7 @@ static void test_nodata_rules(void **state)
     ft_grid_free(b);
 
     o.type = GDT_Byte;
-    path = tmp_file("b.tif");
+    path = ft_test_tmp("b.tif");
     write_ok(path, g, &o);
     file_type(path, &nd, &has);
     assert_true(has && nd == 255.0);
@@ -290,7 +219,7 @@ static void test_nodata_rules(void **state)
     memset(g->mask, 0, 9);
     g->has_nodata = 1;
     g->nodata_value = -1;
-    path = tmp_file("none.tif");
+    path = ft_test_tmp("none.tif");
     write_ok(path, g, NULL);
     b = read_ok(path, 1);
     assert_int_equal(ft_grid_count_valid(b), 0);
@@ -300,7 +229,7 @@ static void test_nodata_rules(void **state)
 
     /* no geotransform in the file: the default one */
     g = ft_grid_create(2, 2);
-    path = tmp_file("plain.tif");
+    path = ft_test_tmp("plain.tif");
     write_ok(path, g, NULL);
     b = read_ok(path, 1);
     assert_true(b->gt[0] == 0 && b->gt[1] == 1 && b->gt[5] == 1 && b->gt[3] == 0);
@@ -328,10 +257,8 @@ static void test_bad_inputs(void **state)
     o.band = 0;
     assert_int_equal(ft_io_read_grid(VOLCANO, &o, &g), FT_E_FORMAT);
     assert_null(g);
-    FILE *f = fopen(tmp_file("junk.tif"), "w");
-    fputs("not a tiff", f);
-    fclose(f);
-    assert_int_equal(ft_io_read_grid(tmp_file("junk.tif"), NULL, &g), FT_E_FORMAT);
+    ft_test_put_text(ft_test_tmp("junk.tif"), "not a tiff");
+    assert_int_equal(ft_io_read_grid(ft_test_tmp("junk.tif"), NULL, &g), FT_E_FORMAT);
 }
 
 static void test_write_failures_leave_nothing(void **state)
@@ -346,28 +273,28 @@ static void test_write_failures_leave_nothing(void **state)
     const char *const bad[] = {"PHOTOMETRIC=YCBCR", NULL};
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
     o.co = bad;
-    assert_int_equal(ft_io_write_grid(tmp_file("bad.tif"), g, &o), FT_E_IO);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("bad.tif"), g, &o), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "bad.tif"));
-    assert_int_equal(count_files(g_dir), 0);
+    assert_int_equal(ft_test_dir_count(), 0);
 
     /* an existing file survives a failed overwrite */
-    write_ok(tmp_file("keep.tif"), g, NULL);
-    assert_int_equal(ft_io_write_grid(tmp_file("keep.tif"), g, &o), FT_E_IO);
-    assert_int_equal(count_files(g_dir), 1);
-    ft_grid *b = read_ok(tmp_file("keep.tif"), 1);
+    write_ok(ft_test_tmp("keep.tif"), g, NULL);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("keep.tif"), g, &o), FT_E_IO);
+    assert_int_equal(ft_test_dir_count(), 1);
+    ft_grid *b = read_ok(ft_test_tmp("keep.tif"), 1);
     assert_grids_equal(g, b, 0.0);
     ft_grid_free(b);
 
     o.co = NULL;
     o.type = 9999;
-    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_INVALID);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("t.tif"), g, &o), FT_E_INVALID);
     o.type = GDT_CFloat32;
-    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_UNSUPPORTED);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("t.tif"), g, &o), FT_E_UNSUPPORTED);
     o.type = 0;
-    assert_int_equal(ft_io_write_grid(tmp_file("t.unknownext"), g, &o), FT_E_FORMAT);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("t.unknownext"), g, &o), FT_E_FORMAT);
     o.driver = "NoSuchDriver";
-    assert_int_equal(ft_io_write_grid(tmp_file("t.tif"), g, &o), FT_E_FORMAT);
-    assert_int_equal(count_files(g_dir), 1);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("t.tif"), g, &o), FT_E_FORMAT);
+    assert_int_equal(ft_test_dir_count(), 1);
     ft_grid_free(g);
 }
 
@@ -375,7 +302,7 @@ static void test_driver_choice(void **state)
 {
     (void)state;
     ft_grid *g = read_ok(VOLCANO, 1);
-    const char *path = tmp_file("noext");
+    const char *path = ft_test_tmp("noext");
     write_ok(path, g, NULL);
     GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
     assert_non_null(ds);
@@ -383,39 +310,36 @@ static void test_driver_choice(void **state)
     GDALClose(ds);
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
     o.driver = "AAIGrid";
-    path = tmp_file("forced.txt");
+    path = ft_test_tmp("forced.txt");
     write_ok(path, g, &o);
     ft_grid *b = read_ok(path, 1);
     assert_int_equal(ft_grid_count_valid(b), 61 * 87);
     assert_true(b->z[100] == g->z[100]);
     ft_grid_free(b);
-    path = tmp_file("v.img");
+    path = ft_test_tmp("v.img");
     write_ok(path, g, NULL); /* Erdas Imagine, found by its extension */
     b = read_ok(path, 1);
     assert_true(b->z[7] == g->z[7]);
     assert_grids_equal(g, b, 0.0);
     ft_grid_free(b);
     /* a format that cannot hold the CRS fails rather than dropping it */
-    assert_int_equal(ft_io_write_grid(tmp_file("v.rst"), g, NULL), FT_E_UNSUPPORTED);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("v.rst"), g, NULL), FT_E_UNSUPPORTED);
     assert_non_null(strstr(ft_last_error(), "cannot store its CRS"));
-    assert_int_equal(access(tmp_file("v.rst"), F_OK), -1);
+    assert_int_equal(access(ft_test_tmp("v.rst"), F_OK), -1);
     ft_grid_free(g);
 }
 
 int main(void)
 {
-    ft_io_init();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_teardown(test_read_volcano, after_each),
-        cmocka_unit_test_teardown(test_read_luxembourg, after_each),
-        cmocka_unit_test_teardown(test_round_trip_geotiff, after_each),
-        cmocka_unit_test_teardown(test_round_trip_ascii, after_each),
-        cmocka_unit_test_teardown(test_nodata_rules, after_each),
-        cmocka_unit_test_teardown(test_bad_inputs, after_each),
-        cmocka_unit_test_teardown(test_write_failures_leave_nothing, after_each),
-        cmocka_unit_test_teardown(test_driver_choice, after_each),
+        cmocka_unit_test(test_read_volcano),
+        cmocka_unit_test(test_read_luxembourg),
+        cmocka_unit_test(test_round_trip_geotiff),
+        cmocka_unit_test(test_round_trip_ascii),
+        cmocka_unit_test(test_nodata_rules),
+        cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_write_failures_leave_nothing),
+        cmocka_unit_test(test_driver_choice),
     };
-    int failed = cmocka_run_group_tests(tests, setup, teardown);
-    ft_io_cleanup();
-    return failed;
+    return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

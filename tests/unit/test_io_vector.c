@@ -2,7 +2,6 @@
  * Facts checked against tests/data/README.md and the files' own attributes (n_parts, n_vertices).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include <dirent.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,117 +14,15 @@
 #include <unistd.h>
 
 #include <cmocka.h>
-#include <ogr_srs_api.h>
 
 #include "fracterra/io.h"
+#include "ft_test_util.h"
 
 #define STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 #define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
 
-static char g_dir[64];
-
 /* ---- helpers ----------------------------------------------------------------------------------- */
-
-static const char *tmp_file(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
-}
-
-static void write_text(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
-static int count_files(const char *dir)
-{
-    DIR *d = opendir(dir);
-    assert_non_null(d);
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL)
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-            n++;
-    closedir(d);
-    return n;
-}
-
-static void empty_dir(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d == NULL)
-        return;
-    struct dirent *e;
-    char path[512];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        remove(path);
-    }
-    closedir(d);
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    strcpy(g_dir, "/tmp/ft-io-vector-XXXXXX");
-    return mkdtemp(g_dir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    empty_dir(g_dir);
-    return rmdir(g_dir);
-}
-
-static int after_each(void **state)
-{
-    (void)state;
-    empty_dir(g_dir);
-    return 0;
-}
-
-static void assert_crs_epsg(const char *wkt, int epsg)
-{
-    assert_non_null(wkt);
-    OGRSpatialReferenceH a = OSRNewSpatialReference(wkt), b = OSRNewSpatialReference(NULL);
-    assert_non_null(a);
-    assert_int_equal(OSRImportFromEPSG(b, epsg), OGRERR_NONE);
-    assert_true(OSRIsSame(a, b));
-    OSRDestroySpatialReference(a);
-    OSRDestroySpatialReference(b);
-}
-
-static void assert_same_crs(const char *w1, const char *w2)
-{
-    assert_non_null(w1);
-    assert_non_null(w2);
-    OGRSpatialReferenceH a = OSRNewSpatialReference(NULL), b = OSRNewSpatialReference(NULL);
-    assert_int_equal(OSRSetFromUserInput(a, w1), OGRERR_NONE);
-    assert_int_equal(OSRSetFromUserInput(b, w2), OGRERR_NONE);
-    assert_true(OSRIsSame(a, b));
-    OSRDestroySpatialReference(a);
-    OSRDestroySpatialReference(b);
-}
-
-static void assert_chain_equal(const ft_chain *a, const ft_chain *b)
-{
-    assert_int_equal(a->n, b->n);
-    assert_int_equal(a->closed, b->closed);
-    for (size_t i = 0; i < a->n; i++) {
-        assert_true(a->x[i] == b->x[i]);
-        assert_true(a->y[i] == b->y[i]);
-    }
-}
 
 /* Same ring up to start vertex and direction. */
 static int ring_same(const ft_chain *a, const ft_chain *b)
@@ -176,7 +73,7 @@ static void assert_layers_equal(const ft_layer *a, const ft_layer *b, int mode)
     assert_int_equal(a->nfeatures, b->nfeatures);
     assert_int_equal(a->nparts, b->nparts);
     assert_int_equal(a->nfields, b->nfields);
-    assert_same_crs(a->crs_wkt, b->crs_wkt);
+    ft_test_assert_same_crs(a->crs_wkt, b->crs_wkt);
     for (size_t k = 0; k < a->nfields; k++) {
         if (mode == SHAPEFILE)
             assert_int_equal(strncasecmp(a->fields[k].name, b->fields[k].name, 10), 0);
@@ -197,7 +94,7 @@ static void assert_layers_equal(const ft_layer *a, const ft_layer *b, int mode)
             if (mode & RINGS_UP_TO_ORIENTATION && pa->chain->closed)
                 assert_true(ring_same(pa->chain, pb->chain));
             else
-                assert_chain_equal(pa->chain, pb->chain);
+                ft_test_assert_chain_equal(pa->chain, pb->chain);
         }
         assert_values_equal(a, b, f);
     }
@@ -251,7 +148,7 @@ static void test_read_states(void **state)
     ft_layer *l = read_ok(STATES, NULL);
     assert_int_equal(l->nfeatures, 4);
     assert_int_equal(l->nfields, 6);
-    assert_crs_epsg(l->crs_wkt, 5070);
+    ft_test_assert_crs_epsg(l->crs_wkt, 5070);
     int code = ft_layer_field_index(l, "code"), parts = ft_layer_field_index(l, "n_parts");
     int verts = ft_layer_field_index(l, "n_vertices");
     assert_true(code >= 0 && parts >= 0 && verts >= 0);
@@ -287,7 +184,7 @@ static void test_read_newfoundland(void **state)
     assert_int_equal(l->features[0].multi, 0);
     assert_int_equal(l->parts[0].chain->n, 64193);
     assert_int_equal(l->parts[0].chain->closed, 1);
-    assert_crs_epsg(l->crs_wkt, 32621);
+    ft_test_assert_crs_epsg(l->crs_wkt, 32621);
     ft_layer_free(l);
 }
 
@@ -330,13 +227,12 @@ static void test_where_and_fields(void **state)
 static void test_curves_and_z(void **state)
 {
     (void)state;
-    const char *path = tmp_file("curves.csv");
-    write_text(path, "id,WKT\n"
-                     "1,\"CIRCULARSTRING (0 0,1 1,2 0)\"\n"
-                     "2,\"LINESTRING Z (0 0 5,1 1 6,2 2 7)\"\n"
-                     "3,\"CURVEPOLYGON (CIRCULARSTRING (0 0,2 0,0 0))\"\n"
-                     "4,\"POLYGON ZM ((0 0 1 2,4 0 1 2,4 4 1 2,0 0 1 2))\"\n"
-                     "5,\"MULTILINESTRING M ((0 0 1,1 0 1),(5 5 1,6 6 1))\"\n");
+    const char *path = ft_test_tmp_text("curves.csv", "id,WKT\n"
+                                                      "1,\"CIRCULARSTRING (0 0,1 1,2 0)\"\n"
+                                                      "2,\"LINESTRING Z (0 0 5,1 1 6,2 2 7)\"\n"
+                                                      "3,\"CURVEPOLYGON (CIRCULARSTRING (0 0,2 0,0 0))\"\n"
+                                                      "4,\"POLYGON ZM ((0 0 1 2,4 0 1 2,4 4 1 2,0 0 1 2))\"\n"
+                                                      "5,\"MULTILINESTRING M ((0 0 1,1 0 1),(5 5 1,6 6 1))\"\n");
     ft_layer *l = read_ok(path, NULL);
     assert_int_equal(l->nfeatures, 5);
     assert_int_equal(l->features[0].type, FT_GEOM_LINE);
@@ -357,7 +253,7 @@ static void test_curves_and_z(void **state)
 static void test_large_linestring(void **state)
 {
     (void)state;
-    const char *path = tmp_file("big.geojson");
+    const char *path = ft_test_tmp("big.geojson");
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     const size_t n = 200000;
@@ -378,7 +274,7 @@ static void test_large_linestring(void **state)
 
 static void round_trip(const ft_layer *a, const char *name, int mode)
 {
-    const char *path = tmp_file(name);
+    const char *path = ft_test_tmp(name);
     if (ft_io_write_layer(path, a, NULL) != FT_OK)
         fail_msg("writing %s: %s", path, ft_last_error());
     ft_layer *b = read_ok(path, NULL);
@@ -393,8 +289,8 @@ static void test_round_trip_states(void **state)
     round_trip(a, "states.geojson", EXACT);
     round_trip(a, "states.gpkg", EXACT);
     round_trip(a, "states.shp", SHAPEFILE);
-    assert_int_equal(access(tmp_file("states.dbf"), F_OK), 0);
-    assert_int_equal(access(tmp_file("states.prj"), F_OK), 0);
+    assert_int_equal(access(ft_test_tmp("states.dbf"), F_OK), 0);
+    assert_int_equal(access(ft_test_tmp("states.prj"), F_OK), 0);
     ft_layer_free(a);
 }
 
@@ -423,7 +319,7 @@ static void test_shapefile_orientation(void **state)
     ft_layer *a = hand_layer(1);
     double area_outer = ft_chain_signed_area(a->parts[0].chain);
     assert_true(area_outer > 0); /* built counter-clockwise */
-    const char *path = tmp_file("orient.shp");
+    const char *path = ft_test_tmp("orient.shp");
     assert_int_equal(ft_io_write_layer(path, a, NULL), FT_OK);
     ft_layer *b = read_ok(path, NULL);
     assert_true(ft_chain_signed_area(b->parts[0].chain) < 0); /* outer clockwise */
@@ -431,7 +327,7 @@ static void test_shapefile_orientation(void **state)
     assert_true(ring_same(a->parts[0].chain, b->parts[0].chain));
     ft_layer_free(b);
     /* GeoJSON keeps the order as given */
-    path = tmp_file("orient.geojson");
+    path = ft_test_tmp("orient.geojson");
     assert_int_equal(ft_io_write_layer(path, a, NULL), FT_OK);
     b = read_ok(path, NULL);
     assert_true(ft_chain_signed_area(b->parts[0].chain) > 0);
@@ -446,7 +342,7 @@ static void test_write_driver_and_layer_name(void **state)
     ft_write_layer_opts o = FT_WRITE_LAYER_OPTS_DEFAULT;
     o.driver = "GPKG";
     o.layer = "mine";
-    const char *path = tmp_file("forced.dat");
+    const char *path = ft_test_tmp("forced.dat");
     assert_int_equal(ft_io_write_layer(path, a, &o), FT_OK);
     ft_read_layer_opts r = FT_READ_LAYER_OPTS_DEFAULT;
     r.layer = "mine";
@@ -457,9 +353,9 @@ static void test_write_driver_and_layer_name(void **state)
     assert_int_equal(ft_io_read_layer(path, &r, &b), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), "'other'"));
     assert_non_null(strstr(ft_last_error(), "mine"));
-    assert_int_equal(ft_io_write_layer(tmp_file("x.unknownext"), a, NULL), FT_E_FORMAT);
+    assert_int_equal(ft_io_write_layer(ft_test_tmp("x.unknownext"), a, NULL), FT_E_FORMAT);
     o.driver = "NoSuchDriver";
-    assert_int_equal(ft_io_write_layer(tmp_file("x.gpkg"), a, &o), FT_E_FORMAT);
+    assert_int_equal(ft_io_write_layer(ft_test_tmp("x.gpkg"), a, &o), FT_E_FORMAT);
     ft_layer_free(a);
 }
 
@@ -472,29 +368,29 @@ static void test_bad_inputs(void **state)
     assert_int_equal(ft_io_read_layer(FT_TEST_DATA "/no_such_file.geojson", NULL, &l), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "cannot open '" FT_TEST_DATA "/no_such_file.geojson'"));
 
-    const char *garbage = tmp_file("garbage.geojson");
-    write_text(garbage, "this is not { json at all ]]\n");
+    const char *garbage = ft_test_tmp_text("garbage.geojson", "this is not { json at all ]]\n");
     assert_int_equal(ft_io_read_layer(garbage, NULL, &l), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), garbage));
 
     assert_int_equal(ft_io_read_layer(VOLCANO, NULL, &l), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), "is a raster, not a vector layer"));
 
-    const char *pts = tmp_file("points.geojson");
-    write_text(pts, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
-                    "\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,2]}}]}\n");
+    const char *pts = ft_test_tmp("points.geojson");
+    ft_test_put_text(pts, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+                          "\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,2]}}]}\n");
     assert_int_equal(ft_io_read_layer(pts, NULL, &l), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), "points"));
 
-    const char *empty = tmp_file("empty.geojson");
-    write_text(empty, "{\"type\":\"FeatureCollection\",\"name\":\"nothing\",\"features\":[]}\n");
+    const char *empty = ft_test_tmp("empty.geojson");
+    ft_test_put_text(empty, "{\"type\":\"FeatureCollection\",\"name\":\"nothing\",\"features\":[]}\n");
     assert_int_equal(ft_io_read_layer(empty, NULL, &l), FT_E_EMPTY);
     assert_non_null(strstr(ft_last_error(), empty));
     assert_non_null(strstr(ft_last_error(), "nothing"));
 
-    const char *nan = tmp_file("nan.geojson");
-    write_text(nan, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"id\":7,\"properties\":{},"
-                    "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,NaN],[2,2]]}}]}\n");
+    const char *nan = ft_test_tmp("nan.geojson");
+    ft_test_put_text(nan, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"id\":7,"
+                          "\"properties\":{},"
+                          "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,NaN],[2,2]]}}]}\n");
     assert_int_equal(ft_io_read_layer(nan, NULL, &l), FT_E_NUMERIC);
     assert_non_null(strstr(ft_last_error(), "feature 7"));
     assert_non_null(strstr(ft_last_error(), "vertex 1"));
@@ -504,10 +400,11 @@ static void test_bad_inputs(void **state)
 static void test_short_chains_kept(void **state)
 {
     (void)state;
-    const char *path = tmp_file("short.geojson");
-    write_text(path, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{\"a\":null},"
-                     "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0]]}},"
-                     "{\"type\":\"Feature\",\"properties\":{\"a\":1},\"geometry\":null}]}\n");
+    const char *path = ft_test_tmp("short.geojson");
+    ft_test_put_text(path, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
+                           "\"properties\":{\"a\":null},"
+                           "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0]]}},"
+                           "{\"type\":\"Feature\",\"properties\":{\"a\":1},\"geometry\":null}]}\n");
     ft_layer *l = read_ok(path, NULL);
     assert_int_equal(l->nfeatures, 2);
     assert_int_equal(l->parts[0].chain->n, 1);
@@ -524,22 +421,22 @@ static void test_write_failures_leave_nothing(void **state)
     assert_int_equal(ft_io_write_layer("/tmp/ft-no-such-folder-xyz/out.geojson", a, NULL), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "/tmp/ft-no-such-folder-xyz"));
     assert_int_equal(access("/tmp/ft-no-such-folder-xyz", F_OK), -1);
-    assert_int_equal(count_files(g_dir), 0);
+    assert_int_equal(ft_test_dir_count(), 0);
 
     /* a Shapefile holds one geometry kind: polygons then lines fail mid-way */
-    const char *shp = tmp_file("mixed.shp");
+    const char *shp = ft_test_tmp("mixed.shp");
     int rc = ft_io_write_layer(shp, a, NULL);
     assert_int_equal(rc, FT_E_IO);
     assert_non_null(strstr(ft_last_error(), shp));
-    assert_int_equal(count_files(g_dir), 0);
+    assert_int_equal(ft_test_dir_count(), 0);
 
     /* an existing file survives a failed overwrite */
-    const char *keep = tmp_file("keep.shp");
+    const char *keep = ft_test_tmp("keep.shp");
     ft_layer *poly = hand_layer(1);
     assert_int_equal(ft_io_write_layer(keep, poly, NULL), FT_OK);
-    int before = count_files(g_dir);
+    int before = ft_test_dir_count();
     assert_int_equal(ft_io_write_layer(keep, a, NULL), FT_E_IO);
-    assert_int_equal(count_files(g_dir), before);
+    assert_int_equal(ft_test_dir_count(), before);
     ft_layer *b = read_ok(keep, NULL);
     assert_layers_equal(poly, b, SHAPEFILE);
     ft_layer_free(b);
@@ -557,14 +454,13 @@ static void test_probe_and_checks(void **state)
     assert_int_equal(k, FT_KIND_GRID);
     assert_int_equal(ft_io_probe(FT_TEST_DATA "/points_mass_topo_davis1973.csv", NULL, &k), FT_OK);
     assert_int_equal(k, FT_KIND_POINTS);
-    const char *pts = tmp_file("p.geojson");
-    write_text(pts, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
-                    "\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,2,3]}}]}\n");
+    const char *pts = ft_test_tmp("p.geojson");
+    ft_test_put_text(pts, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+                          "\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,2,3]}}]}\n");
     assert_int_equal(ft_io_probe(pts, NULL, &k), FT_OK);
     assert_int_equal(k, FT_KIND_POINTS);
     assert_int_equal(ft_io_probe("/tmp/ft-missing-file.tif", NULL, &k), FT_E_IO);
-    const char *garbage = tmp_file("garbage.bin");
-    write_text(garbage, "\x01\x02garbage");
+    const char *garbage = ft_test_tmp_text("garbage.bin", "\x01\x02garbage");
     assert_int_equal(ft_io_probe(garbage, NULL, &k), FT_E_FORMAT);
     assert_int_equal(ft_io_probe(STATES, "nope", &k), FT_E_FORMAT);
 
@@ -575,32 +471,29 @@ static void test_probe_and_checks(void **state)
     assert_true(ft_io_is_text_points("p.XYZ"));
     assert_false(ft_io_is_text_points("p.gpkg"));
 
-    assert_int_equal(ft_io_check_writable(tmp_file("new.tif")), FT_OK);
+    assert_int_equal(ft_io_check_writable(ft_test_tmp("new.tif")), FT_OK);
     assert_int_equal(ft_io_check_writable("relative-name.tif"), FT_OK);
     assert_int_equal(ft_io_check_writable("/tmp/ft-no-such-folder-xyz/a.tif"), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "'/tmp/ft-no-such-folder-xyz'"));
-    assert_int_equal(ft_io_check_writable(g_dir), FT_E_IO);
+    assert_int_equal(ft_io_check_writable(ft_test_dir()), FT_E_IO);
 }
 
 int main(void)
 {
-    ft_io_init();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_teardown(test_read_states, after_each),
-        cmocka_unit_test_teardown(test_read_newfoundland, after_each),
-        cmocka_unit_test_teardown(test_where_and_fields, after_each),
-        cmocka_unit_test_teardown(test_curves_and_z, after_each),
-        cmocka_unit_test_teardown(test_large_linestring, after_each),
-        cmocka_unit_test_teardown(test_round_trip_states, after_each),
-        cmocka_unit_test_teardown(test_round_trip_hand_layer, after_each),
-        cmocka_unit_test_teardown(test_shapefile_orientation, after_each),
-        cmocka_unit_test_teardown(test_write_driver_and_layer_name, after_each),
-        cmocka_unit_test_teardown(test_bad_inputs, after_each),
-        cmocka_unit_test_teardown(test_short_chains_kept, after_each),
-        cmocka_unit_test_teardown(test_write_failures_leave_nothing, after_each),
-        cmocka_unit_test_teardown(test_probe_and_checks, after_each),
+        cmocka_unit_test(test_read_states),
+        cmocka_unit_test(test_read_newfoundland),
+        cmocka_unit_test(test_where_and_fields),
+        cmocka_unit_test(test_curves_and_z),
+        cmocka_unit_test(test_large_linestring),
+        cmocka_unit_test(test_round_trip_states),
+        cmocka_unit_test(test_round_trip_hand_layer),
+        cmocka_unit_test(test_shapefile_orientation),
+        cmocka_unit_test(test_write_driver_and_layer_name),
+        cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_short_chains_kept),
+        cmocka_unit_test(test_write_failures_leave_nothing),
+        cmocka_unit_test(test_probe_and_checks),
     };
-    int failed = cmocka_run_group_tests(tests, setup, teardown);
-    ft_io_cleanup();
-    return failed;
+    return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "fracterra/fracterra.h"
-#include "ft_test_run.h"
+#include "ft_test_util.h"
 
 #define N 7
 #define CELL 10.0
@@ -178,40 +178,11 @@ static void test_bad_options(void **state)
 
 /* ---- images and maps ---- */
 
-typedef struct {
-    char *dir;
-} fixture;
-
-static int setup(void **state)
-{
-    fixture *f = calloc(1, sizeof *f);
-    if (f == NULL || (f->dir = ft_test_mkdtemp()) == NULL)
-        return -1;
-    *state = f;
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    fixture *f = *state;
-    ft_test_rmtree(f->dir);
-    free(f->dir);
-    free(f);
-    return 0;
-}
-
-static char *tmp_file(void **state, const char *name)
-{
-    char *p = ft_test_path(((fixture *)*state)->dir, name);
-    assert_non_null(p);
-    return p;
-}
-
 static void test_grid_png(void **state)
 {
     ft_grid *g = plane(0.3, -0.2), *hs = NULL;
     assert_int_equal(ft_render_hillshade(g, NULL, &hs), FT_OK);
-    char *p = tmp_file(state, "g.png");
+    const char *p = ft_test_tmp("g.png");
     ft_grid_image_opts o = FT_GRID_IMAGE_OPTS_DEFAULT;
     o.width = 70;
     o.colormap = 1;
@@ -225,8 +196,7 @@ static void test_grid_png(void **state)
     assert_int_equal(b[19], 70); /* width, big-endian in IHDR */
     assert_int_equal(b[23], 70); /* square cells, square grid */
     free(b);
-    assert_int_equal(ft_test_count_entries(((fixture *)*state)->dir), 1); /* no temporary left */
-    free(p);
+    assert_int_equal(ft_test_dir_count(), 1); /* no temporary left */
     ft_grid_free(hs);
     ft_grid_free(g);
 }
@@ -234,7 +204,7 @@ static void test_grid_png(void **state)
 static void test_grid_png_errors(void **state)
 {
     ft_grid *g = plane(0.0, 0.0);
-    char *p = tmp_file(state, "bad.png");
+    const char *p = ft_test_tmp("bad.png");
     ft_grid_image_opts o = FT_GRID_IMAGE_OPTS_DEFAULT;
     o.colormap = 7;
     assert_int_equal(ft_render_grid_png(g, p, &o), FT_E_INVALID);
@@ -247,7 +217,6 @@ static void test_grid_png_errors(void **state)
     assert_int_equal(ft_render_grid_png(g, "/nonexistent/fracterra/x.png", &o), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "/nonexistent/fracterra/x.png"));
     assert_false(ft_test_exists(p));
-    free(p);
     ft_grid_free(g);
 }
 
@@ -266,26 +235,21 @@ static ft_layer *square_layer(void)
 static void test_map_svg(void **state)
 {
     ft_layer *l = square_layer();
-    char *p = tmp_file(state, "square.svg");
+    const char *p = ft_test_tmp("square.svg");
     ft_map_opts o = FT_MAP_OPTS_DEFAULT;
     o.title = "A square with a hole";
     assert_int_equal(ft_render_map(l, p, &o), FT_OK);
-    char *s = ft_test_read_file(p, NULL);
-    assert_non_null(s);
-    assert_true(strncmp(s, "<?xml", 5) == 0);
-    assert_non_null(strstr(s, "<svg"));
+    char *s = ft_test_read_svg(p, NULL);
     assert_non_null(strstr(s, "width=\"800"));
     assert_non_null(strstr(s, "evenodd"));
-    assert_non_null(strstr(s, "</svg>"));
     free(s);
-    free(p);
     ft_layer_free(l);
 }
 
 static void test_map_png_and_pdf(void **state)
 {
     ft_layer *l = square_layer();
-    char *png = tmp_file(state, "square.PNG"), *pdf = tmp_file(state, "square.pdf");
+    const char *png = ft_test_tmp("square.PNG"), *pdf = ft_test_tmp("square.pdf");
     assert_int_equal(ft_render_map(l, png, NULL), FT_OK);
     assert_int_equal(ft_render_map(l, pdf, NULL), FT_OK);
     char *b = ft_test_read_file(png, NULL);
@@ -294,16 +258,14 @@ static void test_map_png_and_pdf(void **state)
     b = ft_test_read_file(pdf, NULL);
     assert_memory_equal(b, "%PDF", 4);
     free(b);
-    assert_int_equal(ft_test_count_entries(((fixture *)*state)->dir), 2);
-    free(png);
-    free(pdf);
+    assert_int_equal(ft_test_dir_count(), 2);
     ft_layer_free(l);
 }
 
 static void test_map_errors(void **state)
 {
     ft_layer *l = square_layer(), *empty = ft_layer_create("empty", NULL);
-    char *p = tmp_file(state, "m.svg"), *jpg = tmp_file(state, "m.jpg");
+    const char *p = ft_test_tmp("m.svg"), *jpg = ft_test_tmp("m.jpg");
     assert_int_equal(ft_render_map(l, jpg, NULL), FT_E_INVALID);
     assert_non_null(strstr(ft_last_error(), "m.jpg"));
     ft_map_opts o = FT_MAP_OPTS_DEFAULT;
@@ -316,9 +278,7 @@ static void test_map_errors(void **state)
     l->parts[0].chain->x[2] = 1000.0;
     assert_int_equal(ft_render_map(l, "/nonexistent/fracterra/m.svg", NULL), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "/nonexistent/fracterra/m.svg"));
-    assert_int_equal(ft_test_count_entries(((fixture *)*state)->dir), 0);
-    free(p);
-    free(jpg);
+    assert_int_equal(ft_test_dir_count(), 0);
     ft_layer_free(empty);
     ft_layer_free(l);
 }
@@ -332,11 +292,11 @@ int main(void)
         cmocka_unit_test(test_nodata_propagation),
         cmocka_unit_test(test_crs_kept),
         cmocka_unit_test(test_bad_options),
-        cmocka_unit_test_setup_teardown(test_grid_png, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_grid_png_errors, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_map_svg, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_map_png_and_pdf, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_map_errors, setup, teardown),
+        FT_TEST_OWN_DIR(test_grid_png),
+        FT_TEST_OWN_DIR(test_grid_png_errors),
+        FT_TEST_OWN_DIR(test_map_svg),
+        FT_TEST_OWN_DIR(test_map_png_and_pdf),
+        FT_TEST_OWN_DIR(test_map_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
