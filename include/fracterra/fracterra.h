@@ -6,6 +6,7 @@
 
 #include "core.h"
 #include "io.h"
+#include "line.h"
 #include "render.h"
 
 #endif /* FRACTERRA_H */
