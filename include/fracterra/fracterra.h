@@ -8,5 +8,7 @@
 #include "io.h"
 #include "line.h"
 #include "render.h"
+#include "surface.h"
+#include "terrain.h"
 
 #endif /* FRACTERRA_H */
