@@ -27,7 +27,7 @@ typedef enum {
 
 /** One workload's run-time data, filled by its setup (in the harness process). Strings in argv and
  *  peer_argv are malloc'd (ft_bench_strdup/ft_bench_strf) and freed by the harness. */
-typedef struct {
+typedef struct ft_bench_case {
     void *state;                         /**< private to the workload; released by its teardown */
     double work;                         /**< amount of work of one repetition, in the workload's unit;
                                               run() may correct it (the child's value is reported) */
@@ -35,6 +35,12 @@ typedef struct {
     char *peer_argv[FT_BENCH_MAX_ARGV];  /**< the peer's command line; peer_argv[0] == NULL: no peer */
     const char *peer_none;               /**< why there is no peer (printed when peer_argv[0] is NULL) */
     char *scratch;                       /**< an output path removed after every repetition, or NULL */
+    /** An in-process peer (a library doing the same work, e.g. GEOS), used when peer_argv[0] is NULL:
+     *  peer_prepare (untimed, may be NULL) and peer_run (timed) run in a forked child, like prepare and
+     *  run; peer_label (static) describes it in the report. */
+    int (*peer_prepare)(struct ft_bench_case *c);
+    int (*peer_run)(struct ft_bench_case *c);
+    const char *peer_label;
 } ft_bench_case;
 
 typedef struct {
@@ -61,6 +67,10 @@ typedef struct {
 
 /* The suites, one per bench/workloads_<domain>.c; harness.c lists them. */
 extern const ft_bench_suite ft_bench_suite_io;
+extern const ft_bench_suite ft_bench_suite_terrain;
+extern const ft_bench_suite ft_bench_suite_clarke;
+extern const ft_bench_suite ft_bench_suite_line_dim;
+extern const ft_bench_suite ft_bench_suite_line_enhance;
 
 /* ------------------------------------------------------------------------------------------------
  * Helpers the harness offers to workloads

@@ -34,6 +34,10 @@
 /* The suites, in the order they run. A new bench/workloads_<domain>.c adds its suite here. */
 static const ft_bench_suite *const bench_suites[] = {
     &ft_bench_suite_io,
+    &ft_bench_suite_terrain,
+    &ft_bench_suite_clarke,
+    &ft_bench_suite_line_dim,
+    &ft_bench_suite_line_enhance,
 };
 #define N_SUITES (sizeof bench_suites / sizeof bench_suites[0])
 
@@ -387,8 +391,9 @@ static int wait_rep(pid_t pid, int *status, rep_result *r)
     return 0;
 }
 
-/* An in-process workload: prepare (untimed) and run (timed) in a forked child. */
-static void run_inprocess(const ft_bench_workload *w, ft_bench_case *c, rep_result *r)
+/* An in-process workload (or peer): prepare (untimed) and run (timed) in a forked child. */
+static void run_inprocess(int (*prepare)(ft_bench_case *), int (*run)(ft_bench_case *), ft_bench_case *c,
+                          rep_result *r)
 {
     memset(r, 0, sizeof *r);
     int fd[2];
@@ -410,10 +415,10 @@ static void run_inprocess(const ft_bench_workload *w, ft_bench_case *c, rep_resu
         child_msg m;
         memset(&m, 0, sizeof m);
         ft_io_init();
-        int rc = w->prepare ? w->prepare(c) : FT_OK;
+        int rc = prepare ? prepare(c) : FT_OK;
         if (rc == FT_OK) {
             double t0 = now_seconds();
-            rc = w->run(c);
+            rc = run(c);
             m.seconds = now_seconds() - t0;
         }
         m.rc = rc;
@@ -602,6 +607,32 @@ static void progress_clear(void)
         fprintf(stderr, "\r\033[K");
 }
 
+/* The repetitions of an in-process peer (a library, e.g. GEOS), timed like our in-process workloads. */
+static void run_inprocess_peer(const ft_bench_workload *w, ft_bench_case *c, int repeat, int peers, wl_result *res)
+{
+    snprintf(res->peer_command, sizeof res->peer_command, "%s", c->peer_label ? c->peer_label : "in-process peer");
+    if (!peers) {
+        res->peer = PEER_NONE;
+        snprintf(res->peer_note, sizeof res->peer_note, "skipped (--no-peers)");
+        return;
+    }
+    res->peer = PEER_OK;
+    for (int i = 0; i < repeat; i++) {
+        rep_result r;
+        progress(w->name, "peer", i + 1, repeat);
+        run_inprocess(c->peer_prepare, c->peer_run, c, &r);
+        if (r.rss_mb > res->peer_rss_mb)
+            res->peer_rss_mb = r.rss_mb;
+        if (!r.ok) {
+            res->peer = PEER_FAILED;
+            snprintf(res->peer_err, sizeof res->peer_err, "%s", r.err);
+            return;
+        }
+        res->peer_times[res->npeer++] = r.seconds;
+    }
+    res->peer_median_s = median(res->peer_times, (size_t)res->npeer);
+}
+
 static void run_workload(const ft_bench_workload *w, int repeat, int peers, const char *errpath,
                          wl_result *res)
 {
@@ -631,7 +662,7 @@ static void run_workload(const ft_bench_workload *w, int repeat, int peers, cons
             progress(w->name, "ours", i + 1, repeat);
             unlink_scratch(c.scratch);
             if (w->run != NULL)
-                run_inprocess(w, &c, &r);
+                run_inprocess(w->prepare, w->run, &c, &r);
             else
                 run_command(c.argv, errpath, &r);
             unlink_scratch(c.scratch);
@@ -649,7 +680,9 @@ static void run_workload(const ft_bench_workload *w, int repeat, int peers, cons
             res->median_s = median(res->times, (size_t)res->ntimes);
     }
 
-    if (c.peer_argv[0] == NULL) {
+    if (c.peer_argv[0] == NULL && c.peer_run != NULL) {
+        run_inprocess_peer(w, &c, repeat, peers, res);
+    } else if (c.peer_argv[0] == NULL) {
         res->peer = PEER_NONE;
         snprintf(res->peer_note, sizeof res->peer_note, "%s", c.peer_none ? c.peer_none : "none");
     } else {

@@ -130,6 +130,61 @@ int cli_parse_int(const cli_command *cmd, const char *option, const char *arg, l
     return CLI_CONTINUE;
 }
 
+/* "in [1,2]", "in (0,1]", "> 0", ">= 0" or "> 0 (or inf)": the interval, as the messages show it. */
+static void interval_text(double lo, double hi, int flags, char *buf, size_t size)
+{
+    const char *inf = (flags & CLI_ALLOW_INF) ? " (or inf)" : "";
+    if (isinf(hi))
+        snprintf(buf, size, "%s %g%s", (flags & CLI_OPEN_LO) ? ">" : ">=", lo, inf);
+    else
+        snprintf(buf, size, "in %c%g,%g%c", (flags & CLI_OPEN_LO) ? '(' : '[', lo, hi,
+                 (flags & CLI_OPEN_HI) ? ')' : ']');
+}
+
+int cli_parse_double(const cli_command *cmd, const char *option, const char *arg, double lo, double hi, int flags,
+                     double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(arg, &end);
+    int ok = end != arg && *end == '\0' && !isnan(v) && (errno == 0 || isinf(v));
+    if (ok && isinf(v))
+        ok = v > 0 && (flags & CLI_ALLOW_INF) && isinf(hi);
+    else if (ok)
+        ok = ((flags & CLI_OPEN_LO) ? v > lo : v >= lo) && ((flags & CLI_OPEN_HI) ? v < hi : v <= hi);
+    if (!ok) {
+        char range[96];
+        interval_text(lo, hi, flags, range, sizeof range);
+        return cli_usage_error(cmd, "%s must be a number %s, got '%s'", option, range, arg);
+    }
+    *out = v;
+    return CLI_CONTINUE;
+}
+
+/* "dim line" -> "line". */
+static const char *last_word(const char *name)
+{
+    const char *space = strrchr(name, ' ');
+    return space ? space + 1 : name;
+}
+
+int cli_run_subcommand(const cli_command *cmd, const cli_command *const *subs, size_t n, int argc, char **argv)
+{
+    if (argc < 2)
+        return cli_usage_error(cmd, "missing SUBCOMMAND");
+    const char *name = argv[1];
+    if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
+        cli_print_help(cmd);
+        return CLI_OK;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(last_word(subs[i]->name), name) == 0)
+            return subs[i]->run(subs[i], argc - 1, argv + 1);
+    if (name[0] == '-')
+        return cli_usage_error(cmd, "unknown option '%s' (options follow the SUBCOMMAND)", name);
+    return cli_usage_error(cmd, "unknown subcommand '%s'", name);
+}
+
 int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n)
 {
     int have = argc - first;
@@ -249,4 +304,17 @@ void cli_crs_describe(const char *wkt, char *name, size_t size, int *epsg)
     if (q)
         read_quoted(q, name, size);
     *epsg = top_level_epsg(wkt);
+}
+
+int cli_read_layer(const cli_command *cmd, const char *path, const char *layer, const char *where, ft_layer **out)
+{
+    ft_read_layer_opts lo = FT_READ_LAYER_OPTS_DEFAULT;
+    lo.layer = layer;
+    lo.where = where;
+    int rc = ft_io_read_layer(path, &lo, out);
+    if (rc == FT_OK)
+        rc = ft_layer_check_finite(*out);
+    if (rc == FT_E_INVALID)
+        return cli_usage_error(cmd, "%s", ft_last_error());
+    return rc == FT_OK ? CLI_CONTINUE : cli_fail(cmd);
 }

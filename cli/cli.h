@@ -26,6 +26,17 @@ typedef struct cli_command {
 /* The commands (one cmd_<name>.c each), listed in fracterra.c's dispatch table. */
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_demo;
+extern const cli_command cli_cmd_synth;     /* terrain (issue 5) */
+extern const cli_command cli_cmd_model;
+extern const cli_command cli_cmd_hillshade;
+extern const cli_command cli_cmd_render;
+extern const cli_command cli_cmd_dim;
+extern const cli_command cli_cmd_enhance;
+extern const cli_command cli_cmd_simplify;
+extern const cli_command cli_cmd_weed;
+extern const cli_command cli_cmd_smooth;
+/* The subcommands of `fracterra dim` (cmd_dim_<name>.c), listed in cmd_dim.c's table. */
+extern const cli_command cli_cmd_dim_line;
 
 /** Sets up output conventions (JSON number format); called once by main. */
 void cli_init(void);
@@ -59,6 +70,16 @@ int cli_parse_options(const cli_command *cmd, int argc, char **argv, const struc
                       const char *shortopts, cli_opt_fn fn, void *ctx, int *first_arg);
 /** Parses an integer option value in [min, max]: CLI_CONTINUE, or CLI_USAGE naming the option. */
 int cli_parse_int(const cli_command *cmd, const char *option, const char *arg, long min, long max, int *out);
+/* Flags of cli_parse_double: open ends of the interval, and "inf" accepted as a value. */
+enum { CLI_CLOSED = 0, CLI_OPEN_LO = 1, CLI_OPEN_HI = 2, CLI_ALLOW_INF = 4 };
+/** Parses a number option value in the interval lo..hi (ends closed unless flagged open; hi may be INFINITY):
+ *  CLI_CONTINUE, or CLI_USAGE naming the option, the interval and the value. NaN is always refused. */
+int cli_parse_double(const cli_command *cmd, const char *option, const char *arg, double lo, double hi, int flags,
+                     double *out);
+/** Runs `fracterra CMD SUBCOMMAND ...`: the entry of subs whose name ends in argv[1] ("dim line" for "line"), with
+ *  argv shifted so that its argv[0] is the subcommand; "--help" prints cmd's help; a missing or unknown
+ *  subcommand, or an option before it, is a usage error. */
+int cli_run_subcommand(const cli_command *cmd, const cli_command *const *subs, size_t n, int argc, char **argv);
 /** Checks that there are exactly n positional arguments, named in names (for the messages). Returns
  *  CLI_CONTINUE or CLI_USAGE. */
 int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n);
@@ -81,5 +102,9 @@ void cli_crs_describe(const char *wkt, char *name, size_t size, int *epsg);
 /** What `fracterra info` reports about a file, as a JSON object (see cmd_info.c); warnings (all-nodata
  *  grid, short chains) go into its "warnings" array. layer may be NULL; band 0 means the default band. */
 int cli_info_describe(const char *path, const char *layer, int band, json_object **out);
+/** Reads the lines and polygons of a vector layer or GMT text file as the line commands do (layer and where
+ *  may be NULL) and checks the coordinates are finite: CLI_CONTINUE, CLI_USAGE for a bad --where filter,
+ *  CLI_FAIL otherwise (message printed). */
+int cli_read_layer(const cli_command *cmd, const char *path, const char *layer, const char *where, ft_layer **out);
 
 #endif /* FRACTERRA_CLI_H */

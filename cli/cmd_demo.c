@@ -347,6 +347,8 @@ static const struct {
     {"volcano GeoTIFF", step_volcano_tif},
     {"volcano hillshade", step_volcano_hillshade},
     {"Newfoundland map", step_newfoundland_map},
+    {"Newfoundland enhancement", demo_step_lines},
+    {"terrain", demo_step_terrain},
     {"index.html", step_index_html},
 };
 
@@ -422,13 +424,23 @@ static int run_demo(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cli_cmd_demo = {
     "demo",
-    "make a small gallery (GeoTIFF, shaded relief, map, index.html) from the bundled data",
+    "make a small gallery (GeoTIFF, shaded relief, maps, log-log plots, index.html) from the bundled data",
     "fracterra demo OUTDIR [--json]",
     "Writes into OUTDIR (created if missing; its parent must exist):\n"
-    "  volcano.tif             the Maunga Whau DEM written back through fracterra's GeoTIFF writer\n"
-    "  volcano_hillshade.png   hypsometric tints times a hillshade, 600 pixels wide\n"
-    "  newfoundland.svg        a map of the GSHHG shoreline of Newfoundland with a scale bar\n"
-    "  index.html              a page showing them, with the inputs' figures and data sources\n"
+    "  volcano.tif                     the Maunga Whau DEM written back through fracterra's GeoTIFF writer\n"
+    "  volcano_hillshade.png           hypsometric tints times a hillshade, 600 pixels wide\n"
+    "  newfoundland.svg                a map of the GSHHG shoreline of Newfoundland with a scale bar\n"
+    "  newfoundland_enhanced.svg       Dutton's sequence: the shoreline generalized to 158 points, enhanced,\n"
+    "                                  weeded and smoothed, drawn over the original\n"
+    "  newfoundland_loglog_before.svg  divider log-log plot of the 158-point outline\n"
+    "  newfoundland_loglog_after.svg   the same for the enhanced outline\n"
+    "  terrain_synth.tif               a synthetic fBm terrain, D = 2.3, 512 x 512 cells, seeded\n"
+    "  terrain_synth_hillshade.png     its GDAL hillshade times a colour relief\n"
+    "  terrain_synth_perspective.png   its perspective view\n"
+    "  volcano_gdal_hillshade.png      the volcano's GDAL hillshade times a colour relief\n"
+    "  volcano_perspective.png         the volcano's perspective view\n"
+    "  volcano_clarke_model.json       Clarke's model fitted to the volcano (figures in index.html)\n"
+    "  index.html                      a page showing them, with the inputs' figures and data sources\n"
     "The data folder is $FRACTERRA_DATA, else the source tree's tests/data, else the installed\n"
     "share/fracterra. If a step fails, nothing is left behind.\n\n"
     "Options:\n"

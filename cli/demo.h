@@ -42,4 +42,9 @@ const char *demo_add_output(demo_ctx *ctx, const char *file, const char *title, 
 /** Records the `fracterra info` figures of an input file of the data folder, with its source (HTML). */
 int demo_add_input(demo_ctx *ctx, const char *file, const char *source);
 
+/* The steps defined outside cmd_demo.c (cli/demo_<domain>.c). */
+int demo_step_lines(demo_ctx *ctx); /* Dutton's Newfoundland sequence: map and log-log plots */
+
+int demo_step_terrain(demo_ctx *ctx); /* synthetic and volcano DEMs: hillshades, perspectives, Clarke model */
+
 #endif /* FRACTERRA_CLI_DEMO_H */

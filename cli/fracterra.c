@@ -18,6 +18,15 @@
 /* The dispatch table: one entry per cmd_<name>.c, in the order `fracterra --help` lists them. */
 static const cli_command *const commands[] = {
     &cli_cmd_info,
+    &cli_cmd_dim,
+    &cli_cmd_enhance,
+    &cli_cmd_simplify,
+    &cli_cmd_weed,
+    &cli_cmd_smooth,
+    &cli_cmd_synth,
+    &cli_cmd_model,
+    &cli_cmd_hillshade,
+    &cli_cmd_render,
     &cli_cmd_demo,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])

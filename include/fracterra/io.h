@@ -141,6 +141,30 @@ void ft_data_clear(ft_data *d);
 /** FT_OK if path can be created: its folder exists and is writable (FT_E_IO naming it otherwise). */
 int ft_io_check_writable(const char *path);
 
+/* ------------------------------------------------------------------------------------------------
+ * DEM processing through GDAL (GDALDEMProcessing) and CRS definitions
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double azimuth;   /**< light direction, degrees clockwise from north, [0, 360]; default 315 */
+    double altitude;  /**< light elevation above the horizon, degrees, (0, 90]; default 45 */
+    double z_factor;  /**< vertical exaggeration, > 0; default 1 */
+    double scale;     /**< horizontal units per vertical unit; 0 (default) = 111120 for a DEM in degrees,
+                           1 otherwise */
+    int color;        /**< 1: multiply a hypsometric colour relief (gdaldem color-relief) by the shade */
+    int band;         /**< 1-based band of the DEM; default 1 */
+} ft_io_hillshade_opts;
+#define FT_IO_HILLSHADE_OPTS_DEFAULT {315.0, 45.0, 1.0, 0.0, 0, 1}
+
+/** gdaldem's hillshade of a DEM file (edges computed, nodata 0), optionally times a colour relief (RGBA,
+ *  nodata transparent), written through the driver of the output's extension (PNG, GeoTIFF, ...) under a
+ *  temporary name renamed on success. */
+int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
+
+/** A CRS given as "EPSG:n", WKT, a PROJ string or anything OSRSetFromUserInput accepts, as malloc'd WKT
+ *  (free()). FT_E_INVALID naming the input if GDAL does not know it. */
+int ft_io_crs_to_wkt(const char *user_input, char **wkt);
+
 #ifdef __cplusplus
 }
 #endif

@@ -74,11 +74,30 @@ typedef struct {
                           default INFINITY */
     double sm;       /**< smoothness tolerance: ... and not shorter than this; default 0 */
     int iterations;  /**< default 1 */
+    double target_dim; /**< calibrated mode: 0 (default) = off, the apex angle comes from sd by the literal
+                            relation; else the dimension wanted, in [1, ft_dutton_steady_dimension(
+                            FT_DUTTON_APEX_MIN)] (about 1.777): sd is ignored and the apex angle is
+                            ft_dutton_apex_for_dimension(target_dim), so that with uc = 1 the enhanced chain's
+                            divider dimension is target_dim (docs/line-enhance.md) */
 } ft_dutton_opts;
-#define FT_DUTTON_OPTS_DEFAULT {1.3, 1.0, INFINITY, 0.0, 1}
+#define FT_DUTTON_OPTS_DEFAULT {1.3, 1.0, INFINITY, 0.0, 1, 0.0}
 
 /** The apex angle (radians) that a sinuosity dimension implies: pi - 2a with cos a = 2^(1/sd - 1). */
 double ft_dutton_apex_angle(double sd);
+
+/** The smallest apex angle of calibrated mode, 60 degrees: below it the enhanced chain overlaps itself and
+ *  its measured dimension stops rising. */
+#define FT_DUTTON_APEX_MIN (3.14159265358979323846 / 3.0)
+/** The divider dimension that iterating the enhancement with apex angle `apex` (radians, uc = 1, no
+ *  tolerances) converges to: ln 2 / ln(2 / f), f the steady-state length growth per iteration, computed on
+ *  a canonical junction (deterministic; a few hundred microseconds). Decreasing in apex; 1 at pi. NaN
+ *  outside [FT_DUTTON_APEX_MIN, pi]. SD's literal angle gives ft_dutton_steady_dimension(
+ *  ft_dutton_apex_angle(1.3)) = 1.12, not 1.3. */
+double ft_dutton_steady_dimension(double apex);
+/** Calibrated mode: the apex angle (radians) whose steady-state divider dimension is target_dim (the
+ *  inverse of ft_dutton_steady_dimension, by bisection). NaN outside [1, ft_dutton_steady_dimension(
+ *  FT_DUTTON_APEX_MIN)]. */
+double ft_dutton_apex_for_dimension(double target_dim);
 /** Dutton enhancement of one chain. End points of open chains never move. */
 int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out);
 
@@ -108,6 +127,14 @@ typedef int (*ft_line_op)(const ft_chain *in, const void *opts, ft_chain **out);
  *  arc-node topology, applies op to each arc once (arc end points, the nodes, are kept in place) and
  *  rebuilds the rings from the edited arcs, so adjacent polygons stay coincident. */
 int ft_line_apply_layer(ft_layer *l, ft_line_op op, const void *opts, int coverage);
+
+/* The chain operations as ft_line_op, for ft_line_apply_layer: opts points to what the operation takes.
+ * Each keeps the end points of open chains, so on a coverage the nodes stay in place. */
+int ft_line_op_enhance(const ft_chain *in, const void *opts /* const ft_dutton_opts * */, ft_chain **out);
+int ft_line_op_smooth(const ft_chain *in, const void *opts /* const ft_smooth_opts * */, ft_chain **out);
+int ft_line_op_weed(const ft_chain *in, const void *opts /* const double *min_seg */, ft_chain **out);
+int ft_line_op_simplify(const ft_chain *in, const void *opts /* const double *tolerance */, ft_chain **out);
+int ft_line_op_remove_loops(const ft_chain *in, const void *opts /* ignored, may be NULL */, ft_chain **out);
 
 #ifdef __cplusplus
 }

@@ -46,6 +46,22 @@ typedef struct {
 /** Draws a layer's chains (polygons filled even-odd, lines stroked) to SVG, PNG or PDF by extension. */
 int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
 
+/** One layer of a multi-layer map. */
+typedef struct {
+    const ft_layer *layer;
+    const char *stroke;  /**< "#rrggbb"; NULL = the map's stroke */
+    const char *fill;    /**< polygon fill "#rrggbb", or NULL for none */
+    double line_width;   /**< <= 0: the map's line width */
+    double dash;         /**< dash length in points/pixels; 0 = solid */
+    const char *label;   /**< legend entry; NULL = not in the legend */
+} ft_map_layer;
+
+/** Draws several layers on one map (SVG, PNG or PDF by extension), in order (the first at the bottom), framed
+ *  on the union of their extents; the labelled layers get a legend in the corner of the map that hides
+ *  the fewest vertices. The map options give the size, title, scale bar (in the first layer's CRS units) and
+ *  the default stroke and line width (opts->fill is not used: each layer gives its own). */
+int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts);
+
 typedef struct {
     int width, height;  /**< canvas size in points/pixels; default 720 x 540 */
     const char *title;  /**< drawn at the top; NULL = none */
@@ -60,6 +76,30 @@ typedef struct {
  *  every segment's line, and a legend "D = 1.262 ± 0.004, r² = 0.999, range 10–1000". The file is
  *  written under a temporary name and renamed when complete. */
 int ft_render_loglog_plot(const ft_dim_result *r, const char *path, const ft_plot_opts *opts);
+
+/* ------------------------------------------------------------------------------------------------
+ * Perspective (bird's-eye) view of a DEM (docs/render-perspective.md)
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double azimuth;        /**< direction the viewer looks towards, degrees clockwise from north; default 20 */
+    double elevation;      /**< angle of the line of sight below the horizon, degrees in [5, 90]; default 35 */
+    double exaggeration;   /**< vertical exaggeration, > 0; 0 (default) = automatic: 1, or more so that the
+                                relief reaches 1/6 of the extent's half-diagonal */
+    int width;             /**< image width in pixels, [64, 8192]; default 1200 (height follows the scene) */
+    double light_azimuth;  /**< sun direction, degrees clockwise from north; default 315 */
+    double light_altitude; /**< sun elevation, degrees in (0, 90]; default 40 */
+    double scale;          /**< ground units per elevation unit; 0 (default) = 111120 when the grid's CRS
+                                is geographic (then longitudes shrink by cos(latitude)), else 1 */
+    int sky;               /**< 1 (default): a sky gradient behind the terrain; 0: transparent */
+} ft_perspective_opts;
+#define FT_PERSPECTIVE_OPTS_DEFAULT {20.0, 35.0, 0.0, 1200, 315.0, 40.0, 0.0, 1}
+
+/** Renders the lit surface in perspective to a PNG: every quad of four valid neighbouring cells becomes
+ *  two triangles, z-buffered, coloured by hypsometric tints times Lambert shading with a little aerial
+ *  haze, on a sky gradient; nodata cells leave holes. Written under a temporary name, renamed when
+ *  complete. */
+int ft_render_perspective(const ft_grid *dem, const char *path, const ft_perspective_opts *opts);
 
 #ifdef __cplusplus
 }

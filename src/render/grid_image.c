@@ -10,6 +10,7 @@
  */
 #include "fracterra/render.h"
 #include "internal.h"
+#include "render/render_internal.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -29,7 +30,7 @@ static const color_stop hypsometric[] = {
     {0.70, 0.71, 0.54, 0.35}, {0.88, 0.55, 0.45, 0.40}, {1.00, 0.98, 0.98, 0.98},
 };
 
-static void ramp(double t, int colormap, double rgb[3])
+void ft_render_ramp(double t, int colormap, double rgb[3])
 {
     if (colormap == 0) {
         rgb[0] = rgb[1] = rgb[2] = t;
@@ -86,7 +87,7 @@ static uint32_t cell_pixel(const ft_grid *g, size_t k, double zmin, double zrang
         return 0; /* transparent */
     double t = zrange > 0.0 ? (g->z[k] - zmin) / zrange : 0.5;
     double rgb[3];
-    ramp(t, o->colormap, rgb);
+    ft_render_ramp(t, o->colormap, rgb);
     if (o->shade) {
         const ft_grid *s = o->shade;
         double v = ((s->mask == NULL || s->mask[k]) && isfinite(s->z[k])) ? s->z[k] : shade_fill;

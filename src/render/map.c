@@ -1,10 +1,13 @@
-/* fracterra — render/map.c: a layer drawn as a small map (SVG, PDF or PNG by the output's extension).
+/* fracterra — render/map.c: one or several layers drawn as a small map (SVG, PDF or PNG by the output's
+ * extension).
  *
- * The layer's bounding box is fitted into the canvas with its aspect kept and y pointing up (north up for
+ * The layers' bounding box is fitted into the canvas with its aspect kept and y pointing up (north up for
  * projected data). Polygon features are filled with the even-odd rule, so holes stay empty, then stroked;
  * lines are stroked. An optional title sits at the top and an optional scale bar at the bottom left, its
  * length a round 1, 2 or 5 times a power of ten in layer units (labelled in m or km, or in degrees when the
- * CRS is geographic). The file is drawn under a temporary name and renamed when complete.
+ * CRS is geographic). Several layers are drawn in order, each with its own stroke, fill, width and dash,
+ * with a legend of the labelled ones in the corner of the map that covers the fewest vertices. The file is
+ * drawn under a temporary name and renamed when complete.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -45,16 +48,41 @@ static int parse_color(const char *what, const char *s, rgb *c)
     return FT_OK;
 }
 
-static int check_opts(const ft_map_opts *o, rgb *stroke, rgb *fill)
+static int check_opts(const ft_map_opts *o)
 {
     if (o->width < 64 || o->height < 64 || o->width > MAP_MAX_SIDE || o->height > MAP_MAX_SIDE)
         return ft_error(FT_E_INVALID, "map size must be within 64..%d on each side, got %d x %d", MAP_MAX_SIDE,
                         o->width, o->height);
     if (!isfinite(o->line_width) || o->line_width < 0.0)
         return ft_error(FT_E_INVALID, "map line width must be >= 0, got %g", o->line_width);
-    int rc = parse_color("stroke", o->stroke, stroke);
-    if (rc == FT_OK && o->fill)
-        rc = parse_color("fill", o->fill, fill);
+    return FT_OK;
+}
+
+/* A layer as drawn: colours parsed, defaults applied. */
+typedef struct {
+    const ft_layer *layer;
+    rgb stroke, fill;
+    int has_fill;
+    double width, dash;
+    const char *label;
+} map_item;
+
+static int make_item(const ft_map_layer *ml, size_t i, const ft_map_opts *o, map_item *it)
+{
+    if (ml->layer == NULL)
+        return ft_error(FT_E_INVALID, "map: layer %zu is missing", i + 1);
+    if (!isfinite(ml->line_width) || !isfinite(ml->dash) || ml->dash < 0.0)
+        return ft_error(FT_E_INVALID, "map: layer %zu line width and dash must be finite, dash >= 0", i + 1);
+    int rc = parse_color("stroke", ml->stroke ? ml->stroke : o->stroke, &it->stroke);
+    if (rc == FT_OK && ml->fill)
+        rc = parse_color("fill", ml->fill, &it->fill);
+    if (rc == FT_OK)
+        rc = ft_layer_check_finite(ml->layer);
+    it->layer = ml->layer;
+    it->has_fill = ml->fill != NULL;
+    it->width = ml->line_width > 0.0 ? ml->line_width : o->line_width;
+    it->dash = ml->dash;
+    it->label = ml->label;
     return rc;
 }
 
@@ -88,20 +116,34 @@ static void chain_path(cairo_t *cr, const ft_chain *c, const map_frame *f)
         cairo_close_path(cr);
 }
 
-static void draw_feature(cairo_t *cr, const ft_layer *l, const ft_feature *ft, const map_frame *f,
-                         const ft_map_opts *o, const rgb *stroke, const rgb *fill)
+static void draw_feature(cairo_t *cr, const map_item *it, const ft_feature *ft, const map_frame *f)
 {
+    const ft_layer *l = it->layer;
     cairo_new_path(cr);
     for (size_t p = ft->first; p < ft->first + ft->count && p < l->nparts; p++)
         if (l->parts[p].chain && l->parts[p].chain->n >= 2)
             chain_path(cr, l->parts[p].chain, f);
-    if (ft->type == FT_GEOM_POLYGON && o->fill) {
+    if (ft->type == FT_GEOM_POLYGON && it->has_fill) {
         cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
-        cairo_set_source_rgb(cr, fill->r, fill->g, fill->b);
+        cairo_set_source_rgb(cr, it->fill.r, it->fill.g, it->fill.b);
         cairo_fill_preserve(cr);
     }
-    cairo_set_source_rgb(cr, stroke->r, stroke->g, stroke->b);
+    cairo_set_source_rgb(cr, it->stroke.r, it->stroke.g, it->stroke.b);
     cairo_stroke(cr);
+}
+
+static void set_line_style(cairo_t *cr, const map_item *it)
+{
+    cairo_set_line_width(cr, it->width);
+    cairo_set_dash(cr, &it->dash, it->dash > 0.0 ? 1 : 0, 0.0);
+}
+
+static void draw_item(cairo_t *cr, const map_item *it, const map_frame *f)
+{
+    set_line_style(cr, it);
+    for (size_t i = 0; i < it->layer->nfeatures; i++)
+        if (it->layer->features[i].type != FT_GEOM_NONE)
+            draw_feature(cr, it, &it->layer->features[i], f);
 }
 
 /* 1 if the WKT describes a geographic CRS (coordinates in degrees). */
@@ -170,62 +212,185 @@ static void draw_title(cairo_t *cr, const ft_map_opts *o)
     cairo_show_text(cr, o->title);
 }
 
-static void draw_map(cairo_t *cr, const ft_layer *l, const map_frame *f, const ft_map_opts *o,
-                     const rgb *stroke, const rgb *fill)
+/* ---- legend ---- */
+
+#define LEGEND_FONT 12.0
+#define LEGEND_ROW 18.0
+#define LEGEND_SAMPLE 28.0
+#define LEGEND_PAD 8.0
+
+static void legend_size(cairo_t *cr, const map_item *items, size_t n, double *w, double *h)
 {
-    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
-    cairo_paint(cr);
-    cairo_set_line_width(cr, o->line_width);
-    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    for (size_t i = 0; i < l->nfeatures; i++)
-        if (l->features[i].type != FT_GEOM_NONE)
-            draw_feature(cr, l, &l->features[i], f, o, stroke, fill);
-    if (o->title && *o->title)
-        draw_title(cr, o);
-    if (o->scale_bar)
-        draw_scale_bar(cr, f, o, crs_is_geographic(l->crs_wkt));
+    double tw = 0.0;
+    size_t rows = 0;
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, LEGEND_FONT);
+    for (size_t i = 0; i < n; i++) {
+        if (items[i].label == NULL)
+            continue;
+        cairo_text_extents_t e;
+        cairo_text_extents(cr, items[i].label, &e);
+        tw = e.x_advance > tw ? e.x_advance : tw;
+        rows++;
+    }
+    *w = rows ? 3.0 * LEGEND_PAD + LEGEND_SAMPLE + tw : 0.0;
+    *h = rows ? 2.0 * LEGEND_PAD + rows * LEGEND_ROW - (LEGEND_ROW - LEGEND_FONT) : 0.0;
 }
+
+/* Vertices of every layer inside the canvas rectangle [x, x + w] x [y, y + h] (at most ~20,000 looked at). */
+static size_t vertices_in(const map_item *items, size_t n, const map_frame *f, double x, double y, double w, double h)
+{
+    size_t total = 0, count = 0;
+    for (size_t i = 0; i < n; i++)
+        total += ft_layer_vertex_count(items[i].layer);
+    size_t step = total / 20000 + 1;
+    for (size_t i = 0; i < n; i++) {
+        const ft_layer *l = items[i].layer;
+        for (size_t p = 0; p < l->nparts; p++) {
+            const ft_chain *c = l->parts[p].chain;
+            for (size_t k = 0; c && k < c->n; k += step) {
+                double X = f->ox + (c->x[k] - f->xmin) * f->k, Y = f->oy + (f->ymax - c->y[k]) * f->k;
+                count += X >= x && X <= x + w && Y >= y && Y <= y + h;
+            }
+        }
+    }
+    return count;
+}
+
+static void draw_legend(cairo_t *cr, const map_item *items, size_t n, const map_frame *f)
+{
+    double w, h;
+    legend_size(cr, items, n, &w, &h);
+    if (w <= 0.0)
+        return;
+    /* corners: top-right, top-left, bottom-right, bottom-left; the first hiding the fewest vertices */
+    double xs[4] = {f->x0 + f->aw - w, f->x0, f->x0 + f->aw - w, f->x0};
+    double ys[4] = {f->y0, f->y0, f->y0 + f->ah - h, f->y0 + f->ah - h};
+    size_t best = 0, least = (size_t)-1;
+    for (size_t c = 0; c < 4; c++) {
+        size_t v = vertices_in(items, n, f, xs[c], ys[c], w, h);
+        if (v < least) {
+            least = v;
+            best = c;
+        }
+    }
+    double x = xs[best], y = ys[best];
+    cairo_set_dash(cr, NULL, 0, 0.0);
+    cairo_rectangle(cr, x, y, w, h);
+    cairo_set_source_rgba(cr, 1.0, 1.0, 1.0, 0.85);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+    cairo_set_line_width(cr, 0.6);
+    cairo_stroke(cr);
+    double row = y + LEGEND_PAD + LEGEND_FONT / 2.0;
+    for (size_t i = 0; i < n; i++) {
+        if (items[i].label == NULL)
+            continue;
+        set_line_style(cr, &items[i]);
+        cairo_set_source_rgb(cr, items[i].stroke.r, items[i].stroke.g, items[i].stroke.b);
+        cairo_move_to(cr, x + LEGEND_PAD, row);
+        cairo_line_to(cr, x + LEGEND_PAD + LEGEND_SAMPLE, row);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+        cairo_move_to(cr, x + 2.0 * LEGEND_PAD + LEGEND_SAMPLE, row + LEGEND_FONT / 2.0 - 2.0);
+        cairo_show_text(cr, items[i].label);
+        row += LEGEND_ROW;
+    }
+}
+
+/* ---- the map ---- */
 
 /* What draw_map needs, passed through the canvas writer. */
 typedef struct {
-    const ft_layer *layer;
+    const map_item *items;
+    size_t n;
     const map_frame *frame;
     const ft_map_opts *opts;
-    const rgb *stroke, *fill;
 } map_job;
 
-static void draw_job(cairo_t *cr, const void *arg)
+static void draw_map(cairo_t *cr, const void *arg)
 {
     const map_job *j = arg;
-    draw_map(cr, j->layer, j->frame, j->opts, j->stroke, j->fill);
+    const ft_map_opts *o = j->opts;
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_paint(cr);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    for (size_t i = 0; i < j->n; i++)
+        draw_item(cr, &j->items[i], j->frame);
+    draw_legend(cr, j->items, j->n, j->frame);
+    cairo_set_dash(cr, NULL, 0, 0.0);
+    if (o->title && *o->title)
+        draw_title(cr, o);
+    if (o->scale_bar)
+        draw_scale_bar(cr, j->frame, o, crs_is_geographic(j->items[0].layer->crs_wkt));
+}
+
+/* The union of the layers' bounding boxes; FT_E_EMPTY if none has a vertex. */
+static int items_bbox(const map_item *items, size_t n, double *bx0, double *by0, double *bx1, double *by1)
+{
+    int found = 0;
+    for (size_t i = 0; i < n; i++) {
+        double x0, y0, x1, y1;
+        if (ft_layer_bbox(items[i].layer, &x0, &y0, &x1, &y1) != FT_OK)
+            continue;
+        *bx0 = found && *bx0 < x0 ? *bx0 : x0;
+        *by0 = found && *by0 < y0 ? *by0 : y0;
+        *bx1 = found && *bx1 > x1 ? *bx1 : x1;
+        *by1 = found && *by1 > y1 ? *by1 : y1;
+        found = 1;
+    }
+    if (!found) {
+        const char *name = items[0].layer->name;
+        return ft_error(FT_E_EMPTY, "map: layer '%s' has no vertex to draw", name ? name : "");
+    }
+    return FT_OK;
+}
+
+static int render_items(const map_item *items, size_t n, const char *path, ft_canvas_format fmt,
+                        const ft_map_opts *o)
+{
+    double bx0 = 0.0, by0 = 0.0, bx1 = 0.0, by1 = 0.0;
+    int rc = items_bbox(items, n, &bx0, &by0, &bx1, &by1);
+    if (rc != FT_OK)
+        return rc;
+    map_frame f;
+    frame_init(o, bx0, by0, bx1, by1, &f);
+    if (f.aw < 16.0 || f.ah < 16.0)
+        return ft_error(FT_E_INVALID, "map: a %d x %d canvas leaves no room for the map", o->width, o->height);
+    map_job job = {items, n, &f, o};
+    return ft_canvas_write(path, fmt, o->width, o->height, draw_map, &job);
+}
+
+int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts)
+{
+    ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
+    const ft_map_opts *o = opts ? opts : &defaults;
+    ft_canvas_format fmt = FT_CANVAS_SVG;
+    if (layers == NULL || n == 0)
+        return ft_error(FT_E_INVALID, "map: no layer given");
+    if (path == NULL || *path == '\0')
+        return ft_error(FT_E_INVALID, "map: no output path given");
+    int rc = ft_canvas_format_of("map", path, &fmt);
+    if (rc == FT_OK)
+        rc = check_opts(o);
+    map_item *items = rc == FT_OK ? calloc(n, sizeof *items) : NULL;
+    if (rc == FT_OK && items == NULL)
+        rc = ft_error(FT_E_NOMEM, "map: out of memory");
+    for (size_t i = 0; rc == FT_OK && i < n; i++)
+        rc = make_item(&layers[i], i, o, &items[i]);
+    if (rc == FT_OK)
+        rc = render_items(items, n, path, fmt, o);
+    free(items);
+    return rc;
 }
 
 int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts)
 {
     ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
     const ft_map_opts *o = opts ? opts : &defaults;
-    rgb stroke, fill = {1.0, 1.0, 1.0};
-    ft_canvas_format fmt = FT_CANVAS_SVG;
     if (layer == NULL)
         return ft_error(FT_E_INVALID, "map: no layer given");
-    if (path == NULL || *path == '\0')
-        return ft_error(FT_E_INVALID, "map: no output path given");
-    int rc = ft_canvas_format_of("map", path, &fmt);
-    if (rc == FT_OK)
-        rc = check_opts(o, &stroke, &fill);
-    if (rc == FT_OK)
-        rc = ft_layer_check_finite(layer);
-    if (rc != FT_OK)
-        return rc;
-    double bx0, by0, bx1, by1;
-    if (ft_layer_bbox(layer, &bx0, &by0, &bx1, &by1) != FT_OK)
-        return ft_error(FT_E_EMPTY, "map: layer '%s' has no vertex to draw", layer->name ? layer->name : "");
-
-    map_frame f;
-    frame_init(o, bx0, by0, bx1, by1, &f);
-    if (f.aw < 16.0 || f.ah < 16.0)
-        return ft_error(FT_E_INVALID, "map: a %d x %d canvas leaves no room for the map", o->width, o->height);
-    map_job job = {layer, &f, o, &stroke, &fill};
-    return ft_canvas_write(path, fmt, o->width, o->height, draw_job, &job);
+    ft_map_layer one = {layer, o->stroke, o->fill, o->line_width, 0.0, NULL};
+    return ft_render_map_layers(&one, 1, path, o);
 }

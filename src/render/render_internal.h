@@ -17,4 +17,8 @@ int ft_canvas_format_of(const char *what, const char *path, ft_canvas_format *fm
 typedef void (*ft_canvas_draw_fn)(cairo_t *cr, const void *arg);
 int ft_canvas_write(const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw, const void *arg);
 
+/* The colour of t in [0, 1] through the grey (colormap 0) or hypsometric (1) ramp (grid_image.c), shared by
+ * grid images and the perspective view. */
+void ft_render_ramp(double t, int colormap, double rgb[3]);
+
 #endif /* FRACTERRA_RENDER_INTERNAL_H */

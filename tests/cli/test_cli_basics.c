@@ -15,7 +15,7 @@
 #include "fracterra/core.h"
 #include "ft_test_run.h"
 
-static const char *const commands[] = {"info", "demo"};
+static const char *const commands[] = {"info", "demo", "dim", "enhance", "simplify", "weed", "smooth"};
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
 static void test_version(void **state)
@@ -117,7 +117,9 @@ static void test_unknown_command_option(void **state)
 
 static void test_missing_argument(void **state)
 {
-    const char *what[] = {"missing FILE", "missing OUTDIR"};
+    const char *what[] = {"missing FILE",  "missing OUTDIR", "missing SUBCOMMAND", "missing INPUT",
+                          "missing INPUT", "missing INPUT",  "missing INPUT"};
+    assert_int_equal(sizeof what / sizeof what[0], NCOMMANDS); /* one message per command */
     for (size_t i = 0; i < NCOMMANDS; i++) {
         ft_run_result r;
         char expect[96];

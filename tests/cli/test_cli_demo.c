@@ -1,6 +1,6 @@
-/* fracterra — tests/cli/test_cli_demo.c: `fracterra demo OUTDIR` makes its four files; GDAL reads
- * volcano.tif back with the input's cells, geotransform and CRS; the PNG, SVG and HTML are well formed and
- * the page references every image.
+/* fracterra — tests/cli/test_cli_demo.c: `fracterra demo OUTDIR` makes its files; GDAL reads
+ * volcano.tif back with the input's cells, geotransform and CRS; the PNG, SVGs (maps and log-log plots) and
+ * HTML are well formed and the page references every image.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -18,7 +18,19 @@
 
 #include "ft_test_util.h"
 
-static const char *const outputs[] = {"volcano.tif", "volcano_hillshade.png", "newfoundland.svg", "index.html"};
+static const char *const outputs[] = {"volcano.tif",
+                                      "volcano_hillshade.png",
+                                      "newfoundland.svg",
+                                      "newfoundland_enhanced.svg",
+                                      "newfoundland_loglog_before.svg",
+                                      "newfoundland_loglog_after.svg",
+                                      "terrain_synth.tif",
+                                      "terrain_synth_hillshade.png",
+                                      "terrain_synth_perspective.png",
+                                      "volcano_gdal_hillshade.png",
+                                      "volcano_perspective.png",
+                                      "volcano_clarke_model.json",
+                                      "index.html"};
 #define NOUTPUTS (sizeof outputs / sizeof outputs[0])
 
 typedef struct {
@@ -170,6 +182,28 @@ static void test_svg(void **state)
     free(p);
 }
 
+/* The lines step: one map with the three outlines and a legend, and the two log-log plots. */
+static void test_newfoundland_enhancement(void **state)
+{
+    char *p = out_path(state, "newfoundland_enhanced.svg");
+    size_t size = 0;
+    char *s = ft_test_read_svg(p, &size);
+    assert_true(size > 100000); /* the full-resolution ring is drawn under the outlines */
+    int paths = 0;
+    for (const char *q = s; (q = strstr(q, "<path")) != NULL; q++)
+        paths++;
+    assert_true(paths >= 4); /* three outlines and the legend samples */
+    free(s);
+    free(p);
+    const char *plots[] = {"newfoundland_loglog_before.svg", "newfoundland_loglog_after.svg"};
+    for (int i = 0; i < 2; i++) {
+        p = out_path(state, plots[i]);
+        s = ft_test_read_svg(p, NULL);
+        free(s);
+        free(p);
+    }
+}
+
 static void test_index_html(void **state)
 {
     char *p = out_path(state, "index.html");
@@ -179,6 +213,10 @@ static void test_index_html(void **state)
     assert_non_null(strstr(s, "<title>fracterra demo</title>"));
     assert_non_null(strstr(s, "<img src=\"volcano_hillshade.png\""));
     assert_non_null(strstr(s, "<img src=\"newfoundland.svg\""));
+    assert_non_null(strstr(s, "<img src=\"newfoundland_enhanced.svg\""));
+    assert_non_null(strstr(s, "<img src=\"newfoundland_loglog_before.svg\""));
+    assert_non_null(strstr(s, "<img src=\"newfoundland_loglog_after.svg\""));
+    assert_non_null(strstr(s, "Douglas-Peucker to 158 points"));
     assert_non_null(strstr(s, "href=\"volcano.tif\""));
     assert_non_null(strstr(s, "LGPL-3+"));
     assert_non_null(strstr(s, "GPL-2 | GPL-3"));
@@ -222,7 +260,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_outputs_exist),      cmocka_unit_test(test_inputs_reported),
         cmocka_unit_test(test_volcano_tif_round_trip), cmocka_unit_test(test_png),
-        cmocka_unit_test(test_svg),                cmocka_unit_test(test_index_html),
+        cmocka_unit_test(test_svg),                cmocka_unit_test(test_newfoundland_enhancement),
+        cmocka_unit_test(test_index_html),
         cmocka_unit_test(test_rerun_human_output), cmocka_unit_test(test_outdir_is_a_file),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

@@ -1,0 +1,129 @@
+/* fracterra — workloads_line_enhance.c: Dutton enhancement and Douglas-Peucker workloads of `make bench`
+ * (issue 3's speed targets: three enhancement iterations of a 1,000,000-vertex chain under 1 s; its
+ * Douglas-Peucker at least as fast as GEOS's GEOSSimplify).
+ *
+ * Input, generated in each forked child before the timed call (untimed): one open chain of 1,000,000
+ * vertices, a correlated random walk with 5 m steps (seed 20240501, the I/O workloads' line).
+ * Peer: GEOSSimplify_r (GEOS's Douglas-Peucker) on the same chain, in process; the GEOS LineString is
+ * built before the clock starts, as our chain is.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "bench.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include <geos_c.h>
+
+#include "fracterra/fracterra.h"
+
+#define LINE_N 1000000
+#define BENCH_SEED UINT64_C(20240501)
+#define DP_TOLERANCE 20.0 /* metres, four steps of the walk */
+
+static const double pi = 3.14159265358979323846;
+
+typedef struct {
+    ft_chain *chain;
+    GEOSContextHandle_t geos;
+    GEOSGeometry *line;
+} line_state;
+
+static line_state state;
+
+/* A correlated random walk: the heading drifts by N(0, 0.3 rad) per 5 m step. */
+static int make_chain(ft_bench_case *c)
+{
+    ft_rng *r = ft_rng_create(BENCH_SEED, 7);
+    state.chain = ft_chain_create(LINE_N, 0);
+    if (r == NULL || state.chain == NULL) {
+        ft_rng_free(r);
+        return ft_last_error_code();
+    }
+    double x = 500000.0, y = 5500000.0, dir = 0.0;
+    for (size_t i = 0; i < LINE_N; i++) {
+        state.chain->x[i] = x;
+        state.chain->y[i] = y;
+        dir += ft_rng_gaussian(r, 0.3) + 0.01 * sin(2.0 * pi * (double)i / 5000.0);
+        x += 5.0 * cos(dir);
+        y += 5.0 * sin(dir);
+    }
+    state.chain->n = LINE_N;
+    ft_rng_free(r);
+    c->state = &state;
+    c->work = LINE_N;
+    return FT_OK;
+}
+
+static int run_enhance(ft_bench_case *c)
+{
+    line_state *s = c->state;
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.iterations = 3;
+    ft_chain *out = NULL;
+    int rc = ft_line_enhance(s->chain, &o, &out);
+    ft_chain_free(out);
+    return rc;
+}
+
+static int run_simplify(ft_bench_case *c)
+{
+    line_state *s = c->state;
+    ft_chain *out = NULL;
+    int rc = ft_line_simplify(s->chain, DP_TOLERANCE, &out);
+    ft_chain_free(out);
+    return rc;
+}
+
+static int prepare_geos(ft_bench_case *c)
+{
+    int rc = make_chain(c);
+    if (rc != FT_OK)
+        return rc;
+    state.geos = GEOS_init_r();
+    if (state.geos == NULL)
+        return ft_error(FT_E_NOMEM, "GEOS_init_r failed");
+    GEOSCoordSequence *seq =
+        GEOSCoordSeq_copyFromArrays_r(state.geos, state.chain->x, state.chain->y, NULL, NULL, state.chain->n);
+    if (seq == NULL || (state.line = GEOSGeom_createLineString_r(state.geos, seq)) == NULL)
+        return ft_error(FT_E_NOMEM, "GEOS: cannot build the %zu-vertex LineString", state.chain->n);
+    return FT_OK;
+}
+
+static int run_geos_simplify(ft_bench_case *c)
+{
+    line_state *s = c->state;
+    GEOSGeometry *g = GEOSSimplify_r(s->geos, s->line, DP_TOLERANCE);
+    if (g == NULL)
+        return ft_error(FT_E_NUMERIC, "GEOSSimplify_r failed");
+    GEOSGeom_destroy_r(s->geos, g);
+    return FT_OK;
+}
+
+static int setup_enhance(ft_bench_case *c)
+{
+    c->work = LINE_N;
+    c->peer_none = "no other library implements Dutton's enhancement";
+    return FT_OK;
+}
+
+static int setup_simplify(ft_bench_case *c)
+{
+    c->work = LINE_N;
+    c->peer_prepare = prepare_geos;
+    c->peer_run = run_geos_simplify;
+    c->peer_label = "GEOSSimplify_r (GEOS " GEOS_CAPI_VERSION "), in process, tolerance 20 m";
+    return FT_OK;
+}
+
+static const ft_bench_workload workloads[] = {
+    {"line.enhance.1m.x3", "ft_line_enhance: 3 iterations (SD 1.3, UC 1, ST inf, SM 0) of a 1M-vertex chain",
+     FT_BENCH_VERTICES, setup_enhance, make_chain, run_enhance, NULL},
+    {"line.simplify.1m", "ft_line_simplify: Douglas-Peucker, tolerance 20 m, of a 1M-vertex chain (5 m steps)",
+     FT_BENCH_VERTICES, setup_simplify, make_chain, run_simplify, NULL},
+};
+
+const ft_bench_suite ft_bench_suite_line_enhance = {"line", workloads, sizeof workloads / sizeof workloads[0]};

@@ -1,0 +1,159 @@
+/* fracterra — workloads_terrain.c: terrain synthesis and variogram workloads of `make bench`.
+ *
+ *  - terrain.synth.fft.4096: ft_terrain_synth, method fft (padded and cropped, the default), 4096², D = 2.3,
+ *    ONE thread (the issue's target: at most 2x terrain.fftw.c2r.4096, peak memory under 300 MB);
+ *  - terrain.synth.sra.4096: the same with method sra, one thread (target: under 1.5 s);
+ *  - terrain.fftw.c2r.4096: one bare in-place FFTW complex-to-real transform of 4096² (plan made beforehand),
+ *    the yardstick of the fft target;
+ *  - surface.variogram.32k: ft_surface_dim_variogram with 32,000 random points (Mark & Aronson) on a 4096²
+ *    fft surface prepared untimed (target: under 0.5 s).
+ * Peer: GRASS GIS r.surf.fractal at the same size, run through `grass --tmp-project XY --exec` when grass
+ * is on PATH.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "bench.h"
+
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fft/fft.h"
+#include "fracterra/fracterra.h"
+
+#define SYNTH_N 4096
+#define SYNTH_DIM 2.3
+#define BENCH_SEED UINT64_C(20240501)
+#define VARIOGRAM_POINTS 32000
+
+static ft_grid *held_grid;      /* in the child only */
+static fftw_complex *held_spec; /* in the child only */
+
+static int grass_peer(ft_bench_case *c, double dim)
+{
+    char *script = ft_bench_strf("g.region rows=%d cols=%d && r.surf.fractal output=fracterra_bench "
+                                 "dimension=%g --overwrite --quiet", SYNTH_N, SYNTH_N, dim);
+    if (script == NULL)
+        return ft_error(FT_E_NOMEM, "out of memory");
+    const char *args[] = {"grass", "--tmp-project", "XY", "--exec", "sh", "-c", script};
+    for (size_t i = 0; i < sizeof args / sizeof args[0]; i++)
+        if ((c->peer_argv[i] = i == 6 ? script : ft_bench_strdup(args[i])) == NULL)
+            return ft_error(FT_E_NOMEM, "out of memory");
+    return FT_OK;
+}
+
+static int one_thread(ft_bench_case *c)
+{
+    (void)c;
+    omp_set_num_threads(1);
+    return FT_OK;
+}
+
+static int synth(ft_synth_method m)
+{
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.method = m;
+    o.dim = SYNTH_DIM;
+    o.seed = BENCH_SEED;
+    ft_grid *g = NULL;
+    int rc = ft_terrain_synth(SYNTH_N, SYNTH_N, &o, &g);
+    ft_grid_free(g);
+    return rc;
+}
+
+static int synth_setup(ft_bench_case *c)
+{
+    c->work = (double)SYNTH_N * SYNTH_N;
+    return grass_peer(c, SYNTH_DIM);
+}
+
+static int synth_fft_run(ft_bench_case *c)
+{
+    (void)c;
+    return synth(FT_SYNTH_FFT);
+}
+
+static int synth_sra_run(ft_bench_case *c)
+{
+    (void)c;
+    return synth(FT_SYNTH_SRA);
+}
+
+/* terrain.fftw.c2r.4096: the spectrum is filled and the plan made untimed. */
+static int c2r_setup(ft_bench_case *c)
+{
+    c->work = (double)SYNTH_N * SYNTH_N;
+    c->peer_none = "none: the yardstick of terrain.synth.fft.4096";
+    return FT_OK;
+}
+
+static void fill_spectrum(fftw_complex *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        s[i][0] = 1.0 / (double)(1 + i % 977);
+        s[i][1] = 0.5 / (double)(1 + i % 613);
+    }
+}
+
+static int c2r_prepare(ft_bench_case *c)
+{
+    one_thread(c);
+    size_t n = (size_t)SYNTH_N * (SYNTH_N / 2 + 1);
+    held_spec = ft_fft_alloc_complex(n);
+    if (held_spec == NULL)
+        return FT_E_NOMEM;
+    fill_spectrum(held_spec, n);
+    int rc = ft_fft_c2r_2d(SYNTH_N, SYNTH_N, held_spec, (double *)held_spec); /* makes the plan */
+    fill_spectrum(held_spec, n);
+    return rc;
+}
+
+static int c2r_run(ft_bench_case *c)
+{
+    (void)c;
+    return ft_fft_c2r_2d(SYNTH_N, SYNTH_N, held_spec, (double *)held_spec);
+}
+
+/* surface.variogram.32k */
+static int variogram_setup(ft_bench_case *c)
+{
+    c->work = (double)SYNTH_N * SYNTH_N;
+    c->peer_none = "none: Gwyddion's partitioning is compared in the surface suite";
+    return FT_OK;
+}
+
+static int variogram_prepare(ft_bench_case *c)
+{
+    (void)c;
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.dim = SYNTH_DIM;
+    o.seed = BENCH_SEED;
+    return ft_terrain_synth(SYNTH_N, SYNTH_N, &o, &held_grid);
+}
+
+static int variogram_run(ft_bench_case *c)
+{
+    (void)c;
+    ft_variogram_opts v = FT_VARIOGRAM_OPTS_DEFAULT;
+    v.pairs = VARIOGRAM_POINTS;
+    v.seed = BENCH_SEED;
+    v.max_lag = SYNTH_N / 8;
+    ft_dim_result *r = NULL;
+    int rc = ft_surface_dim_variogram(held_grid, &v, &r);
+    ft_dim_result_free(r);
+    return rc;
+}
+
+static const ft_bench_workload terrain_workloads[] = {
+    {"terrain.synth.fft.4096", "fft synthesis of a 4096x4096 D=2.3 surface (padded, cropped), one thread",
+     FT_BENCH_CELLS, synth_setup, one_thread, synth_fft_run, NULL},
+    {"terrain.fftw.c2r.4096", "one in-place FFTW complex-to-real 4096x4096 transform, one thread",
+     FT_BENCH_CELLS, c2r_setup, c2r_prepare, c2r_run, NULL},
+    {"terrain.synth.sra.4096", "successive random addition, 4096x4096, D=2.3, one thread", FT_BENCH_CELLS,
+     synth_setup, one_thread, synth_sra_run, NULL},
+    {"surface.variogram.32k", "variogram D of a 4096x4096 grid from 32,000 random points, lags 1-512 cells",
+     FT_BENCH_CELLS, variogram_setup, variogram_prepare, variogram_run, NULL},
+};
+
+const ft_bench_suite ft_bench_suite_terrain = {"terrain", terrain_workloads,
+                                               sizeof terrain_workloads / sizeof terrain_workloads[0]};

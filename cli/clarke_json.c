@@ -1,0 +1,328 @@
+/* fracterra — cli/clarke_json.c: Clarke's scale-based model (Clarke 1987, eqs. xi-xv) as JSON.
+ *
+ * The object holds everything `model simulate` needs and a reader wants to judge: the estimator keys
+ * every command prints ("method", "D", "r2", "stderr", "range": wavelengths fitted), then "grid" (size,
+ * geotransform, CRS WKT), "original" (mean, sd, valid cells, nodata filled), "trend" (eq. xii:
+ * beta0 + beta1 x + beta2 y, r2), "harmonics" (cutoff, total share, the list: k, l, a, b, power, share,
+ * wavelength, direction), "regression" (eqs. x, xv: slope, intercept, r2, stderr, pairs, taper,
+ * min_wavelength_cells),
+ * "D_clarke_eq8" (Clarke's eq. viii, the variogram relation, labelled) and "c". Reading is strict: every key
+ * the simulation uses must be there with the right type, and the error names it.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "clarke_json.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "internal.h"
+
+#define MODEL_NAME "clarke1987"
+
+/* ---- writing ---- */
+
+static json_object *jnum(double v)
+{
+    return cli_json_double(v);
+}
+
+static json_object *jarray(const double *v, size_t n)
+{
+    json_object *a = json_object_new_array();
+    for (size_t i = 0; i < n; i++)
+        json_object_array_add(a, jnum(v[i]));
+    return a;
+}
+
+static json_object *grid_json(const ft_clarke_model *m)
+{
+    json_object *g = json_object_new_object(), *size = json_object_new_array();
+    json_object_array_add(size, json_object_new_int64((int64_t)m->nx));
+    json_object_array_add(size, json_object_new_int64((int64_t)m->ny));
+    json_object_object_add(g, "size", size);
+    json_object_object_add(g, "geotransform", jarray(m->gt, 6));
+    json_object_object_add(g, "crs", m->crs_wkt ? json_object_new_string(m->crs_wkt) : NULL);
+    return g;
+}
+
+static json_object *harmonic_json(const ft_clarke_harmonic *h)
+{
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "k", json_object_new_int(h->k));
+    json_object_object_add(o, "l", json_object_new_int(h->l));
+    json_object_object_add(o, "a", jnum(h->a));
+    json_object_object_add(o, "b", jnum(h->b));
+    json_object_object_add(o, "amplitude", jnum(hypot(h->a, h->b)));
+    json_object_object_add(o, "power", jnum(h->power));
+    json_object_object_add(o, "share", jnum(h->share));
+    json_object_object_add(o, "wavelength", jnum(h->wavelength));
+    json_object_object_add(o, "direction", jnum(h->direction));
+    return o;
+}
+
+static json_object *harmonics_json(const ft_clarke_model *m)
+{
+    json_object *o = json_object_new_object(), *list = json_object_new_array();
+    for (size_t i = 0; i < m->nharmonics; i++)
+        json_object_array_add(list, harmonic_json(&m->harmonics[i]));
+    json_object_object_add(o, "cutoff", jnum(m->cutoff));
+    json_object_object_add(o, "count", json_object_new_int64((int64_t)m->nharmonics));
+    json_object_object_add(o, "share", jnum(m->harmonic_share));
+    json_object_object_add(o, "list", list);
+    return o;
+}
+
+static json_object *regression_json(const ft_clarke_model *m)
+{
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "slope", jnum(m->slope));
+    json_object_object_add(o, "intercept", jnum(m->intercept));
+    json_object_object_add(o, "r2", jnum(m->r2));
+    json_object_object_add(o, "stderr_slope", jnum(m->stderr_slope));
+    json_object_object_add(o, "pairs", json_object_new_int64((int64_t)m->npairs));
+    json_object_object_add(o, "taper", json_object_new_string(m->taper ? "hann" : "none"));
+    json_object_object_add(o, "min_wavelength_cells", jnum(m->min_wavelength));
+    return o;
+}
+
+/* Shortest and longest wavelength of the grid (the regression's range). */
+static void wavelength_range(const ft_clarke_model *m, double range[2])
+{
+    double cx = hypot(m->gt[1], m->gt[4]), cy = hypot(m->gt[2], m->gt[5]);
+    range[0] = 1.0 / hypot(0.5 / cx, 0.5 / cy);
+    range[1] = fmax((double)m->nx * cx, (double)m->ny * cy);
+}
+
+json_object *clarke_model_to_json(const ft_clarke_model *m)
+{
+    json_object *o = json_object_new_object(), *t = json_object_new_object(), *orig = json_object_new_object();
+    double range[2];
+    wavelength_range(m, range);
+    json_object_object_add(o, "method", json_object_new_string("clarke"));
+    json_object_object_add(o, "model", json_object_new_string(MODEL_NAME));
+    json_object_object_add(o, "D", jnum(m->D));
+    json_object_object_add(o, "D_clarke_eq8", jnum(m->D_clarke_eq8));
+    json_object_object_add(o, "r2", jnum(m->r2));
+    json_object_object_add(o, "stderr", jnum(0.5 * m->stderr_slope));
+    json_object_object_add(o, "range", jarray(range, 2));
+    json_object_object_add(o, "c", jnum(m->c));
+    json_object_object_add(o, "grid", grid_json(m));
+    json_object_object_add(orig, "mean", jnum(m->mean));
+    json_object_object_add(orig, "sd", jnum(m->sd));
+    json_object_object_add(orig, "valid", json_object_new_int64((int64_t)m->valid));
+    json_object_object_add(orig, "nodata_filled", json_object_new_int64((int64_t)m->nodata_filled));
+    json_object_object_add(o, "original", orig);
+    json_object_object_add(t, "beta0", jnum(m->beta0));
+    json_object_object_add(t, "beta1", jnum(m->beta1));
+    json_object_object_add(t, "beta2", jnum(m->beta2));
+    json_object_object_add(t, "r2", jnum(m->trend_r2));
+    json_object_object_add(o, "trend", t);
+    json_object_object_add(o, "harmonics", harmonics_json(m));
+    json_object_object_add(o, "regression", regression_json(m));
+    return o;
+}
+
+int clarke_model_write(const char *path, const ft_clarke_model *m)
+{
+    json_object *o = clarke_model_to_json(m);
+    const int flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
+    const char *text = json_object_to_json_string_ext(o, flags);
+    char *tmp = ft_tmp_path(path);
+    FILE *f = tmp ? fopen(tmp, "w") : NULL;
+    int rc = FT_OK;
+    if (f == NULL) {
+        rc = ft_error(FT_E_IO, "cannot write %s: %s", path, tmp ? strerror(errno) : "out of memory");
+    } else {
+        int bad = fputs(text, f) < 0 || fputc('\n', f) == EOF;
+        bad |= fclose(f) != 0;
+        rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
+        if (rc != FT_OK)
+            ft_tmp_discard(tmp);
+    }
+    free(tmp);
+    json_object_put(o);
+    return rc;
+}
+
+/* ---- reading ---- */
+
+typedef struct {
+    const char *what; /* the file, for messages */
+    int rc;           /* first error */
+} reader;
+
+static json_object *get(reader *r, json_object *o, const char *parent, const char *key, json_type type)
+{
+    json_object *v = NULL;
+    if (r->rc != FT_OK)
+        return NULL;
+    int found = o && json_object_object_get_ex(o, key, &v);
+    int ok = found && v && (json_object_is_type(v, type) ||
+                            (type == json_type_double && json_object_is_type(v, json_type_int)));
+    if (!ok) {
+        const char *kind = type == json_type_double || type == json_type_int ? "a number"
+                           : type == json_type_object                       ? "an object"
+                           : type == json_type_array                        ? "an array"
+                                                                             : "a string";
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s%s%s\" is %s, it must be %s", r->what, parent, *parent ? "." : "",
+                         key, found ? "malformed" : "missing", kind);
+        return NULL;
+    }
+    return v;
+}
+
+static double num(reader *r, json_object *o, const char *parent, const char *key)
+{
+    json_object *v = get(r, o, parent, key, json_type_double);
+    double d = v ? json_object_get_double(v) : 0.0;
+    if (v && !isfinite(d))
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s.%s\" is not a finite number", r->what, parent, key);
+    return d;
+}
+
+static long long integer(reader *r, json_object *o, const char *parent, const char *key, long long min)
+{
+    json_object *v = get(r, o, parent, key, json_type_int);
+    long long i = v ? (long long)json_object_get_int64(v) : 0;
+    if (v && i < min)
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s.%s\" must be >= %lld, got %lld", r->what, parent, key, min, i);
+    return i;
+}
+
+/* Element i of an array as a number (ints accepted). */
+static double element(reader *r, json_object *a, const char *key, size_t i)
+{
+    json_object *v = a ? json_object_array_get_idx(a, i) : NULL;
+    if (r->rc == FT_OK && (v == NULL || !(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int)))) {
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s\" element %zu is missing or not a number", r->what, key, i);
+        return 0.0;
+    }
+    return v ? json_object_get_double(v) : 0.0;
+}
+
+static void read_grid(reader *r, json_object *o, ft_clarke_model *m)
+{
+    json_object *g = get(r, o, "", "grid", json_type_object);
+    json_object *size = get(r, g, "grid", "size", json_type_array);
+    json_object *gt = get(r, g, "grid", "geotransform", json_type_array);
+    if (r->rc == FT_OK && (json_object_array_length(size) != 2 || json_object_array_length(gt) != 6))
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.size\" needs 2 numbers and \"grid.geotransform\" 6", r->what);
+    double nx = element(r, size, "grid.size", 0), ny = element(r, size, "grid.size", 1);
+    if (r->rc == FT_OK && (!(nx >= 2.0 && nx <= 1e9) || !(ny >= 2.0 && ny <= 1e9) || nx != floor(nx) || ny != floor(ny)))
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.size\" must be two integers >= 2, got [%g, %g]", r->what, nx, ny);
+    m->nx = (size_t)nx;
+    m->ny = (size_t)ny;
+    for (size_t i = 0; i < 6; i++)
+        m->gt[i] = element(r, gt, "grid.geotransform", i);
+    json_object *crs = NULL;
+    if (r->rc == FT_OK && g && json_object_object_get_ex(g, "crs", &crs) && crs) {
+        if (!json_object_is_type(crs, json_type_string))
+            r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.crs\" must be a WKT string or null", r->what);
+        else if ((m->crs_wkt = ft_strdup(json_object_get_string(crs))) == NULL)
+            r->rc = ft_last_error_code();
+    }
+}
+
+static void read_harmonic(reader *r, json_object *h, ft_clarke_harmonic *out)
+{
+    out->k = (int)integer(r, h, "harmonics.list[]", "k", 0);
+    out->l = (int)integer(r, h, "harmonics.list[]", "l", -(long long)INT32_MAX);
+    out->a = num(r, h, "harmonics.list[]", "a");
+    out->b = num(r, h, "harmonics.list[]", "b");
+    out->power = out->a * out->a + out->b * out->b;
+    out->share = num(r, h, "harmonics.list[]", "share");
+    out->wavelength = num(r, h, "harmonics.list[]", "wavelength");
+    out->direction = num(r, h, "harmonics.list[]", "direction");
+}
+
+static int read_harmonics(reader *r, json_object *o, ft_clarke_model **mp)
+{
+    json_object *hs = get(r, o, "", "harmonics", json_type_object);
+    json_object *list = get(r, hs, "harmonics", "list", json_type_array);
+    if (r->rc != FT_OK)
+        return r->rc;
+    size_t n = json_object_array_length(list);
+    if ((*mp = ft_clarke_model_create(n)) == NULL)
+        return r->rc = ft_last_error_code();
+    (*mp)->cutoff = num(r, hs, "harmonics", "cutoff");
+    (*mp)->harmonic_share = num(r, hs, "harmonics", "share");
+    for (size_t i = 0; i < n && r->rc == FT_OK; i++) {
+        json_object *h = json_object_array_get_idx(list, i);
+        if (!json_object_is_type(h, json_type_object))
+            r->rc = ft_error(FT_E_FORMAT, "%s: key \"harmonics.list\" element %zu is not an object", r->what, i);
+        else
+            read_harmonic(r, h, &(*mp)->harmonics[i]);
+    }
+    return r->rc;
+}
+
+static void read_scalars(reader *r, json_object *o, ft_clarke_model *m)
+{
+    json_object *t = get(r, o, "", "trend", json_type_object);
+    json_object *orig = get(r, o, "", "original", json_type_object);
+    json_object *reg = get(r, o, "", "regression", json_type_object);
+    m->beta0 = num(r, t, "trend", "beta0");
+    m->beta1 = num(r, t, "trend", "beta1");
+    m->beta2 = num(r, t, "trend", "beta2");
+    m->trend_r2 = num(r, t, "trend", "r2");
+    m->mean = num(r, orig, "original", "mean");
+    m->sd = num(r, orig, "original", "sd");
+    m->valid = (size_t)integer(r, orig, "original", "valid", 0);
+    m->nodata_filled = (size_t)integer(r, orig, "original", "nodata_filled", 0);
+    m->slope = num(r, reg, "regression", "slope");
+    m->intercept = num(r, reg, "regression", "intercept");
+    m->r2 = num(r, reg, "regression", "r2");
+    m->stderr_slope = num(r, reg, "regression", "stderr_slope");
+    m->npairs = (size_t)integer(r, reg, "regression", "pairs", 0);
+    json_object *taper = get(r, reg, "regression", "taper", json_type_string);
+    m->taper = taper && strcmp(json_object_get_string(taper), "hann") == 0;
+    m->min_wavelength = num(r, reg, "regression", "min_wavelength_cells");
+    m->D = num(r, o, "", "D");
+    m->D_clarke_eq8 = num(r, o, "", "D_clarke_eq8");
+    m->c = num(r, o, "", "c");
+    if (r->rc == FT_OK && m->sd < 0.0)
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"original.sd\" must be >= 0, got %g", r->what, m->sd);
+}
+
+int clarke_model_from_json(json_object *o, const char *what, ft_clarke_model **out)
+{
+    reader r = {what, FT_OK};
+    *out = NULL;
+    json_object *name = get(&r, o, "", "model", json_type_string);
+    if (name && strcmp(json_object_get_string(name), MODEL_NAME) != 0)
+        r.rc = ft_error(FT_E_FORMAT, "%s: key \"model\" is \"%s\", not \"%s\"", what, json_object_get_string(name),
+                        MODEL_NAME);
+    ft_clarke_model *m = NULL;
+    if (read_harmonics(&r, o, &m) == FT_OK) {
+        read_grid(&r, o, m);
+        read_scalars(&r, o, m);
+    }
+    if (r.rc != FT_OK) {
+        ft_clarke_model_free(m);
+        return r.rc;
+    }
+    *out = m;
+    return FT_OK;
+}
+
+int clarke_model_read(const char *path, ft_clarke_model **out)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return ft_error(FT_E_IO, "cannot open '%s': %s", path, strerror(errno));
+    fclose(f);
+    json_object *o = json_object_from_file(path);
+    if (o == NULL)
+        return ft_error(FT_E_FORMAT, "%s is not valid JSON: %s", path, json_util_get_last_err());
+    int rc = json_object_is_type(o, json_type_object)
+                 ? clarke_model_from_json(o, path, out)
+                 : ft_error(FT_E_FORMAT, "%s: a model must be a JSON object", path);
+    json_object_put(o);
+    return rc;
+}

@@ -1,0 +1,32 @@
+/* fracterra — cli/cmd_dim.c: `fracterra dim SUBCOMMAND ...`: the fractal dimension of what a file holds.
+ *
+ * Each subcommand is a command of its own (cmd_dim_<name>.c, named "dim <name>" so that its messages read
+ * "fracterra: dim line: ..."), listed in the table below; a new estimator adds one entry here and one line
+ * to the help text.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "cli.h"
+
+static const cli_command *const subcommands[] = {
+    &cli_cmd_dim_line,
+};
+
+static int run_dim(const cli_command *cmd, int argc, char **argv)
+{
+    return cli_run_subcommand(cmd, subcommands, sizeof subcommands / sizeof subcommands[0], argc, argv);
+}
+
+const cli_command cli_cmd_dim = {
+    "dim",
+    "fractal dimension of lines (walking divider, equipaced polygon, hybrid walk, box counting)",
+    "fracterra dim SUBCOMMAND [OPTIONS] INPUT",
+    "Measures the fractal dimension of a file's content; every estimator reports D with r\xc2\xb2, its\n"
+    "standard error, the scale range fitted and the whole log-log table (--json, --plot).\n\n"
+    "Subcommands:\n"
+    "  line   lines and polygon boundaries of a vector layer or GMT text file\n\n"
+    "Run 'fracterra dim SUBCOMMAND --help' for its options.\n\n"
+    "Example:\n"
+    "  fracterra dim line coast.geojson --method divider --plot coast-dim.svg\n",
+    run_dim,
+};

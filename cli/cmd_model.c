@@ -1,0 +1,264 @@
+/* fracterra — cli/cmd_model.c: `fracterra model fit|simulate`: Clarke's scale-based model z = T + cF + H
+ * (Clarke 1987, "Scale-based simulation of topography"; docs/terrain-clarke.md).
+ *
+ *   model fit DEM.tif [--cutoff PCT] [--no-taper] [-o MODEL.json] [--json]   calibrate on a DEM
+ *   model simulate MODEL.json OUT.tif [--refine K] [--extent E] [--seed N]   invert: a new DEM
+ *
+ * The model file is the JSON of cli/clarke_json.c; `model simulate` reads exactly what `model fit -o`
+ * writes.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "clarke_json.h"
+#include "terrain_cli.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* ---- model fit ---- */
+
+typedef struct {
+    ft_clarke_opts co;
+    const char *out;
+    int json;
+} fit_args;
+
+static int on_fit_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
+{
+    fit_args *a = ctx;
+    switch (opt) {
+    case 'c': return cli_parse_double(cmd, "--cutoff", arg, 0.0, 100.0, CLI_OPEN_LO, &a->co.cutoff);
+    case 'T': a->co.taper = 0; return CLI_CONTINUE;
+    case 'w': return cli_parse_double(cmd, "--min-wavelength", arg, 0.0, INFINITY, CLI_CLOSED, &a->co.min_wavelength);
+    case 'o': a->out = arg; return CLI_CONTINUE;
+    case 'j': a->json = 1; return CLI_CONTINUE;
+    default: return cli_usage_error(cmd, "unexpected option");
+    }
+}
+
+static void print_model(const char *dem, const ft_clarke_model *m)
+{
+    printf("Clarke model of %s (%zu x %zu cells, %zu valid, %zu nodata filled with the trend)\n", dem, m->nx, m->ny,
+           m->valid, m->nodata_filled);
+    printf("  trend     z = %.6g + %.6g x + %.6g y   (r2 %.3f)\n", m->beta0, m->beta1, m->beta2, m->trend_r2);
+    printf("  harmonics %zu at or above %g%% of the detrended variance, %.1f%% together\n", m->nharmonics,
+           m->cutoff, 100.0 * m->harmonic_share);
+    for (size_t i = 0; i < m->nharmonics; i++) {
+        const ft_clarke_harmonic *h = &m->harmonics[i];
+        printf("    (%3d,%4d)  wavelength %10.4g  direction %5.1f deg  amplitude %9.4g  share %5.2f%%\n", h->k, h->l,
+               h->wavelength, h->direction, hypot(h->a, h->b), 100.0 * h->share);
+    }
+    printf("  spectrum  log10 P = %.4f + %.4f log10 wavelength over %zu waves of %g cells or more (r2 %.3f)\n",
+           m->intercept, m->slope, m->npairs, m->min_wavelength, m->r2);
+    printf("  D = (8 - beta)/2 = %.3f   (Clarke's eq. viii, 3 - beta/2: %.3f)   c = %.4g\n", m->D, m->D_clarke_eq8,
+           m->c);
+}
+
+static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem, const ft_clarke_model *m)
+{
+    if (!(m->D > 2.0 && m->D < 3.0))
+        cli_warn(cmd, "%s: the spectrum (beta = %.2f) is %s than any fractional Brownian surface's: D = %.2f is "
+                 "outside (2,3); the model still simulates with the fitted power", dem, m->slope,
+                 m->D <= 2.0 ? "steeper" : "flatter", m->D);
+    if (a->out && clarke_model_write(a->out, m) != FT_OK)
+        return cli_fail(cmd);
+    if (!a->json) {
+        print_model(dem, m);
+        if (a->out)
+            printf("wrote %s\n", a->out);
+        return CLI_OK;
+    }
+    json_object *o = clarke_model_to_json(m);
+    json_object_object_add(o, "input", json_object_new_string(dem));
+    json_object_object_add(o, "output", a->out ? json_object_new_string(a->out) : NULL);
+    return cli_print_json(cmd, o);
+}
+
+static int run_fit(const cli_command *cmd, int argc, char **argv)
+{
+    static const struct option longopts[] = {{"cutoff", required_argument, NULL, 'c'},
+                                             {"no-taper", no_argument, NULL, 'T'},
+                                             {"min-wavelength", required_argument, NULL, 'w'},
+                                             {"output", required_argument, NULL, 'o'},
+                                             {"json", no_argument, NULL, 'j'},
+                                             CLI_OPT_HELP,
+                                             CLI_OPT_END};
+    static const char *const names[] = {"DEM"};
+    fit_args a = {.co = FT_CLARKE_OPTS_DEFAULT};
+    int first = 0;
+    int rc = cli_parse_options(cmd, argc, argv, longopts, "o:j", on_fit_option, &a, &first);
+    if (rc == CLI_CONTINUE)
+        rc = cli_expect_args(cmd, argc, argv, first, names, 1);
+    if (rc != CLI_CONTINUE)
+        return rc;
+    if (a.out && ft_io_check_writable(a.out) != FT_OK)
+        return cli_fail(cmd);
+    ft_grid *g = NULL;
+    if (terrain_read_dem(cmd, argv[first], &g) != CLI_CONTINUE)
+        return CLI_FAIL;
+    ft_clarke_model *m = NULL;
+    a.co.progress = cli_progress();
+    rc = ft_clarke_fit(g, &a.co, &m) == FT_OK ? fit_report(cmd, &a, argv[first], m) : cli_fail(cmd);
+    ft_clarke_model_free(m);
+    ft_grid_free(g);
+    return rc;
+}
+
+static const cli_command cmd_model_fit = {
+    "model fit",
+    "fit Clarke's model to a DEM",
+    "fracterra model fit DEM [--cutoff PCT] [--no-taper] [--min-wavelength CELLS] [-o MODEL.json] [--json]",
+    "Fits z = T + cF + H (Clarke 1987): T the least-squares plane, H the harmonics of the detrended DEM\n"
+    "holding at least PCT percent of its variance, F fractal noise whose power follows the log-log\n"
+    "regression of harmonic power on wavelength over every harmonic. D = (8 - beta)/2 for the 2-D\n"
+    "spectrum; Clarke's eq. viii value (3 - beta/2) is printed as well, labelled. Nodata cells are filled\n"
+    "with the trend before the Fourier analysis (counted in \"nodata_filled\").\n\n"
+    "Options:\n"
+    "  --cutoff PCT        share of the detrended variance a harmonic must reach, in (0,100] (default 2.5)\n"
+    "  --no-taper          regress on the raw periodogram (Clarke) instead of a Hann-tapered one\n"
+    "  --min-wavelength N  regress over the waves of at least N cells (default 4: aliasing flattens the\n"
+    "                      band near the Nyquist frequency); 0 = every wave, as Clarke\n"
+    "  -o, --output FILE   write the model (JSON) for `fracterra model simulate`\n"
+    "  -j, --json          print the model: \"method\", \"D\", \"D_clarke_eq8\", \"r2\", \"stderr\", \"range\",\n"
+    "                      \"c\", \"grid\", \"original\", \"trend\", \"harmonics\", \"regression\", \"input\", \"output\"\n"
+    "  -h, --help          print this help\n\n"
+    "Example:\n"
+    "  fracterra model fit dem.tif --cutoff 2.5 -o dem-model.json\n",
+    run_fit,
+};
+
+/* ---- model simulate ---- */
+
+typedef struct {
+    ft_clarke_sim_opts so;
+    const char *driver;
+    int json;
+} sim_args;
+
+static int on_sim_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
+{
+    sim_args *a = ctx;
+    switch (opt) {
+    case 'r': return cli_parse_int(cmd, "--refine", arg, 1, 64, &a->so.refine);
+    case 'e': return cli_parse_int(cmd, "--extent", arg, 1, 16, &a->so.extent);
+    case 'S': return terrain_parse_seed(cmd, arg, &a->so.seed);
+    case 'f': a->driver = arg; return CLI_CONTINUE;
+    case 'j': a->json = 1; return CLI_CONTINUE;
+    default: return cli_usage_error(cmd, "unexpected option");
+    }
+}
+
+static int sim_report(const cli_command *cmd, const sim_args *a, const char *out, const ft_grid *g, double c)
+{
+    if (!a->json) {
+        printf("wrote %s: %zu x %zu cells, c = %.4g, seed %llu\n", out, g->nx, g->ny, c,
+               (unsigned long long)a->so.seed);
+        return CLI_OK;
+    }
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "output", json_object_new_string(out));
+    json_object_object_add(o, "seed", json_object_new_uint64(a->so.seed));
+    json_object_object_add(o, "refine", json_object_new_int(a->so.refine));
+    json_object_object_add(o, "extent", json_object_new_int(a->so.extent));
+    json_object_object_add(o, "c", cli_json_double(c));
+    json_object_object_add(o, "grid", terrain_grid_figures(g));
+    return cli_print_json(cmd, o);
+}
+
+static int simulate(const cli_command *cmd, sim_args *a, const char *model_path, const char *out)
+{
+    ft_clarke_model *m = NULL;
+    ft_grid *g = NULL;
+    ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+    double c = 0.0;
+    wo.driver = a->driver;
+    a->so.c_used = &c;
+    a->so.progress = cli_progress();
+    int rc = ft_io_check_writable(out);
+    if (rc == FT_OK)
+        rc = clarke_model_read(model_path, &m);
+    if (rc == FT_OK)
+        rc = ft_clarke_simulate(m, &a->so, &g);
+    if (rc == FT_OK)
+        rc = ft_io_write_grid(out, g, &wo);
+    int status = rc == FT_OK ? sim_report(cmd, a, out, g, c) : cli_fail(cmd);
+    ft_grid_free(g);
+    ft_clarke_model_free(m);
+    return status;
+}
+
+static int run_simulate(const cli_command *cmd, int argc, char **argv)
+{
+    static const struct option longopts[] = {{"refine", required_argument, NULL, 'r'},
+                                             {"extent", required_argument, NULL, 'e'},
+                                             {"seed", required_argument, NULL, 'S'},
+                                             {"format", required_argument, NULL, 'f'},
+                                             {"json", no_argument, NULL, 'j'},
+                                             CLI_OPT_HELP,
+                                             CLI_OPT_END};
+    static const char *const names[] = {"MODEL.json", "OUT"};
+    sim_args a = {.so = FT_CLARKE_SIM_OPTS_DEFAULT};
+    a.so.seed = TERRAIN_DEFAULT_SEED;
+    int first = 0;
+    int rc = cli_parse_options(cmd, argc, argv, longopts, "f:j", on_sim_option, &a, &first);
+    if (rc == CLI_CONTINUE)
+        rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc != CLI_CONTINUE)
+        return rc;
+    return simulate(cmd, &a, argv[first], argv[first + 1]);
+}
+
+static const cli_command cmd_model_simulate = {
+    "model simulate",
+    "simulate a DEM from a Clarke model",
+    "fracterra model simulate MODEL.json OUT [--refine K] [--extent E] [--seed N] [-f DRIVER] [--json]",
+    "Inverts a model written by `fracterra model fit -o`: the trend T and the kept harmonics H are rebuilt,\n"
+    "fractal noise F with the fitted power per harmonic and random phases is added, and c is chosen so that\n"
+    "the cells over the fitted extent have the original's mean and standard deviation (Clarke's procedure).\n"
+    "The output keeps the model's CRS; its cells are K times smaller with --refine K.\n\n"
+    "Options:\n"
+    "  --refine K        K times more cells along each axis over the same extent, in [1,64] (default 1)\n"
+    "  --extent E        E times the extent along each axis from the same corner, in [1,16] (default 1)\n"
+    "  --seed N          phases of F (default 1; printed in the JSON)\n"
+    "  -f, --format DRV  GDAL driver of the output (default from the extension)\n"
+    "  -j, --json        print {\"output\", \"seed\", \"refine\", \"extent\", \"c\", \"grid\"}\n"
+    "  -h, --help        print this help\n\n"
+    "Example:\n"
+    "  fracterra model simulate dem-model.json finer.tif --refine 4 --seed 7\n",
+    run_simulate,
+};
+
+/* ---- dispatch ---- */
+
+static int run_model(const cli_command *cmd, int argc, char **argv)
+{
+    if (argc < 2)
+        return cli_usage_error(cmd, "missing SUBCOMMAND (fit or simulate)");
+    const char *name = argv[1];
+    if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
+        cli_print_help(cmd);
+        return CLI_OK;
+    }
+    if (strcmp(name, "fit") == 0)
+        return cmd_model_fit.run(&cmd_model_fit, argc - 1, argv + 1);
+    if (strcmp(name, "simulate") == 0)
+        return cmd_model_simulate.run(&cmd_model_simulate, argc - 1, argv + 1);
+    if (name[0] == '-')
+        return cli_usage_error(cmd, "unknown option '%s' (options follow the SUBCOMMAND)", name);
+    return cli_usage_error(cmd, "unknown subcommand '%s' (fit or simulate)", name);
+}
+
+const cli_command cli_cmd_model = {
+    "model",
+    "Clarke's scale-based terrain model: fit it to a DEM, simulate from it",
+    "fracterra model fit|simulate [OPTIONS] ARGS...",
+    "Clarke (1987): terrain = linear trend + significant Fourier harmonics + scaled fractal noise.\n\n"
+    "Subcommands:\n"
+    "  fit DEM [-o MODEL.json]           calibrate the model on a DEM\n"
+    "  simulate MODEL.json OUT [--refine K]  a new DEM from the model\n\n"
+    "Run 'fracterra model SUBCOMMAND --help' for its options.\n\n"
+    "Example:\n"
+    "  fracterra model fit dem.tif -o m.json && fracterra model simulate m.json sim.tif --refine 2\n",
+    run_model,
+};

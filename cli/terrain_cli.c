@@ -1,0 +1,68 @@
+/* fracterra — cli/terrain_cli.c: helpers shared by the terrain commands (see terrain_cli.h).
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "terrain_cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(arg, &end, 10);
+    if (errno != 0 || end == arg || *end != '\0' || arg[0] == '-' || arg[0] == '+')
+        return cli_usage_error(cmd, "--seed must be an integer in [0,18446744073709551615], got '%s'", arg);
+    *seed = (uint64_t)v;
+    return CLI_CONTINUE;
+}
+
+int terrain_read_dem(const cli_command *cmd, const char *path, ft_grid **out)
+{
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    if (ft_io_read_grid(path, &ro, out) != FT_OK)
+        return cli_fail(cmd);
+    return CLI_CONTINUE;
+}
+
+json_object *terrain_report_start(int json, const char *in, const char *out)
+{
+    if (!json) {
+        printf("wrote %s\n", out);
+        return NULL;
+    }
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "input", json_object_new_string(in));
+    json_object_object_add(o, "output", json_object_new_string(out));
+    return o;
+}
+
+json_object *terrain_grid_figures(const ft_grid *g)
+{
+    double s = 0.0, ss = 0.0, zmin = INFINITY, zmax = -INFINITY;
+    size_t n = 0;
+    for (size_t i = 0; i < g->nx * g->ny; i++) {
+        if ((g->mask && !g->mask[i]) || !isfinite(g->z[i]))
+            continue;
+        s += g->z[i];
+        zmin = fmin(zmin, g->z[i]);
+        zmax = fmax(zmax, g->z[i]);
+        n++;
+    }
+    double mean = n ? s / (double)n : NAN;
+    for (size_t i = 0; i < g->nx * g->ny && n; i++)
+        if ((g->mask == NULL || g->mask[i]) && isfinite(g->z[i]))
+            ss += (g->z[i] - mean) * (g->z[i] - mean);
+    json_object *o = json_object_new_object(), *size = json_object_new_array();
+    json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
+    json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
+    json_object_object_add(o, "size", size);
+    json_object_object_add(o, "mean", cli_json_double(mean));
+    json_object_object_add(o, "sd", cli_json_double(n ? sqrt(ss / (double)n) : NAN));
+    json_object_object_add(o, "min", cli_json_double(zmin));
+    json_object_object_add(o, "max", cli_json_double(zmax));
+    return o;
+}

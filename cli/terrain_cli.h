@@ -1,0 +1,25 @@
+/* fracterra — cli/terrain_cli.h: what the terrain commands (synth, model, hillshade, render) share: seeds,
+ * reading a DEM with messages that name the file, and the figures of a grid for their JSON.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CLI_TERRAIN_H
+#define FRACTERRA_CLI_TERRAIN_H
+
+#include <stdint.h>
+
+#include "cli.h"
+
+#define TERRAIN_DEFAULT_SEED 1
+
+/** Parses --seed (a decimal integer in [0, 2^64 - 1]): CLI_CONTINUE, or CLI_USAGE naming the value. */
+int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed);
+/** Reads band 1 of a DEM: CLI_CONTINUE, or CLI_FAIL with "fracterra: CMD: <message naming the file>". */
+int terrain_read_dem(const cli_command *cmd, const char *path, ft_grid **out);
+/** Without --json, prints "wrote OUT" and returns NULL; with it, a new object {"input", "output"} for the
+ *  command to complete and print (cli_print_json). */
+json_object *terrain_report_start(int json, const char *in, const char *out);
+/** {"size": [nx, ny], "mean", "sd", "min", "max"} of the valid cells. */
+json_object *terrain_grid_figures(const ft_grid *g);
+
+#endif /* FRACTERRA_CLI_TERRAIN_H */

@@ -1,0 +1,297 @@
+/* fracterra — io/dem_processing.c: hillshade and colour relief through GDAL's own DEM processing
+ * (GDALDEMProcessing, the engine of gdaldem), and CRS strings to WKT (OSRSetFromUserInput).
+ *
+ * The hillshade is gdaldem's (Horn's slope, -compute_edges so that the border cells get a value, 0 kept
+ * for nodata). With colour, gdaldem's "color-relief" maps the DEM through a built-in hypsometric ramp
+ * written to /vsimem (stops at fractions of the DEM's range, "nv" transparent), and each colour is
+ * multiplied by 0.25 + 0.75 * shade / 255 (an ambient term keeps shadows readable). Intermediate
+ * products live in /vsimem; the output (any GDAL raster driver that can CreateCopy, chosen by extension:
+ * PNG, GeoTIFF, ...) is written under a temporary name and renamed when complete. A geographic DEM
+ * (degrees) gets scale 111120 unless the caller gives one, as gdaldem's documentation advises. GDAL's
+ * auxiliary .aux.xml files are off during the call: neither the input's folder nor the output's gets one.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <math.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cpl_conv.h>
+#include <cpl_string.h>
+#include <cpl_vsi.h>
+#include <gdal_utils.h>
+
+#include "internal.h"
+#include "io/io_internal.h"
+
+#define SHADE_AMBIENT 0.25
+#define DEGREE_SCALE 111120.0
+
+static atomic_ulong vsimem_counter;
+
+/* Hypsometric tints from lowland green through tan and brown to white summits, as render/grid_image.c:
+ * fraction of the DEM's range, red, green, blue. */
+static const struct {
+    double t;
+    int r, g, b;
+} ramp_stops[] = {{0.00, 61, 125, 69},   {0.20, 140, 181, 107}, {0.45, 232, 217, 148},
+                  {0.70, 181, 138, 89},  {0.88, 140, 115, 102}, {1.00, 250, 250, 250}};
+
+typedef struct {
+    char hs[96], cr[96], ramp[96]; /* /vsimem names of this call */
+} vsimem_names;
+
+static void names_init(vsimem_names *n)
+{
+    unsigned long id = atomic_fetch_add(&vsimem_counter, 1);
+    snprintf(n->hs, sizeof n->hs, "/vsimem/fracterra_hs_%p_%lu.tif", (void *)n, id);
+    snprintf(n->cr, sizeof n->cr, "/vsimem/fracterra_cr_%p_%lu.tif", (void *)n, id);
+    snprintf(n->ramp, sizeof n->ramp, "/vsimem/fracterra_ramp_%p_%lu.txt", (void *)n, id);
+}
+
+static void names_release(const vsimem_names *n)
+{
+    VSIUnlink(n->hs);
+    VSIUnlink(n->cr);
+    VSIUnlink(n->ramp);
+}
+
+static int check_opts(const ft_io_hillshade_opts *o)
+{
+    if (!isfinite(o->azimuth) || o->azimuth < 0.0 || o->azimuth > 360.0)
+        return ft_error(FT_E_INVALID, "hillshade azimuth must be in [0,360] degrees, got %g", o->azimuth);
+    if (!isfinite(o->altitude) || o->altitude <= 0.0 || o->altitude > 90.0)
+        return ft_error(FT_E_INVALID, "hillshade altitude must be in (0,90] degrees, got %g", o->altitude);
+    if (!isfinite(o->z_factor) || o->z_factor <= 0.0)
+        return ft_error(FT_E_INVALID, "hillshade z-factor must be > 0, got %g", o->z_factor);
+    if (!isfinite(o->scale) || o->scale < 0.0)
+        return ft_error(FT_E_INVALID, "hillshade scale must be > 0 (0 = automatic), got %g", o->scale);
+    if (o->band < 1)
+        return ft_error(FT_E_INVALID, "hillshade band must be >= 1, got %d", o->band);
+    return FT_OK;
+}
+
+/* 111120 for a DEM in degrees, 1 otherwise, unless the caller set a scale. */
+static double effective_scale(GDALDatasetH ds, double scale)
+{
+    if (scale > 0.0)
+        return scale;
+    const char *wkt = GDALGetProjectionRef(ds);
+    OGRSpatialReferenceH srs = wkt && *wkt ? OSRNewSpatialReference(wkt) : NULL;
+    int geographic = srs != NULL && OSRIsGeographic(srs);
+    if (srs)
+        OSRDestroySpatialReference(srs);
+    return geographic ? DEGREE_SCALE : 1.0;
+}
+
+/* Runs GDALDEMProcessing(mode) from src to the /vsimem GeoTIFF dst; the result stays open in *out. */
+static int dem_run(GDALDatasetH src, const char *mode, const char *dst, const char *color_file, char **argv,
+                   GDALDatasetH *out)
+{
+    ft_io_gdal_reset();
+    GDALDEMProcessingOptions *opts = GDALDEMProcessingOptionsNew(argv, NULL);
+    if (opts == NULL)
+        return ft_io_fail(FT_E_INVALID, "hillshade: GDAL rejected the %s options", mode);
+    int usage_error = 0;
+    *out = GDALDEMProcessing(dst, src, mode, color_file, opts, &usage_error);
+    GDALDEMProcessingOptionsFree(opts);
+    if (*out == NULL)
+        return ft_io_fail(FT_E_IO, "hillshade: GDAL's %s failed", mode);
+    return FT_OK;
+}
+
+static int run_hillshade(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *dst, GDALDatasetH *out)
+{
+    char az[32], alt[32], z[32], s[32], band[16];
+    snprintf(az, sizeof az, "%.17g", o->azimuth);
+    snprintf(alt, sizeof alt, "%.17g", o->altitude);
+    snprintf(z, sizeof z, "%.17g", o->z_factor);
+    snprintf(s, sizeof s, "%.17g", effective_scale(src, o->scale));
+    snprintf(band, sizeof band, "%d", o->band);
+    char *argv[] = {"-q", "-of", "GTiff", "-b", band, "-az", az, "-alt", alt, "-z", z, "-s", s, "-compute_edges", NULL};
+    return dem_run(src, "hillshade", dst, NULL, argv, out);
+}
+
+/* The ramp at the DEM's own elevations (absolute values: no statistics pass, no message from GDAL). */
+static int write_ramp(GDALDatasetH src, int band, const char *path)
+{
+    double mm[2];
+    ft_io_gdal_reset();
+    if (GDALComputeRasterMinMax(GDALGetRasterBand(src, band), FALSE, mm) != CE_None || ft_io_gdal_failed())
+        return ft_io_fail(FT_E_EMPTY, "hillshade: the DEM has no valid cell to colour");
+    VSILFILE *f = VSIFOpenL(path, "wb");
+    if (f == NULL)
+        return ft_error(FT_E_IO, "hillshade: cannot write the colour ramp %s", path);
+    int ok = VSIFPrintfL(f, "nv 0 0 0 0\n") > 0;
+    for (size_t i = 0; i < sizeof ramp_stops / sizeof ramp_stops[0]; i++)
+        ok &= VSIFPrintfL(f, "%.17g %d %d %d\n", mm[0] + ramp_stops[i].t * (mm[1] - mm[0]), ramp_stops[i].r,
+                          ramp_stops[i].g, ramp_stops[i].b) > 0;
+    ok &= VSIFCloseL(f) == 0;
+    return ok ? FT_OK : ft_error(FT_E_IO, "hillshade: cannot write the colour ramp %s", path);
+}
+
+static int run_color(GDALDatasetH src, const ft_io_hillshade_opts *o, const vsimem_names *n, GDALDatasetH *out)
+{
+    char band[16];
+    snprintf(band, sizeof band, "%d", o->band);
+    char *argv[] = {"-q", "-of", "GTiff", "-b", band, "-alpha", NULL};
+    int rc = write_ramp(src, o->band, n->ramp);
+    return rc == FT_OK ? dem_run(src, "color-relief", n->cr, n->ramp, argv, out) : rc;
+}
+
+/* Reads band b of ds as bytes. */
+static int read_band(GDALDatasetH ds, int b, unsigned char *buf, int w, int h)
+{
+    GDALRasterBandH band = GDALGetRasterBand(ds, b);
+    if (band == NULL || GDALRasterIO(band, GF_Read, 0, 0, w, h, buf, w, h, GDT_Byte, 0, 0) != CE_None)
+        return ft_io_fail(FT_E_IO, "hillshade: cannot read band %d of an intermediate product", b);
+    return FT_OK;
+}
+
+/* RGBA = colour relief x shade, in a MEM dataset with the DEM's georeferencing. */
+static int combine(GDALDatasetH hs, GDALDatasetH cr, GDALDatasetH *out)
+{
+    int w = GDALGetRasterXSize(hs), h = GDALGetRasterYSize(hs);
+    size_t n = (size_t)w * (size_t)h;
+    unsigned char *px = ft_malloc(5 * n);
+    if (px == NULL)
+        return ft_last_error_code();
+    int rc = read_band(hs, 1, px + 4 * n, w, h);
+    for (int b = 1; b <= 4 && rc == FT_OK; b++)
+        rc = read_band(cr, b, px + (size_t)(b - 1) * n, w, h);
+    if (rc == FT_OK) {
+        for (size_t i = 0; i < n; i++) {
+            double f = SHADE_AMBIENT + (1.0 - SHADE_AMBIENT) * px[4 * n + i] / 255.0;
+            for (int b = 0; b < 3; b++)
+                px[(size_t)b * n + i] = (unsigned char)lround(px[(size_t)b * n + i] * f);
+            if (px[4 * n + i] == 0)
+                px[3 * n + i] = 0; /* nodata in the hillshade */
+        }
+        GDALDriverH mem = GDALGetDriverByName("MEM");
+        *out = mem ? GDALCreate(mem, "", w, h, 4, GDT_Byte, NULL) : NULL;
+        if (*out == NULL)
+            rc = ft_io_fail(FT_E_NOMEM, "hillshade: cannot make a %d x %d RGBA image", w, h);
+    }
+    if (rc == FT_OK) {
+        double gt[6];
+        if (GDALGetGeoTransform(hs, gt) == CE_None)
+            GDALSetGeoTransform(*out, gt);
+        GDALSetProjection(*out, GDALGetProjectionRef(hs));
+        static const GDALColorInterp ci[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand, GCI_AlphaBand};
+        for (int b = 0; b < 4; b++)
+            GDALSetRasterColorInterpretation(GDALGetRasterBand(*out, b + 1), ci[b]);
+        if (GDALDatasetRasterIO(*out, GF_Write, 0, 0, w, h, px, w, h, GDT_Byte, 4, NULL, 0, 0, 0) != CE_None)
+            rc = ft_io_fail(FT_E_IO, "hillshade: cannot fill the RGBA image");
+    }
+    free(px);
+    return rc;
+}
+
+/* CreateCopy of ds to path through a temporary name. */
+static int write_copy(GDALDatasetH ds, const char *path)
+{
+    GDALDriverH drv = NULL;
+    int rc = ft_io_find_driver(path, NULL, GDAL_DCAP_RASTER, &drv);
+    if (rc != FT_OK)
+        return rc;
+    if (GDALGetMetadataItem(drv, GDAL_DCAP_CREATECOPY, NULL) == NULL &&
+        GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) == NULL)
+        return ft_error(FT_E_UNSUPPORTED, "hillshade: GDAL's %s driver cannot write %s", GDALGetDriverShortName(drv),
+                        path);
+    char *tmp = ft_tmp_path(path);
+    if (tmp == NULL)
+        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    ft_io_gdal_reset();
+    GDALDatasetH out = GDALCreateCopy(drv, tmp, ds, FALSE, NULL, NULL, NULL);
+    if (out != NULL)
+        GDALClose(out);
+    int ok = out != NULL && !ft_io_gdal_failed();
+    rc = ok ? ft_tmp_commit(tmp, path) : ft_io_fail(FT_E_IO, "cannot write %s", path);
+    if (rc != FT_OK)
+        ft_tmp_discard(tmp);
+    free(tmp);
+    return rc;
+}
+
+static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *out_path,
+                           const vsimem_names *n)
+{
+    GDALDatasetH hs = NULL, cr = NULL, rgba = NULL;
+    int rc = run_hillshade(src, o, n->hs, &hs);
+    if (rc == FT_OK && o->color)
+        rc = run_color(src, o, n, &cr);
+    if (rc == FT_OK && o->color)
+        rc = combine(hs, cr, &rgba);
+    if (rc == FT_OK)
+        rc = write_copy(o->color ? rgba : hs, out_path);
+    if (rgba)
+        GDALClose(rgba);
+    if (cr)
+        GDALClose(cr);
+    if (hs)
+        GDALClose(hs);
+    return rc;
+}
+
+static int open_and_shade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *o)
+{
+    GDALDatasetH src = NULL;
+    int rc = ft_io_open(dem_path, GDAL_OF_RASTER, &src);
+    if (rc != FT_OK)
+        return rc;
+    if (o->band > GDALGetRasterCount(src)) {
+        rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
+                      o->band);
+    } else {
+        vsimem_names n;
+        names_init(&n);
+        rc = shade_and_write(src, o, out_path, &n);
+        names_release(&n);
+    }
+    GDALClose(src);
+    return rc;
+}
+
+int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts)
+{
+    ft_io_hillshade_opts defaults = FT_IO_HILLSHADE_OPTS_DEFAULT;
+    const ft_io_hillshade_opts *o = opts ? opts : &defaults;
+    if (dem_path == NULL || out_path == NULL || *out_path == '\0')
+        return ft_error(FT_E_INVALID, "hillshade: no input or output path given");
+    int rc = check_opts(o);
+    if (rc == FT_OK)
+        rc = ft_io_check_writable(out_path);
+    if (rc != FT_OK)
+        return rc;
+    /* No .aux.xml beside the user's DEM nor beside the output. */
+    const char *pam = CPLGetThreadLocalConfigOption("GDAL_PAM_ENABLED", NULL);
+    char *saved = pam ? CPLStrdup(pam) : NULL;
+    CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO");
+    rc = open_and_shade(dem_path, out_path, o);
+    CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", saved);
+    CPLFree(saved);
+    return rc;
+}
+
+int ft_io_crs_to_wkt(const char *user_input, char **wkt)
+{
+    if (wkt == NULL)
+        return ft_error(FT_E_INVALID, "CRS: no output pointer given");
+    *wkt = NULL;
+    if (user_input == NULL || *user_input == '\0')
+        return ft_error(FT_E_INVALID, "CRS: empty definition");
+    ft_io_init();
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(NULL);
+    if (srs == NULL)
+        return ft_error(FT_E_NOMEM, "CRS: out of memory");
+    ft_io_gdal_reset();
+    int rc = FT_OK;
+    if (OSRSetFromUserInput(srs, user_input) != OGRERR_NONE)
+        rc = ft_io_fail(FT_E_INVALID, "unknown CRS '%s' (give EPSG:n, a WKT string or a PROJ string)", user_input);
+    else if ((*wkt = ft_io_srs_to_wkt(srs)) == NULL)
+        rc = ft_error(FT_E_INVALID, "CRS '%s' cannot be written as WKT", user_input);
+    OSRDestroySpatialReference(srs);
+    return rc;
+}

@@ -1,0 +1,57 @@
+/* fracterra — src/line/line_dim_internal.h: what the chain-dimension estimators (divider.c, equipaced.c,
+ * hybrid_walk.c, box_count.c) offer the dispatcher line_dim.c. Not installed.
+ *
+ * A walk source presents a chain as the vertex sequence a walk follows: an open chain forwards or
+ * backwards, or a ring from vertex 0 round to vertex 0 again (the closing vertex repeated virtually).
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_LINE_DIM_INTERNAL_H
+#define FRACTERRA_LINE_DIM_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fracterra/core.h"
+
+typedef struct {
+    const double *x, *y; /**< the chain's arrays */
+    size_t n;            /**< its vertices */
+    size_t m;            /**< vertices of the walked sequence: n (open) or n + 1 (ring, closes on vertex 0) */
+    int backward;        /**< 1: walk an open chain from its last vertex to its first */
+} ft_walk_src;
+
+/** The walked sequence of c (n >= 2) from its start (from_end = 0) or its end (1; ignored for rings). */
+void ft_walk_src_init(ft_walk_src *w, const ft_chain *c, int from_end);
+
+/** Vertex k (0 <= k < w->m) of the walked sequence. */
+static inline void ft_walk_vertex(const ft_walk_src *w, size_t k, double *x, double *y)
+{
+    size_t i = k == w->n ? 0 : (w->backward ? w->n - 1 - k : k);
+    *x = w->x[i];
+    *y = w->y[i];
+}
+
+/** Divider length of one chain (n >= 2) at ruler r > 0: the walk from the start, or for an open chain with
+ *  both_ends set the mean of the walks from either end. *steps gets the (mean) number of whole steps. */
+void ft_line_divider_length(const ft_chain *c, double r, int both_ends, double *length, double *steps);
+
+/** Equipaced polygon length of one chain (n >= 2) at arc-length spacing s > 0; *steps gets the number of
+ *  whole spacings (the polygon's sides of length s along the chain). */
+void ft_line_equipaced_length(const ft_chain *c, double s, double *length, double *steps);
+
+/** Hybrid-walk length of one chain (n >= 2) at ruler r > 0 (both_ends as for the divider); *steps gets the
+ *  (mean) interpolated step count, length / r. */
+void ft_line_hybrid_length(const ft_chain *c, double r, int both_ends, double *length, double *steps);
+
+/** Box counting at one box side: the fewest cells crossed over k x k grid origins offset by multiples of
+ *  size / k from (ox, oy). Chains with fewer than 2 vertices count their single vertex's cell (n = 1) or
+ *  nothing. Fails with FT_E_INVALID if the traversal would visit more than FT_BOX_MAX_CELLS cells,
+ *  FT_E_NOMEM if memory runs out. */
+int ft_line_box_count_min(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
+                          uint64_t *count);
+
+/** Upper bound on the cells one box count may visit (keeps memory and time bounded for tiny boxes). */
+#define FT_BOX_MAX_CELLS ((uint64_t)1 << 30)
+
+#endif /* FRACTERRA_LINE_DIM_INTERNAL_H */

@@ -1,0 +1,38 @@
+/* fracterra — private helpers shared by Clarke's model fit and simulation (src/terrain/clarke_*.c).
+ * Clarke (1987) "Scale-based simulation of topography", eqs. vi, ix, xv.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CLARKE_INTERNAL_H
+#define FRACTERRA_CLARKE_INTERNAL_H
+
+#include <stddef.h>
+
+#include "fracterra/terrain.h"
+
+/* What bin (kx, ky) of an ny x (nx/2+1) half-spectrum is, as one of the grid's real plane waves. */
+typedef enum {
+    CLARKE_BIN_SKIP = 0, /* the DC term, or the conjugate twin of a bin already counted */
+    CLARKE_BIN_PAIR = 1, /* a wave with its conjugate twin outside the half-spectrum (or in column 0/Nyquist) */
+    CLARKE_BIN_SELF = 2  /* a self-conjugate Nyquist bin: a real cosine alone */
+} clarke_bin;
+
+clarke_bin clarke_bin_kind(size_t kx, size_t ky, size_t nx, size_t ny);
+/* The signed row frequency of half-spectrum row ky: ky for ky <= ny/2, ky - ny above. */
+int clarke_signed_l(size_t ky, size_t ny);
+
+/* Ground geometry of the fitted grid: unit vectors of its column and row axes and their lengths. */
+typedef struct {
+    double ex[2], ey[2]; /* map-coordinate unit vectors along increasing column and increasing row */
+    double lx, ly;       /* extent along the columns (nx cells) and the rows (ny cells), ground units */
+} clarke_frame;
+
+/* FT_E_INVALID naming the bad value unless the geotransform has finite, non-degenerate axes. */
+int clarke_frame_init(const double gt[6], size_t nx, size_t ny, clarke_frame *f);
+/* Wavelength (ground units) of wave (k, l): 1 / |(k / lx) ex + (l / ly) ey|; INFINITY for (0, 0). */
+double clarke_wavelength(const clarke_frame *f, int k, int l);
+/* Wavelength (ground units) and direction (degrees clockwise from north, in [0, 180)) of wave (k, l). */
+void clarke_wave_geometry(const clarke_frame *f, int k, int l, double *wavelength, double *direction);
+/* The regression's power for one plane wave of this wavelength (eq. xv, log10 form). */
+double clarke_power(const ft_clarke_model *m, double wavelength);
+
+#endif /* FRACTERRA_CLARKE_INTERNAL_H */
