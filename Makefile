@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 PREFIX ?= /usr/local
 
-.PHONY: all deps configure build demo test bench install clean
+.PHONY: all deps configure build demo test bench accuracy install clean
 
 all: build
 
@@ -26,6 +26,12 @@ test: build
 
 bench: build
 	./$(BUILD)/fracterra_bench
+
+# Arakawa & Krotkov Table 1 on the scattered-point estimator; ACCURACY_FLAGS="--surfaces 20" for a shorter run.
+ACCURACY_FLAGS ?= --surfaces 100 --synth exact,sra,fft --snr 30,25,20
+accuracy: build
+	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS)
+	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --jitter
 
 install: build
 	cmake --install $(BUILD)

@@ -71,6 +71,9 @@ extern const ft_bench_suite ft_bench_suite_terrain;
 extern const ft_bench_suite ft_bench_suite_clarke;
 extern const ft_bench_suite ft_bench_suite_line_dim;
 extern const ft_bench_suite ft_bench_suite_line_enhance;
+extern const ft_bench_suite ft_bench_suite_surface;
+extern const ft_bench_suite ft_bench_suite_urban;
+extern const ft_bench_suite ft_bench_suite_points;
 
 /* ------------------------------------------------------------------------------------------------
  * Helpers the harness offers to workloads

@@ -38,6 +38,9 @@ static const ft_bench_suite *const bench_suites[] = {
     &ft_bench_suite_clarke,
     &ft_bench_suite_line_dim,
     &ft_bench_suite_line_enhance,
+    &ft_bench_suite_surface,
+    &ft_bench_suite_urban,
+    &ft_bench_suite_points,
 };
 #define N_SUITES (sizeof bench_suites / sizeof bench_suites[0])
 

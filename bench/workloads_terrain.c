@@ -2,6 +2,7 @@
  *
  *  - terrain.synth.fft.4096: ft_terrain_synth, method fft (padded and cropped, the default), 4096², D = 2.3,
  *    ONE thread (the issue's target: at most 2x terrain.fftw.c2r.4096, peak memory under 300 MB);
+ *  - terrain.synth.fft.4096.threads: the same on OMP_NUM_THREADS threads (same cells, bit for bit);
  *  - terrain.synth.sra.4096: the same with method sra, one thread (target: under 1.5 s);
  *  - terrain.fftw.c2r.4096: one bare in-place FFTW complex-to-real transform of 4096² (plan made beforehand),
  *    the yardstick of the fft target;
@@ -147,6 +148,8 @@ static int variogram_run(ft_bench_case *c)
 static const ft_bench_workload terrain_workloads[] = {
     {"terrain.synth.fft.4096", "fft synthesis of a 4096x4096 D=2.3 surface (padded, cropped), one thread",
      FT_BENCH_CELLS, synth_setup, one_thread, synth_fft_run, NULL},
+    {"terrain.synth.fft.4096.threads", "the same fft synthesis on OMP_NUM_THREADS threads", FT_BENCH_CELLS,
+     synth_setup, NULL, synth_fft_run, NULL},
     {"terrain.fftw.c2r.4096", "one in-place FFTW complex-to-real 4096x4096 transform, one thread",
      FT_BENCH_CELLS, c2r_setup, c2r_prepare, c2r_run, NULL},
     {"terrain.synth.sra.4096", "successive random addition, 4096x4096, D=2.3, one thread", FT_BENCH_CELLS,

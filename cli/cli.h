@@ -35,8 +35,16 @@ extern const cli_command cli_cmd_enhance;
 extern const cli_command cli_cmd_simplify;
 extern const cli_command cli_cmd_weed;
 extern const cli_command cli_cmd_smooth;
+extern const cli_command cli_cmd_urban;     /* urban morphology (issue 4), with its subcommands */
+extern const cli_command cli_cmd_urban_table;
+extern const cli_command cli_cmd_urban_regress;
+extern const cli_command cli_cmd_boundary;
 /* The subcommands of `fracterra dim` (cmd_dim_<name>.c), listed in cmd_dim.c's table. */
 extern const cli_command cli_cmd_dim_line;
+extern const cli_command cli_cmd_dim_surface;
+extern const cli_command cli_cmd_dim_map;
+extern const cli_command cli_cmd_dim_area;
+extern const cli_command cli_cmd_dim_points;
 
 /** Sets up output conventions (JSON number format); called once by main. */
 void cli_init(void);

@@ -349,6 +349,7 @@ static const struct {
     {"Newfoundland map", step_newfoundland_map},
     {"Newfoundland enhancement", demo_step_lines},
     {"terrain", demo_step_terrain},
+    {"urban boundary", demo_step_urban},
     {"index.html", step_index_html},
 };
 
@@ -440,6 +441,9 @@ const cli_command cli_cmd_demo = {
     "  volcano_gdal_hillshade.png      the volcano's GDAL hillshade times a colour relief\n"
     "  volcano_perspective.png         the volcano's perspective view\n"
     "  volcano_clarke_model.json       Clarke's model fitted to the volcano (figures in index.html)\n"
+    "  urban_boundary.png              Rhode Island's boundary with detail of D = 1.2325 added by the\n"
+    "                                  midpoint-subdivision generator, drawn over the input\n"
+    "  urban_boundary_zoom.png         the same on a window a fifth of the state's width\n"
     "  index.html                      a page showing them, with the inputs' figures and data sources\n"
     "The data folder is $FRACTERRA_DATA, else the source tree's tests/data, else the installed\n"
     "share/fracterra. If a step fails, nothing is left behind.\n\n"

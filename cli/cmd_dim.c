@@ -10,6 +10,10 @@
 
 static const cli_command *const subcommands[] = {
     &cli_cmd_dim_line,
+    &cli_cmd_dim_surface,
+    &cli_cmd_dim_map,
+    &cli_cmd_dim_area,
+    &cli_cmd_dim_points,
 };
 
 static int run_dim(const cli_command *cmd, int argc, char **argv)
@@ -24,7 +28,11 @@ const cli_command cli_cmd_dim = {
     "Measures the fractal dimension of a file's content; every estimator reports D with r\xc2\xb2, its\n"
     "standard error, the scale range fitted and the whole log-log table (--json, --plot).\n\n"
     "Subcommands:\n"
-    "  line   lines and polygon boundaries of a vector layer or GMT text file\n\n"
+    "  line   lines and polygon boundaries of a vector layer or GMT text file\n"
+    "  surface an elevation grid: variogram, yokoya, pentland, spectrum, prism, cubes\n"
+    "  map    a local D (roughness) map of an elevation grid, written as a raster\n"
+    "  area   polygons (boundary or area box counting) of a layer, per class; classified rasters\n"
+    "  points scattered elevations (CSV, XYZ, point layers): Yokoya, Pentland\n\n"
     "Run 'fracterra dim SUBCOMMAND --help' for its options.\n\n"
     "Example:\n"
     "  fracterra dim line coast.geojson --method divider --plot coast-dim.svg\n",

@@ -47,4 +47,6 @@ int demo_step_lines(demo_ctx *ctx); /* Dutton's Newfoundland sequence: map and l
 
 int demo_step_terrain(demo_ctx *ctx); /* synthetic and volcano DEMs: hillshades, perspectives, Clarke model */
 
+int demo_step_urban(demo_ctx *ctx); /* a boundary simulated with the midpoint-subdivision generator, two zooms */
+
 #endif /* FRACTERRA_CLI_DEMO_H */

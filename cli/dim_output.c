@@ -323,6 +323,8 @@ static void add_result(json_object *o, const dim_item *it, int segments)
     json_object_object_add(o, "range", json_range(r->range[0], r->range[1]));
     json_object_object_add(o, "segmentation", json_object_new_string(r->segmentation ? r->segmentation : ""));
     json_object_object_add(o, "max_err", cli_json_double(r->max_err));
+    if (r->warning)
+        json_object_object_add(o, "warning", json_object_new_string(r->warning));
     json_object_object_add(o, "table", json_table(r->table));
     if (segments)
         json_object_object_add(o, "segments", json_segments(r));
@@ -454,8 +456,23 @@ static void print_human(const cli_dim_report *rep, const cli_dim_opts *o)
     }
 }
 
+/* The fit's own warnings (e.g. no straight segment: whole range fitted) on stderr, one per result. */
+static void warn_fits(const cli_command *cmd, const cli_dim_report *rep)
+{
+    for (size_t g = 0; g < rep->n; g++) {
+        const dim_group *gr = &rep->groups[g];
+        for (size_t i = 0; gr->error == NULL && i < gr->n; i++) {
+            const ft_dim_result *r = gr->items[i].r;
+            if (r->warning)
+                cli_warn(cmd, "%s%s%s: %s", gr->label ? gr->label : "", gr->label ? " " : "",
+                         r->method ? r->method : "", r->warning);
+        }
+    }
+}
+
 int cli_dim_report_print(const cli_command *cmd, cli_dim_report *rep, const cli_dim_opts *o, json_object *extra)
 {
+    warn_fits(cmd, rep);
     int rc = write_plots(cmd, rep, o);
     if (rc != CLI_OK) {
         json_object_put(extra);

@@ -23,6 +23,8 @@ static const cli_command *const commands[] = {
     &cli_cmd_simplify,
     &cli_cmd_weed,
     &cli_cmd_smooth,
+    &cli_cmd_boundary,
+    &cli_cmd_urban,
     &cli_cmd_synth,
     &cli_cmd_model,
     &cli_cmd_hillshade,

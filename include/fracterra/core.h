@@ -289,6 +289,20 @@ void *ft_rng_gsl(ft_rng *r);
 /** SplitMix64 mixing of a seed and a stream id, the derivation used by ft_rng_create. */
 uint64_t ft_rng_mix(uint64_t seed, uint64_t stream);
 
+/** A small fast stream for bulk draws: xoshiro256++ (Blackman & Vigna, "Scrambled linear pseudorandom
+ *  number generators", ACM TOMS 2021), held by value so a caller can keep one per row on its stack, its
+ *  state filled by SplitMix64 from ft_rng_mix(seed, stream). Its numbers are not ft_rng's; the same
+ *  (seed, stream) always gives the same sequence. */
+typedef struct {
+    uint64_t s[4];
+} ft_rng_fast;
+void ft_rng_fast_init(ft_rng_fast *r, uint64_t seed, uint64_t stream);
+/** The next 64 random bits. */
+uint64_t ft_rng_fast_next(ft_rng_fast *r);
+/** Fills out[0 .. n-1] with independent standard normal deviates (256-layer ziggurat of Marsaglia &
+ *  Tsang 2000, one 64-bit draw per deviate on the fast path, layer and value from disjoint bits). */
+void ft_rng_fast_normals(ft_rng_fast *r, float *out, size_t n);
+
 /* ------------------------------------------------------------------------------------------------
  * Least-squares line fits (log-log regression of every estimator).
  * --------------------------------------------------------------------------------------------- */
@@ -352,17 +366,30 @@ int ft_loglog_check(const ft_loglog *t);
  *  break in slope moves one distance only, so it barely moves the median. 0 if fewer than 3 rows. */
 double ft_loglog_noise(const ft_loglog *t, size_t first, size_t last);
 
-/** How a slope becomes a dimension: D = a + b * slope. */
+/** How a slope becomes a dimension, D = a + b * slope, and the interval D can physically take. */
 typedef struct {
     double a, b;
+    double d_min, d_max; /**< the estimator's interval of D: [1, 2] for chains and profiles, [2, 3] for
+                              surfaces. ft_loglog_fit_auto never chooses a run whose D lies outside it by
+                              more than opts.bounds_tol. d_min == d_max == 0: no bounds (what a
+                              two-member initializer {a, b} leaves) */
 } ft_dim_map;
-#define FT_DIM_MAP_DIVIDER {1.0, -1.0}          /**< length L(step) ~ step^(1 - D) */
-#define FT_DIM_MAP_BOXCOUNT {0.0, -1.0}         /**< boxes N(side) ~ side^-D */
-#define FT_DIM_MAP_PRISM {2.0, -1.0}            /**< surface area A(step) ~ step^(2 - D) */
-#define FT_DIM_MAP_VARIOGRAM_SURFACE {3.0, -0.5} /**< gamma(lag) ~ lag^(2H), D = 3 - H */
-#define FT_DIM_MAP_INCREMENT_SURFACE {3.0, -1.0} /**< E|dz| or sd(dz) at distance d ~ d^H, D = 3 - H */
-#define FT_DIM_MAP_SPECTRUM_SURFACE {4.0, 0.5}  /**< radial power P(f) ~ f^-beta (scale = frequency),
-                                                      D = (8 - beta) / 2 */
+#define FT_DIM_MAP_DIVIDER {1.0, -1.0, 1.0, 2.0}  /**< chain length L(step) ~ step^(1 - D) */
+#define FT_DIM_MAP_BOXCOUNT {0.0, -1.0, 1.0, 3.0} /**< boxes N(side) ~ side^-D over any set of
+                                                       topological dimension >= 1 in the plane or space */
+#define FT_DIM_MAP_BOXCOUNT_LINE {0.0, -1.0, 1.0, 2.0}    /**< boxes over a chain, boundary or built-up
+                                                               area in the plane */
+#define FT_DIM_MAP_BOXCOUNT_SURFACE {0.0, -1.0, 2.0, 3.0} /**< cubes N(side) ~ side^-D over a surface */
+#define FT_DIM_MAP_PRISM {2.0, -1.0, 2.0, 3.0}    /**< surface area A(step) ~ step^(2 - D) */
+#define FT_DIM_MAP_VARIOGRAM_SURFACE {3.0, -0.5, 2.0, 3.0} /**< gamma(lag) ~ lag^(2H), D = 3 - H */
+#define FT_DIM_MAP_INCREMENT_SURFACE {3.0, -1.0, 2.0, 3.0} /**< E|dz| or sd(dz) at distance d ~ d^H,
+                                                                D = 3 - H */
+#define FT_DIM_MAP_SPECTRUM_SURFACE {4.0, 0.5, 2.0, 3.0}   /**< radial power P(f) ~ f^-beta (scale =
+                                                                frequency), D = (8 - beta) / 2 */
+#define FT_DIM_MAP_VARIOGRAM_PROFILE {2.0, -0.5, 1.0, 2.0} /**< profile gamma(lag) ~ lag^(2H), D = 2 - H */
+#define FT_DIM_MAP_INCREMENT_PROFILE {2.0, -1.0, 1.0, 2.0} /**< profile E|dz| or sd(dz) ~ d^H, D = 2 - H */
+#define FT_DIM_MAP_SPECTRUM_PROFILE {2.5, 0.5, 1.0, 2.0}   /**< 1-D power P(f) ~ f^-beta of a profile,
+                                                                beta = 2H + 1, D = (5 - beta) / 2 */
 
 typedef enum {
     FT_LOGLOG_ILS = 0,    /**< iterative least squares: the longest run within tol of its LS line */
@@ -379,8 +406,12 @@ typedef struct {
                             >= 0 (0 = absolute tolerances only); default 3 */
     size_t min_points; /**< fewest rows in the chosen range; >= 2; default 3 */
     int max_iter;      /**< ILS: iterations per start; >= 1; default 50 */
+    double min_span;   /**< fewest scale factor scale_hi / scale_lo a chosen run spans; >= 1 (1 = any);
+                            default 4: a step of a staircase table is never taken for the trend */
+    double bounds_tol; /**< how far outside [map.d_min, map.d_max] the D of a chosen run may lie; >= 0;
+                            default 0.05 */
 } ft_loglog_opts;
-#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_ILS, 0.02, 0.04, 3.0, 3, 50}
+#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_ILS, 0.02, 0.04, 3.0, 3, 50, 4.0, 0.05}
 
 /** One linear segment of a log-log table. */
 typedef struct {
@@ -397,12 +428,15 @@ typedef struct {
 } ft_loglog_segment;
 
 #define FT_LOGLOG_NONE ((size_t)-1)
+/** ft_dim_result.segmentation when no straight run qualified and D is the whole window's fit. */
+#define FT_LOGLOG_WHOLE_RANGE "whole range (no straight segment)"
 
 /** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */
 typedef struct {
     const char *method;       /**< static name, "range", "ils" or "minimax"; an estimator may point it
                                    at its own static name ("divider") for its JSON "method" */
-    const char *segmentation; /**< static name of how the range was chosen: "range", "ils", "minimax" */
+    const char *segmentation; /**< static name of how the range was chosen: "range", "ils", "minimax",
+                                   or FT_LOGLOG_WHOLE_RANGE (no run qualified: see warning) */
     double D;                 /**< map.a + map.b * fit.slope */
     double r2;                /**< r² of the least-squares fit over the used rows */
     double stderr_D;          /**< |map.b| * fit.stderr_slope */
@@ -418,18 +452,23 @@ typedef struct {
     ft_loglog_segment *segments; /**< owned; minimax segments by increasing scale (NULL if none) */
     size_t nsegments;
     size_t best;              /**< index in segments of the one that gave D, or FT_LOGLOG_NONE */
+    char *warning;            /**< owned; NULL, or one sentence for the user (the CLI prints it on
+                                   stderr): why D is the whole window's fit, or that D lies outside the
+                                   map's bounds */
 } ft_dim_result;
 
 void ft_dim_result_free(ft_dim_result *r);
 void ft_loglog_segments_free(ft_loglog_segment *s);
 
 /** Least squares over the rows with lo <= scale <= hi (0 = no limit on that side; limits are inclusive
- *  within a relative 1e-9, so a limit equal to a computed scale keeps that row); needs >= 2 rows. */
+ *  within a relative 1e-9, so a limit equal to a computed scale keeps that row); needs >= 2 rows. A D
+ *  outside the map's bounds (by more than the default bounds_tol) is returned with a warning. */
 int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map,
                         ft_dim_result **out);
 /** Iterative least squares over the whole table: from the whole table and from every run of
  *  min_points rows, fit a line, keep the longest contiguous run of rows within the tolerance of it,
- *  refit, until the run stops changing; the longest converged run wins (ties: smaller rms). */
+ *  refit, until the run stops changing; the longest qualifying converged run wins (ties: smaller rms;
+ *  qualifying and the whole-table fallback as in ft_loglog_fit_auto). */
 int ft_loglog_segment_ils(const ft_loglog *t, const ft_loglog_opts *opts, const ft_dim_map *map,
                           ft_dim_result **out);
 /** Minimax polyline over the whole table: every row is covered by segments whose rows lie within the
@@ -439,7 +478,10 @@ int ft_loglog_segment_minimax(const ft_loglog *t, const ft_loglog_opts *opts, co
                               ft_loglog_segment **segments, size_t *nsegments);
 /** The estimators' entry: restricts to lo_limit <= scale <= hi_limit (0 = no limit), segments those
  *  rows by minimax (all segments kept in the result), and fits D over the range opts->method picks:
- *  the ILS run, or the longest minimax segment (ties: smaller max_err). */
+ *  the longest qualifying ILS run, or the longest qualifying minimax segment (ties: smaller max_err).
+ *  A run qualifies if it has >= min_points rows, spans a scale factor >= min_span and its D lies in
+ *  [map.d_min, map.d_max] within bounds_tol. If straight runs exist but none qualifies, D is the
+ *  least-squares fit over the whole window, segmentation = FT_LOGLOG_WHOLE_RANGE and warning says why. */
 int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, const ft_loglog_opts *opts,
                        const ft_dim_map *map, ft_dim_result **out);
 

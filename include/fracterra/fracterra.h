@@ -10,5 +10,6 @@
 #include "render.h"
 #include "surface.h"
 #include "terrain.h"
+#include "urban.h"
 
 #endif /* FRACTERRA_H */

@@ -102,6 +102,10 @@ typedef struct {
 /** Writes a grid with its geotransform, CRS and nodata (masked cells get nodata_value, or NaN/-9999
  *  chosen for the type if the grid has none). Drivers without Create use CreateCopy from memory. */
 int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts);
+/** Writes n >= 1 grids as bands 1 .. n of one raster (e.g. a D map and its r²): every grid must have the
+ *  first's size and geotransform (the error names the band at fault); CRS from the first grid, nodata per
+ *  band as ft_io_write_grid. */
+int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
 
 /* ------------------------------------------------------------------------------------------------
  * Points

@@ -40,8 +40,10 @@ typedef struct {
     const char *fill;        /**< fill colour for polygons, NULL = none; default "#e8eef5" */
     const char *title;       /**< optional title drawn at the top; NULL = none */
     int scale_bar;           /**< 1 to draw a scale bar in layer units; default 1 */
+    double window[4];        /**< xmin, ymin, xmax, ymax of the area shown (a zoom; what lies outside is
+                                  clipped); all 0 (default) = the layers' extent */
 } ft_map_opts;
-#define FT_MAP_OPTS_DEFAULT {800, 600, 0.8, "#1f3b73", "#e8eef5", NULL, 1}
+#define FT_MAP_OPTS_DEFAULT {800, 600, 0.8, "#1f3b73", "#e8eef5", NULL, 1, {0.0, 0.0, 0.0, 0.0}}
 
 /** Draws a layer's chains (polygons filled even-odd, lines stroked) to SVG, PNG or PDF by extension. */
 int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
@@ -76,6 +78,28 @@ typedef struct {
  *  every segment's line, and a legend "D = 1.262 ± 0.004, r² = 0.999, range 10–1000". The file is
  *  written under a temporary name and renamed when complete. */
 int ft_render_loglog_plot(const ft_dim_result *r, const char *path, const ft_plot_opts *opts);
+
+/** One series of a chart: points (x[i], y[i]) joined in order; a non-finite y leaves a gap. */
+typedef struct {
+    const char *name;     /**< legend entry; NULL = not in the legend */
+    const double *x, *y;  /**< n values each */
+    size_t n;
+} ft_series;
+
+typedef struct {
+    int width, height;               /**< canvas size in points/pixels; default 720 x 540 */
+    const char *title;               /**< drawn at the top; NULL = none */
+    const char *xlabel, *ylabel;     /**< axis labels; default "x" and "y" */
+    const char *const *xcategories;  /**< NULL: numeric x axis; else x = 0 .. ncategories - 1, each tick
+                                          labelled with its category (years such as "1959", "1980s") */
+    size_t ncategories;
+} ft_chart_opts;
+#define FT_CHART_OPTS_DEFAULT {720, 540, NULL, "x", "y", NULL, 0}
+
+/** A line chart of several series (SVG, PNG or PDF by extension): linear axes with round ticks (or one
+ *  tick per category), each series a line with dots in its own colour, a legend of the named series in
+ *  the corner hiding the fewest points. Written under a temporary name, renamed when complete. */
+int ft_render_series_chart(const ft_series *series, size_t n, const char *path, const ft_chart_opts *opts);
 
 /* ------------------------------------------------------------------------------------------------
  * Perspective (bird's-eye) view of a DEM (docs/render-perspective.md)

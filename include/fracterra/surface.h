@@ -33,6 +33,222 @@ typedef struct {
  *  D = 3 - slope/2. Pairs touching nodata are skipped. */
 int ft_surface_dim_variogram(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
 
+/* ------------------------------------------------------------------------------------------------
+ * Grids: Yokoya, Pentland, power spectrum, triangular prisms, cube counting; one dispatcher over them
+ * and the variogram; local D maps (docs/surface-grid.md).
+ * --------------------------------------------------------------------------------------------- */
+
+/** Yokoya's estimator on a grid: mean |Δz| of the pairs at each lag (the variogram's lags, pairs and
+ *  nodata rules: ft_variogram_opts), E|Δz| ~ d^H, D = 3 - H. result->method is "yokoya". */
+int ft_surface_dim_yokoya(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
+/** Pentland's: the sample standard deviation of |Δz| at each lag, sqrt((B - A²/C) / (C - 1)) with
+ *  A = Σ|Δz|, B = Σ(Δz)², C = pairs (Arakawa & Krotkov §2.4), ~ d^H, D = 3 - H. "pentland". */
+int ft_surface_dim_pentland(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
+
+typedef struct {
+    double min_wavelength; /**< shortest wavelength fitted, cells, >= 2; 0 = 8 (the band near the Nyquist
+                                frequency, flattened by aliasing, is left out) */
+    double max_wavelength; /**< longest, cells, <= tile; 0 = tile / 8 (at least twice min_wavelength):
+                                the lowest frequencies are bent by the taper and the plane removed */
+    int nbins;             /**< radial frequency bins, log-spaced between them (2..1000); 0 = 4 per octave */
+    size_t tile;           /**< side of the square tiles (Welch), cells, >= 8; 0 = automatic: min(nx, ny),
+                                halved while no tile is free of nodata (down to 16) */
+    int window;            /**< 1 (default): 2-D Hann taper on each tile; 0: none (boxcar) */
+    ft_loglog_opts fit;
+    int fit_whole_range;   /**< 1: least squares over every bin, no segmentation */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_spectrum_opts;
+#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+
+/** Power-spectrum dimension: square tiles overlapping by half (Welch), each free of nodata, a plane
+ *  removed and a Hann taper applied, their periodograms averaged and radially averaged in log-spaced
+ *  frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
+ *  the frequency in cycles per ground unit. A plane (nothing left after detrending) or a surface smoother
+ *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". "spectrum". */
+int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);
+
+/** Options of the estimators measuring at cell sizes by powers of two (prism, cubes). */
+typedef struct {
+    double min_size;   /**< smallest square side or cube side, cells, rounded up to a power of two; 0 = 1 */
+    double max_size;   /**< largest, cells, rounded down to a power of two; 0 = the largest power of two
+                            <= min(nx - 1, ny - 1) / 8 */
+    double zscale;     /**< ground units per elevation unit; 0 = automatic: the range of the valid
+                            elevations is stretched to 4 times the grid's larger ground extent, which
+                            keeps every measured scale steep (Gwyddion stretches to 1 times);
+                            1 = elevations taken in ground units as they are (Clarke) */
+    ft_loglog_opts fit;
+    int fit_whole_range; /**< 1: least squares over every size, no segmentation */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_dyadic_opts;
+#define FT_DYADIC_OPTS_DEFAULT {0.0, 0.0, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+
+/** Clarke's (1986) triangular prism surface area: squares of side s = 2^k cells, four triangles from
+ *  the edges to the centre (mean of the corners); surface area over planimetric area against s,
+ *  A(s) ~ s^(2-D) (FT_DIM_MAP_PRISM). Squares with a nodata corner are skipped. "prism". */
+int ft_surface_dim_prism(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
+/** Cube counting: blocks of (s+1) x (s+1) cells (s = 2^k, neighbouring blocks share an edge), each
+ *  covered by the cubes of side s it meets, z scaled as zscale says; the cubes per block times the
+ *  blocks tiling the grid, N(s) ~ s^-D (FT_DIM_MAP_BOXCOUNT_SURFACE). Blocks touching nodata are
+ *  skipped. "cubes". */
+int ft_surface_dim_cubes(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
+
+typedef enum {
+    FT_SURFACE_VARIOGRAM = 0,
+    FT_SURFACE_YOKOYA = 1,
+    FT_SURFACE_PENTLAND = 2,
+    FT_SURFACE_SPECTRUM = 3,
+    FT_SURFACE_PRISM = 4,
+    FT_SURFACE_CUBES = 5
+} ft_surface_method;
+#define FT_SURFACE_NMETHODS 6
+/** The default method of `dim surface` and `dim map` (docs/surface-grid.md gives the evidence). */
+#define FT_SURFACE_DEFAULT_METHOD FT_SURFACE_VARIOGRAM
+
+/** Options of the dispatcher: each method's own options are filled from these (unset = its default). */
+typedef struct {
+    double min_scale;  /**< ground units: smallest lag, square or cube side, or wavelength; 0 = default */
+    double max_scale;  /**< largest; 0 = the method's default */
+    int nscales;       /**< lags or frequency bins; 0 = default; prism and cubes use powers of two */
+    size_t pairs;      /**< variogram, yokoya, pentland: 0 = exhaustive, N = N random points */
+    uint64_t seed;     /**< random pairs; default 1 */
+    double zscale;     /**< prism, cubes: see ft_dyadic_opts; default 0 (automatic) */
+    size_t tile;       /**< spectrum: see ft_spectrum_opts; default 0 (automatic) */
+    double min_valid;  /**< dim map: a window with a smaller fraction of valid cells is nodata; (0, 1],
+                            default 0.5 */
+    ft_loglog_opts fit;
+    int fit_whole_range; /**< 1: least squares over the whole range, no segmentation */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_surface_dim_opts;
+#define FT_SURFACE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, 0.0, 0, 0.5, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+
+/** "variogram", "yokoya", "pentland", "spectrum", "prism", "cubes" ("?" for a bad value). */
+const char *ft_surface_method_name(ft_surface_method m);
+/** The method named (case-insensitive); FT_E_INVALID naming the text otherwise. */
+int ft_surface_method_parse(const char *name, ft_surface_method *m);
+/** Fractal dimension of a grid by one method. result->method is the method's name. */
+int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_opts *opts, ft_dim_result **out);
+
+/** A local D map: ft_surface_dim in every window of window x window cells whose upper-left cell is a
+ *  multiple of step along both axes (windows inside the grid). D_out and r2_out (either may be NULL)
+ *  receive grids of ((nx - window) / step + 1) x ((ny - window) / step + 1) cells on the lattice of the
+ *  window centres: each output cell is step x step input cells centred on its window's centre, with the
+ *  input's CRS. A window with fewer valid cells than opts->min_valid, or where the method fails, is
+ *  nodata. OpenMP over windows; the same on every thread count. Progress from 0 to 1. */
+int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+                       const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out);
+
+/* ------------------------------------------------------------------------------------------------
+ * Scattered elevations: Yokoya's and Pentland's estimators on irregularly sampled points
+ * (Arakawa & Krotkov §2.3-2.4; docs/surface-points.md).
+ *
+ * Step 1 of §2.4: for every lag Δd_i, counters A_i = Σ|z - z'|, B_i = Σ(z - z')² and C_i = number of
+ * pairs over every pair of points whose separation d satisfies |d - Δd_i| <= ε (an annulus of width 2ε).
+ * The sums are accumulated in 128-bit fixed point (exact and order-free), so the grid, exact and any
+ * thread count give bit-identical counters. Lags with fewer than min_pairs pairs are dropped and
+ * reported. Steps 2-3: log statistic against log separation, D = 3 - H (FT_DIM_MAP_INCREMENT_SURFACE).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    FT_POINTS_YOKOYA = 0,  /**< mean of |Δz|: A_i / C_i (Yokoya; the paper's E_Δd) */
+    FT_POINTS_PENTLAND = 1 /**< sample standard deviation of |Δz|: sqrt((B_i - A_i²/C_i) / (C_i - 1))
+                                (Pentland; the paper's S_Δd) */
+} ft_points_method;
+
+/** Why a lag is not in the log-log table. */
+typedef enum {
+    FT_LAG_KEPT = 0,
+    FT_LAG_FEW_PAIRS = 1, /**< fewer pairs than min_pairs (sample mode: fewer drawn pairs) */
+    FT_LAG_NOISE = 2,     /**< the noise model removed all of the statistic (noise_sigma too large) */
+    FT_LAG_ZERO = 3       /**< every pair has the same elevation: the statistic is 0 */
+} ft_lag_status;
+
+/** The counters of one lag. */
+typedef struct {
+    double lag;      /**< Δd_i, ground units */
+    double dist;     /**< mean separation of the pairs counted: the table's scale (0 without pairs) */
+    double A, B;     /**< Σ|z - z'| and Σ(z - z')² (sample mode: estimates of the sums over all pairs) */
+    double C;        /**< pairs: an exact integer, or the estimate of the count in sample mode */
+    uint64_t drawn;  /**< sample mode: drawn pairs that fell on this lag; otherwise equal to C */
+    double value;    /**< the method's statistic after the noise model (NaN when dropped for noise) */
+    double value_se; /**< sample mode: standard error of value from the sampling; 0 otherwise */
+    ft_lag_status status;
+} ft_points_lag;
+
+/** The per-lag counters of one estimate, dropped lags included. Release with ft_points_counters_free. */
+typedef struct {
+    ft_points_method method;
+    ft_points_lag *lags; /**< n lags by increasing Δd */
+    size_t n;
+    size_t kept;         /**< lags with status FT_LAG_KEPT */
+    double eps;          /**< ε used */
+    double spacing;      /**< mean point spacing sqrt(bounding-box area / N), the unit of the default lags */
+    size_t min_pairs;
+    const char *pairs;   /**< static: "grid", "exact" or "sample" */
+    uint64_t sample;     /**< pairs drawn (sample mode), 0 otherwise */
+    double D_sample_se;  /**< sample mode: standard error of D from the sampling (filled by
+                              ft_surface_dim_points), 0 otherwise */
+} ft_points_counters;
+
+void ft_points_counters_free(ft_points_counters *c);
+
+typedef struct {
+    ft_points_method method;
+    const double *lags;   /**< user lags Δd_i (ground units, > 0, distinct, any order), or NULL */
+    size_t nuser_lags;    /**< number of user lags (>= 2 when lags is given) */
+    double min_lag;       /**< geometric series: smallest lag; 0 = 0.5 x the mean spacing */
+    double max_lag;       /**< largest lag; 0 = 4 x the mean spacing */
+    int nlags;            /**< lags in the series (2..1000); 0 = 4 per octave + 1 */
+    double eps;           /**< annulus half-width ε, 0 < ε < smallest lag; 0 = half the smallest gap
+                               between consecutive lags */
+    size_t min_pairs;     /**< >= 1; default 100 */
+    int exact;            /**< 1: enumerate every pair i < j (O(N²)); same counters as the grid */
+    size_t sample;        /**< > 0: estimate from this many random pairs within the largest lag */
+    uint64_t seed;        /**< sample mode; default 1 */
+    double noise_sigma;   /**< standard deviation of zero-mean Gaussian noise on z (>= 0; 0 = none):
+                               removes 2σ² from E(Δz²) (docs/surface-points.md) */
+    ft_loglog_opts fit;
+    int fit_auto;         /**< 0 (default): least squares over every kept lag; 1: ft_loglog_fit_auto
+                               (ILS segmentation) */
+    ft_points_counters **counters; /**< if not NULL, receives the counters (release with
+                                        ft_points_counters_free); set to NULL on failure */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_points_dim_opts;
+#define FT_POINTS_DIM_OPTS_DEFAULT                                                                           \
+    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL}
+
+const char *ft_points_method_name(ft_points_method m);
+/** "yokoya" or "pentland" (case-insensitive); FT_E_INVALID naming the text otherwise. */
+int ft_points_method_parse(const char *name, ft_points_method *m);
+
+/** Step 1 of §2.4 alone: the counters A, B, C per lag, the statistic of opts->method and each lag's
+ *  status. Needs >= 3 points with finite x, y, z (the error names the first bad point). */
+int ft_surface_points_counters(const ft_points *p, const ft_points_dim_opts *opts, ft_points_counters **out);
+
+/** Fractal dimension of scattered elevations: the counters, then log statistic against log mean
+ *  separation of the kept lags, D = 3 - H. Fewer than opts->fit.min_points kept lags is FT_E_EMPTY with
+ *  a message listing the dropped lags. result->method is "yokoya" or "pentland". */
+int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out);
+
+/** Scattered points from a grid, as in Arakawa & Krotkov §2.5 and Table 1: a random `fraction` of the
+ *  valid cells (exactly round(fraction x valid) cells, without replacement), each at its cell centre with
+ *  the cell's value, or with `jitter` at a uniform position inside the cell and z interpolated bilinearly
+ *  between the centres of the four nearest cells; then independent N(0, noise_xy²) on x and y and
+ *  N(0, noise_z²) on z. */
+typedef struct {
+    double fraction;  /**< in (0, 1]; default 0.05 */
+    int jitter;       /**< default 0 */
+    double noise_xy;  /**< ground units, >= 0; default 0 */
+    double noise_z;   /**< elevation units, >= 0; default 0 */
+    uint64_t seed;    /**< default 1 */
+} ft_grid_sample_opts;
+#define FT_GRID_SAMPLE_OPTS_DEFAULT {0.05, 0, 0.0, 0.0, 1}
+
+int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opts, ft_points **out);
+
 #ifdef __cplusplus
 }
 #endif

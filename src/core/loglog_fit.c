@@ -1,8 +1,9 @@
 /* fracterra — core/loglog_fit.c: the dimension from a log-log table, step 3 of Arakawa & Krotkov §2.4
  * ("estimate fractal dimension from the slope of linear segments"): a least-squares line over the
- * chosen rows (a user range, the iterative least-squares run, or the longest minimax segment), D =
- * a + b * slope by the estimator's map, and a result that keeps the table with its used rows and every
- * segment found, so that users can judge the straightness themselves.
+ * chosen rows (a user range, the longest qualifying iterative least-squares run or minimax segment, or
+ * the whole window when no straight run qualifies: loglog_admit.c), D = a + b * slope by the
+ * estimator's map, and a result that keeps the table with its used rows and every segment found, so
+ * that users can judge the straightness themselves.
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
@@ -28,6 +29,11 @@ int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
         return ft_error(FT_E_INVALID, "log-log segmentation: min_points must be >= 2, got %zu", o->min_points);
     if (o->max_iter < 1)
         return ft_error(FT_E_INVALID, "log-log segmentation: max_iter must be >= 1, got %d", o->max_iter);
+    if (!isfinite(o->min_span) || !(o->min_span >= 1.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: min_span must be >= 1 (a scale factor), got %g",
+                        o->min_span);
+    if (!isfinite(o->bounds_tol) || !(o->bounds_tol >= 0.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: bounds_tol must be >= 0, got %g", o->bounds_tol);
     return FT_OK;
 }
 
@@ -65,6 +71,7 @@ void ft_dim_result_free(ft_dim_result *r)
         return;
     ft_loglog_free(r->table);
     free(r->segments);
+    free(r->warning);
     free(r);
 }
 
@@ -131,11 +138,21 @@ static int check_out(ft_dim_result **out)
     return FT_OK;
 }
 
+/* Sets r's warning for a D outside the map's bounds by more than tol (none inside them). */
+static int warn_bounds(ft_dim_result *r, double tol)
+{
+    if (ft_ll_in_bounds(&r->map, r->D, tol))
+        return FT_OK;
+    r->warning = ft_ll_bounds_warning(&r->map, r->D, tol);
+    return r->warning != NULL ? FT_OK : FT_E_NOMEM;
+}
+
 int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map, ft_dim_result **out)
 {
     int rc = check_out(out);
     if (rc != FT_OK)
         return rc;
+    const ft_loglog_opts defaults = FT_LOGLOG_OPTS_DEFAULT;
     ft_ll_data d;
     ft_dim_result *r = NULL;
     rc = ft_ll_data_init(&d, t, lo, hi, map, 2);
@@ -143,15 +160,29 @@ int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_m
         rc = result_new(&d, "range", &r);
     if (rc == FT_OK)
         rc = result_fit(r, &d, d.a, d.b);
+    if (rc == FT_OK)
+        rc = warn_bounds(r, defaults.bounds_tol);
     return finish(rc, &d, r, out);
 }
 
-/* The ILS run of d's window into r. */
-static int fit_ils(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+/* No straight run qualified: D over the whole window, flagged and explained. */
+static int fit_whole(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+{
+    int rc = result_fit(r, d, d->a, d->b);
+    if (rc != FT_OK)
+        return rc;
+    r->segmentation = FT_LOGLOG_WHOLE_RANGE;
+    r->warning = ft_ll_whole_range_warning(d, o, r->D);
+    return r->warning != NULL ? FT_OK : FT_E_NOMEM;
+}
+
+/* The longest qualifying ILS run of d's window into r; *chosen = 0 (r untouched but for the tolerance)
+ * if no converged run qualifies. */
+static int fit_ils(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o, int *chosen)
 {
     size_t first, last;
-    int rc = ft_ll_ils(d, o, &first, &last, &r->tol);
-    if (rc == FT_OK)
+    int rc = ft_ll_ils(d, o, &first, &last, &r->tol, chosen);
+    if (rc == FT_OK && *chosen)
         rc = result_fit(r, d, first, last);
     return rc;
 }
@@ -167,11 +198,14 @@ int ft_loglog_segment_ils(const ft_loglog *t, const ft_loglog_opts *opts, const 
         return rc;
     ft_ll_data d;
     ft_dim_result *r = NULL;
+    int chosen = 0;
     rc = ft_ll_data_init(&d, t, 0.0, 0.0, map, o.min_points);
     if (rc == FT_OK)
         rc = result_new(&d, "ils", &r);
     if (rc == FT_OK)
-        rc = fit_ils(r, &d, &o);
+        rc = fit_ils(r, &d, &o, &chosen);
+    if (rc == FT_OK && !chosen)
+        rc = fit_whole(r, &d, &o);
     return finish(rc, &d, r, out);
 }
 
@@ -196,10 +230,28 @@ int ft_loglog_segment_minimax(const ft_loglog *t, const ft_loglog_opts *opts, co
     return rc;
 }
 
-/* Minimax segments of d's window into r and, for FT_LOGLOG_MINIMAX, D over the longest of them. */
-static int fit_minimax(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+/* Index of the qualifying segment with the most rows (ties: the smaller max_err, then the smaller
+ * scales), or FT_LOGLOG_NONE. */
+static size_t admitted_segment(const ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+{
+    size_t best = FT_LOGLOG_NONE;
+    for (size_t k = 0; k < r->nsegments; k++) {
+        const ft_loglog_segment *s = &r->segments[k];
+        if (ft_ll_admit(d, o, s->first, s->last, s->D) != FT_LL_ADMITTED)
+            continue;
+        if (best == FT_LOGLOG_NONE || s->n > r->segments[best].n ||
+            (s->n == r->segments[best].n && s->max_err < r->segments[best].max_err))
+            best = k;
+    }
+    return best;
+}
+
+/* Minimax segments of d's window into r and, for FT_LOGLOG_MINIMAX, D over the longest qualifying one;
+ * *chosen = 0 if the method is ILS or no segment qualifies. */
+static int fit_minimax(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o, int *chosen)
 {
     size_t longest;
+    *chosen = 0;
     int rc = ft_ll_minimax(d, o, &r->segments, &r->nsegments, &longest, &r->width);
     if (rc != FT_OK || o->method != FT_LOGLOG_MINIMAX)
         return rc;
@@ -209,7 +261,11 @@ static int fit_minimax(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_op
                         "minimax segmentation: the longest segment within width %g (log10 units) has %zu rows, "
                         "fewer than min_points = %zu; widen the width or check the table",
                         r->width, s->n, o->min_points);
-    r->best = longest;
+    size_t k = admitted_segment(r, d, o);
+    if (k == FT_LOGLOG_NONE)
+        return FT_OK;
+    *chosen = 1;
+    s = &r->segments[k];
     return result_fit(r, d, s->first, s->last);
 }
 
@@ -234,15 +290,17 @@ int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, con
     ft_ll_data d;
     ft_dim_result *r = NULL;
     const char *name = o.method == FT_LOGLOG_ILS ? "ils" : "minimax";
+    int chosen = 0;
     rc = ft_ll_data_init(&d, t, lo_limit, hi_limit, map, o.min_points);
     if (rc == FT_OK)
         rc = result_new(&d, name, &r);
     if (rc == FT_OK)
-        rc = fit_minimax(r, &d, &o);
-    if (rc == FT_OK && o.method == FT_LOGLOG_ILS) {
-        rc = fit_ils(r, &d, &o);
-        if (rc == FT_OK)
-            r->best = matching_segment(r);
-    }
+        rc = fit_minimax(r, &d, &o, &chosen);
+    if (rc == FT_OK && o.method == FT_LOGLOG_ILS)
+        rc = fit_ils(r, &d, &o, &chosen);
+    if (rc == FT_OK && !chosen)
+        rc = fit_whole(r, &d, &o);
+    if (rc == FT_OK)
+        r->best = matching_segment(r);
     return finish(rc, &d, r, out);
 }

@@ -9,8 +9,9 @@
  * within tol of their own least-squares line and the rows beside it are not.
  * The paper notes that a single start "selects only the first linear part"; to keep the longest
  * straight run instead, starts are made from the whole window and from every run of min_points rows,
- * and the converged run with the most rows wins (ties: the smaller residual rms, then the earlier
- * start). tol = max(opts.tol, opts.tol_sigma * ft_loglog_noise(window)).
+ * and the converged run with the most rows among those that qualify (loglog_admit.c: enough rows, a
+ * scale factor of min_span, D within the map's bounds) wins (ties: the smaller residual rms, then the
+ * earlier start). tol = max(opts.tol, opts.tol_sigma * ft_loglog_noise(window)).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
@@ -61,10 +62,11 @@ static int ils_start(const ft_ll_data *d, size_t f, size_t l, double tol, int ma
     return 0;
 }
 
-/* Root mean square of the least-squares residuals over rows [f, l]. */
-static double ls_rms(const ft_ll_data *d, size_t f, size_t l)
+/* Root mean square of the least-squares residuals over rows [f, l] and the dimension of their slope. */
+static double ls_rms(const ft_ll_data *d, size_t f, size_t l, double *D)
 {
     ft_fit fit;
+    *D = NAN;
     if (ft_fit_line(d->lx, d->ly, f, l, &fit) != FT_OK)
         return INFINITY;
     double sse = 0.0;
@@ -72,6 +74,7 @@ static double ls_rms(const ft_ll_data *d, size_t f, size_t l)
         double r = d->ly[i] - (fit.intercept + fit.slope * d->lx[i]);
         sse += r * r;
     }
+    *D = d->map.a + d->map.b * fit.slope;
     return sqrt(sse / (double)(l - f + 1));
 }
 
@@ -81,36 +84,52 @@ typedef struct {
     int found;
 } ils_best;
 
-/* Keeps the converged run of start [f, l] if it is longer (or as long and straighter) than *b. */
-static void try_start(const ft_ll_data *d, size_t f, size_t l, double tol, int max_iter, ils_best *b)
+/* Keeps run [f, l] in *b if it is longer than *b's (or as long and straighter). */
+static void keep_better(ils_best *b, size_t f, size_t l, double rms)
 {
-    size_t rf, rl;
-    if (!ils_start(d, f, l, tol, max_iter, &rf, &rl))
+    if (b->found && (l - f < b->last - b->first || (f == b->first && l == b->last)))
         return;
-    if (b->found && (rl - rf < b->last - b->first || (rf == b->first && rl == b->last)))
+    if (b->found && l - f == b->last - b->first && !(rms < b->rms))
         return;
-    double rms = ls_rms(d, rf, rl);
-    if (b->found && rl - rf == b->last - b->first && !(rms < b->rms))
-        return;
-    *b = (ils_best){rf, rl, rms, 1};
+    *b = (ils_best){f, l, rms, 1};
 }
 
-int ft_ll_ils(const ft_ll_data *d, const ft_loglog_opts *o, size_t *first, size_t *last, double *tol)
+/* The longest converged run of any start (`any`) and the longest that qualifies (`admitted`). */
+typedef struct {
+    ils_best any, admitted;
+} ils_choice;
+
+/* Runs start [f, l] and offers its converged run to both choices. */
+static void try_start(const ft_ll_data *d, const ft_loglog_opts *o, size_t f, size_t l, double tol, ils_choice *c)
+{
+    size_t rf, rl;
+    if (!ils_start(d, f, l, tol, o->max_iter, &rf, &rl))
+        return;
+    double D, rms = ls_rms(d, rf, rl, &D);
+    keep_better(&c->any, rf, rl, rms);
+    if (ft_ll_admit(d, o, rf, rl, D) == FT_LL_ADMITTED)
+        keep_better(&c->admitted, rf, rl, rms);
+}
+
+int ft_ll_ils(const ft_ll_data *d, const ft_loglog_opts *o, size_t *first, size_t *last, double *tol,
+              int *admitted)
 {
     double t = o->tol, t_noise = o->tol_sigma * ft_loglog_noise(d->t, d->a, d->b);
     t = t_noise > t ? t_noise : t;
-    ils_best b = {0, 0, INFINITY, 0};
+    ils_choice c = {{0, 0, INFINITY, 0}, {0, 0, INFINITY, 0}};
     size_t k = o->min_points;
-    try_start(d, d->a, d->b, t, o->max_iter, &b);
+    try_start(d, o, d->a, d->b, t, &c);
     for (size_t i = d->a; i + k - 1 <= d->b; i++)
-        try_start(d, i, i + k - 1, t, o->max_iter, &b);
+        try_start(d, o, i, i + k - 1, t, &c);
     *tol = t;
-    if (!b.found || b.last - b.first + 1 < k)
+    if (!c.any.found || c.any.last - c.any.first + 1 < k)
         return ft_error(FT_E_NUMERIC,
                         "iterative least squares: no run of %zu or more rows lies within %g (log10 units) of "
                         "its least-squares line; raise the tolerance or check the table",
                         k, t);
-    *first = b.first;
-    *last = b.last;
+    const ils_best *b = c.admitted.found ? &c.admitted : &c.any;
+    *first = b->first;
+    *last = b->last;
+    *admitted = c.admitted.found;
     return FT_OK;
 }

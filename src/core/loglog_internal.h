@@ -38,8 +38,31 @@ void ft_ll_chebyshev(const double *x, const double *y, size_t k, size_t *work, d
 /* Describes rows [first, last] (>= 2 rows) as a segment: least squares, minimax error, D. */
 int ft_ll_describe(const ft_ll_data *d, size_t first, size_t last, ft_loglog_segment *seg);
 
-/* ILS over the window: the converged run [*first, *last] and the tolerance it used. */
-int ft_ll_ils(const ft_ll_data *d, const ft_loglog_opts *o, size_t *first, size_t *last, double *tol);
+/* Why a straight run may not give the dimension (loglog_admit.c). */
+typedef enum {
+    FT_LL_ADMITTED = 0,  /* qualifies */
+    FT_LL_FEW_ROWS,      /* fewer than min_points rows */
+    FT_LL_SHORT,         /* spans a scale factor under min_span */
+    FT_LL_OUT_OF_BOUNDS  /* D outside [d_min, d_max] by more than bounds_tol */
+} ft_ll_verdict;
+
+/* 1 if the map carries bounds (not d_min == d_max == 0). */
+int ft_ll_bounded(const ft_dim_map *m);
+/* 1 if D lies in [d_min - tol, d_max + tol], or the map has no bounds. */
+int ft_ll_in_bounds(const ft_dim_map *m, double D, double tol);
+/* Whether rows [first, last] of the window, whose least-squares dimension is D, may give the result. */
+ft_ll_verdict ft_ll_admit(const ft_ll_data *d, const ft_loglog_opts *o, size_t first, size_t last, double D);
+/* The allocated warning of a whole-window fallback whose dimension is D; NULL if out of memory. */
+char *ft_ll_whole_range_warning(const ft_ll_data *d, const ft_loglog_opts *o, double D);
+/* The allocated warning for a D outside the map's bounds by more than tol; NULL if D is inside (or on
+ * out of memory, with the error set: tell them apart with ft_ll_in_bounds). */
+char *ft_ll_bounds_warning(const ft_dim_map *m, double D, double tol);
+
+/* ILS over the window, the tolerance it used in *tol. *admitted = 1: [*first, *last] is the longest
+ * qualifying converged run; 0: no converged run qualifies ([*first, *last] is the longest of them).
+ * Fails if no converged run has min_points rows. */
+int ft_ll_ils(const ft_ll_data *d, const ft_loglog_opts *o, size_t *first, size_t *last, double *tol,
+              int *admitted);
 
 /* Minimax segmentation of the window: the segments by increasing scale, the index of the longest
  * (first chosen) and the width used. */

@@ -154,6 +154,10 @@ static int check_map(const ft_dim_map *map)
                         map->a, map->b);
     if (map->b == 0.0)
         return ft_error(FT_E_INVALID, "log-log fit: map D = a + b*slope needs b != 0, got b = 0");
+    if (!isfinite(map->d_min) || !isfinite(map->d_max) ||
+        (!(map->d_min < map->d_max) && !(map->d_min == 0.0 && map->d_max == 0.0)))
+        return ft_error(FT_E_INVALID, "log-log fit: map bounds need d_min < d_max (0, 0 = none), got [%g, %g]",
+                        map->d_min, map->d_max);
     return FT_OK;
 }
 

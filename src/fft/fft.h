@@ -45,6 +45,12 @@ double *ft_fft_alloc_real(size_t n);
 fftw_complex *ft_fft_alloc_complex(size_t n);
 void ft_fft_free(void *p);
 
+/** Single precision (fftw3f), for spectral synthesis where float output makes double arithmetic moot:
+ *  SIMD-aligned array of n fftwf_complex (fftwf_malloc), NULL (FT_E_NOMEM set) on failure; release
+ *  with ft_fft_freef. */
+fftwf_complex *ft_fft_alloc_complexf(size_t n);
+void ft_fft_freef(void *p);
+
 /** Forward 2-D real-to-complex transform: ny x nx reals -> ny x (nx/2+1) complex (unnormalised).
  *  Out-of-place (in != out): in has row stride nx and is left unchanged.
  *  In-place ((void *)in == (void *)out): in has row stride ft_fft_real_stride(nx).
@@ -57,6 +63,12 @@ int ft_fft_r2c_2d(size_t ny, size_t nx, const double *in, fftw_complex *out);
  *  out has row stride ft_fft_real_stride(nx). The imaginary parts of the kx = 0 (and kx = nx/2 for even
  *  nx) column's self-conjugate bins are ignored, as the Hermitian half-spectrum implies. */
 int ft_fft_c2r_2d(size_t ny, size_t nx, fftw_complex *in, double *out);
+
+/** In-place inverse 2-D complex-to-real transform in single precision: the ny x (nx/2+1) half-spectrum
+ *  `spec` becomes ny x nx reals at (float *)spec with row stride ft_fft_real_stride(nx); unnormalised,
+ *  same conventions as ft_fft_c2r_2d. Computed as blocked column then row passes of 1-D transforms over
+ *  the OpenMP threads; bit-identical on any thread count. 0, FT_E_INVALID or FT_E_NOMEM. */
+int ft_fft_c2r_2df(size_t ny, size_t nx, fftwf_complex *spec);
 
 /** 1-D complex transform of n points, sign FT_FFT_FORWARD or FT_FFT_BACKWARD (unnormalised); in-place
  *  when in == out. Errors as above. */

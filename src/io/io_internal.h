@@ -59,6 +59,10 @@ void ft_io_put_double(FILE *f, double v);            /* shortest text that reads
 int ft_io_parse_double(const char *s, double *v);    /* 1 if s is one whole number (spaces around allowed) */
 FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
 
+/* Rasters (raster_write.c): grids of the same size as the bands of one file, atomically; the geotransform
+ * and CRS are the first grid's, each band has its grid's nodata. No checks across the grids. */
+int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
+
 /* Text points (points_text.c): CSV with a header row, whitespace XYZ ("-" = stdin). */
 int ft_io_read_points_csv(const char *path, const ft_read_points_opts *o, ft_points **out);
 int ft_io_read_points_xyz(const char *path, const ft_read_points_opts *o, ft_points **out);

@@ -1,11 +1,13 @@
-/* fracterra — io/raster_write.c: an ft_grid as a one-band raster, atomically.
+/* fracterra — io/raster_write.c: ft_grids as the bands of one raster, atomically (ft_io_write_grid writes
+ * one band; raster_write_bands.c checks and writes several through ft_io_write_bands below).
  *
  * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + DEFLATE, .asc Arc/Info ASCII, others
  * looked up among GDAL's drivers, no extension = GeoTIFF) or is named by the caller. Drivers that can
  * only CreateCopy (AAIGrid and others) get a copy of an in-memory dataset. Masked and non-finite cells
  * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
  * type's maximum for unsigned ones. Rows are written in blocks through a double buffer, so the nodata
- * value reaches the file exactly whatever the output type. The file (and siblings such as .prj) is
+ * value reaches the file exactly whatever the output type. Each band has its own nodata value; the
+ * geotransform and CRS are the first grid's. The file (and siblings such as .prj) is
  * written under a temporary name and renamed on success.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -24,10 +26,11 @@
 
 typedef struct {
     const char *path;
-    const ft_grid *g;
+    const ft_grid *const *bands;
+    size_t nbands;
     GDALDataType type;
-    int use_nodata;
-    double nodata;
+    int *use_nodata; /* per band */
+    double *nodata;  /* per band */
 } grid_writer;
 
 static int is_float(GDALDataType t)
@@ -101,9 +104,9 @@ static void set_nodata(GDALRasterBandH b, GDALDataType t, double v)
         GDALSetRasterNoDataValue(b, v);
 }
 
-static int write_cells(grid_writer *w, GDALRasterBandH b)
+static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
 {
-    const ft_grid *g = w->g;
+    const ft_grid *g = w->bands[band];
     size_t chunk = ROWS_PER_WRITE_CELLS / g->nx;
     if (chunk < 1)
         chunk = 1;
@@ -116,20 +119,21 @@ static int write_cells(grid_writer *w, GDALRasterBandH b)
     for (size_t row = 0; row < g->ny && rc == FT_OK; row += chunk) {
         size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx;
         for (size_t k = 0; k < rows * g->nx; k++)
-            buf[k] = cell_invalid(g, base + k) ? w->nodata : (double)g->z[base + k];
+            buf[k] = cell_invalid(g, base + k) ? w->nodata[band] : (double)g->z[base + k];
         ft_io_gdal_reset();
         if (GDALRasterIO(b, GF_Write, 0, (int)row, (int)g->nx, (int)rows, buf, (int)g->nx, (int)rows, GDT_Float64,
                          0, 0) != CE_None)
-            rc = ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of '%s'", row, row + rows - 1, w->path);
+            rc = ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of band %zu of '%s'", row, row + rows - 1, band + 1,
+                            w->path);
     }
     free(buf);
     return rc;
 }
 
-/* Geotransform, CRS, nodata and cells of band 1 of ds. */
+/* Geotransform, CRS, nodata and cells of every band of ds. */
 static int fill_dataset(grid_writer *w, GDALDatasetH ds)
 {
-    const ft_grid *g = w->g;
+    const ft_grid *g = w->bands[0];
     double gt[6];
     memcpy(gt, g->gt, sizeof gt);
     ft_io_gdal_reset();
@@ -146,16 +150,20 @@ static int fill_dataset(grid_writer *w, GDALDatasetH ds)
             return ft_io_fail(FT_E_UNSUPPORTED, "the %s format of '%s' cannot store its CRS",
                               GDALGetDriverShortName(GDALGetDatasetDriver(ds)), w->path);
     }
-    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
-    if (w->use_nodata)
-        set_nodata(b, w->type, w->nodata);
-    return write_cells(w, b);
+    int rc = FT_OK;
+    for (size_t k = 0; k < w->nbands && rc == FT_OK; k++) {
+        GDALRasterBandH b = GDALGetRasterBand(ds, (int)k + 1);
+        if (w->use_nodata[k])
+            set_nodata(b, w->type, w->nodata[k]);
+        rc = write_cells(w, k, b);
+    }
+    return rc;
 }
 
 static int write_direct(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
 {
     ft_io_gdal_reset();
-    GDALDatasetH ds = GDALCreate(drv, tmp, (int)w->g->nx, (int)w->g->ny, 1, w->type, co);
+    GDALDatasetH ds = GDALCreate(drv, tmp, (int)w->bands[0]->nx, (int)w->bands[0]->ny, (int)w->nbands, w->type, co);
     if (ds == NULL)
         return ft_io_fail(FT_E_IO, "cannot create '%s' (%s)", w->path, GDALGetDriverShortName(drv));
     int rc = fill_dataset(w, ds);
@@ -170,7 +178,8 @@ static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **c
 {
     GDALDriverH mem = GDALGetDriverByName("MEM");
     ft_io_gdal_reset();
-    GDALDatasetH src = mem ? GDALCreate(mem, "", (int)w->g->nx, (int)w->g->ny, 1, w->type, NULL) : NULL;
+    GDALDatasetH src =
+        mem ? GDALCreate(mem, "", (int)w->bands[0]->nx, (int)w->bands[0]->ny, (int)w->nbands, w->type, NULL) : NULL;
     if (src == NULL)
         return ft_io_fail(FT_E_NOMEM, "cannot hold '%s' in memory", w->path);
     int rc = fill_dataset(w, src);
@@ -198,14 +207,16 @@ static int check_grid(const char *path, const ft_grid *g)
     return FT_OK;
 }
 
-int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
+int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
 {
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
     if (opts != NULL)
         o = *opts;
-    grid_writer w = {.path = path, .g = g};
+    grid_writer w = {.path = path, .bands = bands, .nbands = n};
     GDALDriverH drv;
-    int rc = check_grid(path, g);
+    int rc = FT_OK;
+    for (size_t k = 0; k < n && rc == FT_OK; k++)
+        rc = check_grid(path, bands[k]);
     if (rc == FT_OK)
         rc = ft_io_check_writable(path);
     if (rc == FT_OK)
@@ -214,11 +225,18 @@ int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opt
         rc = ft_io_find_driver(path, o.driver, GDAL_DCAP_RASTER, &drv);
     if (rc != FT_OK)
         return rc;
-    w.use_nodata = g->has_nodata || any_invalid(g);
-    w.nodata = g->has_nodata ? g->nodata_value : default_nodata(w.type);
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
+    w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);
+    w.nodata = ft_malloc(n * sizeof *w.nodata);
+    char *tmp = w.use_nodata && w.nodata ? ft_tmp_path(path) : NULL;
+    if (tmp == NULL) {
+        free(w.use_nodata);
+        free(w.nodata);
         return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
+    }
+    for (size_t k = 0; k < n; k++) {
+        w.use_nodata[k] = bands[k]->has_nodata || any_invalid(bands[k]);
+        w.nodata[k] = bands[k]->has_nodata ? bands[k]->nodata_value : default_nodata(w.type);
+    }
     char **co = creation_options(drv, o.co, w.type);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
     rc = direct ? write_direct(&w, drv, tmp, co) : write_copy(&w, drv, tmp, co);
@@ -228,5 +246,12 @@ int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opt
     if (rc != FT_OK)
         ft_tmp_discard(tmp);
     free(tmp);
+    free(w.use_nodata);
+    free(w.nodata);
     return rc;
+}
+
+int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
+{
+    return ft_io_write_bands(path, &g, 1, opts);
 }

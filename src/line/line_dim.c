@@ -297,7 +297,7 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
         hi = t->rows[t->n - 1].scale;
     }
     if (rc == FT_OK) {
-        const ft_dim_map map_len = FT_DIM_MAP_DIVIDER, map_box = FT_DIM_MAP_BOXCOUNT;
+        const ft_dim_map map_len = FT_DIM_MAP_DIVIDER, map_box = FT_DIM_MAP_BOXCOUNT_LINE;
         const ft_dim_map *map = method == FT_LINE_BOX ? &map_box : &map_len;
         rc = o->fit_whole_range ? ft_loglog_fit_range(t, lo, hi, map, out)
                                 : ft_loglog_fit_auto(t, lo, hi, &o->fit, map, out);

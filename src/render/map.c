@@ -6,8 +6,9 @@
  * lines are stroked. An optional title sits at the top and an optional scale bar at the bottom left, its
  * length a round 1, 2 or 5 times a power of ten in layer units (labelled in m or km, or in degrees when the
  * CRS is geographic). Several layers are drawn in order, each with its own stroke, fill, width and dash,
- * with a legend of the labelled ones in the corner of the map that covers the fewest vertices. The file is
- * drawn under a temporary name and renamed when complete.
+ * with a legend of the labelled ones in the corner of the map that covers the fewest vertices. A view window
+ * (ft_map_opts.window) zooms on part of the layers, the drawing clipped to the map area. The file is drawn
+ * under a temporary name and renamed when complete.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -55,6 +56,12 @@ static int check_opts(const ft_map_opts *o)
                         o->width, o->height);
     if (!isfinite(o->line_width) || o->line_width < 0.0)
         return ft_error(FT_E_INVALID, "map line width must be >= 0, got %g", o->line_width);
+    const double *w = o->window;
+    int none = w[0] == 0.0 && w[1] == 0.0 && w[2] == 0.0 && w[3] == 0.0;
+    if (!none && !(isfinite(w[0]) && isfinite(w[1]) && isfinite(w[2]) && isfinite(w[3]) && w[2] > w[0] &&
+                   w[3] > w[1]))
+        return ft_error(FT_E_INVALID, "map window must be finite with xmin < xmax and ymin < ymax, got %g %g %g %g",
+                        w[0], w[1], w[2], w[3]);
     return FT_OK;
 }
 
@@ -316,8 +323,14 @@ static void draw_map(cairo_t *cr, const void *arg)
     cairo_paint(cr);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_save(cr);
+    if (o->window[2] > o->window[0]) {
+        cairo_rectangle(cr, j->frame->x0, j->frame->y0, j->frame->aw, j->frame->ah);
+        cairo_clip(cr);
+    }
     for (size_t i = 0; i < j->n; i++)
         draw_item(cr, &j->items[i], j->frame);
+    cairo_restore(cr);
     draw_legend(cr, j->items, j->n, j->frame);
     cairo_set_dash(cr, NULL, 0, 0.0);
     if (o->title && *o->title)
@@ -354,6 +367,12 @@ static int render_items(const map_item *items, size_t n, const char *path, ft_ca
     int rc = items_bbox(items, n, &bx0, &by0, &bx1, &by1);
     if (rc != FT_OK)
         return rc;
+    if (o->window[2] > o->window[0]) {
+        bx0 = o->window[0];
+        by0 = o->window[1];
+        bx1 = o->window[2];
+        by1 = o->window[3];
+    }
     map_frame f;
     frame_init(o, bx0, by0, bx1, by1, &f);
     if (f.aw < 16.0 || f.ah < 16.0)

@@ -30,6 +30,8 @@ static const char *const outputs[] = {"volcano.tif",
                                       "volcano_gdal_hillshade.png",
                                       "volcano_perspective.png",
                                       "volcano_clarke_model.json",
+                                      "urban_boundary.png",
+                                      "urban_boundary_zoom.png",
                                       "index.html"};
 #define NOUTPUTS (sizeof outputs / sizeof outputs[0])
 
@@ -99,7 +101,7 @@ static void test_inputs_reported(void **state)
 {
     fixture *f = *state;
     json_object *ins = ft_test_json_key(f->json, "inputs");
-    assert_int_equal(json_object_array_length(ins), 2);
+    assert_true(json_object_array_length(ins) >= 2); /* later steps add their own inputs */
     json_object *volcano = json_object_array_get_idx(ins, 0), *nf = json_object_array_get_idx(ins, 1);
     assert_int_equal(ft_test_json_int(volcano, "cells"), 5307);
     assert_int_equal(ft_test_json_int(nf, "vertices"), 64193);

@@ -33,7 +33,7 @@ static inline void check_near(double a, double b, double tol, const char *file, 
     } while (0)
 
 static const ft_dim_map BOX = FT_DIM_MAP_BOXCOUNT;  /* D = -slope */
-static const ft_dim_map SLOPE = {0.0, 1.0};         /* D = slope */
+static const ft_dim_map SLOPE = {0.0, 1.0, 0.0, 0.0}; /* D = slope, no bounds */
 
 /* value = c * scale^p at scales 2^0 .. 2^(n-1). */
 static ft_loglog *power_law(size_t n, double c, double p)
@@ -80,6 +80,8 @@ static void test_exact_power_law(void **state)
     assert_near(r->range[1], 512.0, 0.0);
     assert_int_equal(r->fit.n, 10);
     assert_string_equal(r->method, "ils");
+    assert_string_equal(r->segmentation, "ils");
+    assert_null(r->warning);
     assert_int_equal(r->nsegments, 1);
     assert_int_equal(r->best, 0);
     assert_near(r->segments[0].D_minimax, 1.5, 1e-12);
@@ -87,11 +89,15 @@ static void test_exact_power_law(void **state)
         assert_int_equal(r->table->rows[i].used, 1);
     ft_dim_result_free(r);
 
-    /* the map is applied as D = a + b*slope: divider-style {1, -1} gives 2.5 */
+    /* the map is applied as D = a + b*slope: divider-style {1, -1} gives 2.5, outside the divider's
+     * [1, 2]: the only straight run does not qualify, D is the whole table's fit and says so */
     const ft_dim_map div = FT_DIM_MAP_DIVIDER;
     assert_int_equal(ft_loglog_segment_ils(t, NULL, &div, &r), FT_OK);
     assert_near(r->D, 2.5, 1e-12);
     assert_near(r->r2, 1.0, 1e-12);
+    assert_string_equal(r->segmentation, FT_LOGLOG_WHOLE_RANGE);
+    assert_non_null(r->warning);
+    assert_non_null(strstr(r->warning, "outside [1, 2]"));
     ft_dim_result_free(r);
     ft_loglog_free(t);
 }
@@ -419,7 +425,7 @@ static void test_bad_options(void **state)
     assert_error_names(ft_loglog_fit_range(t, 0.0, NAN, &BOX, &r), FT_E_INVALID, "got nan");
     assert_error_names(ft_loglog_fit_range(t, 1000.0, 2000.0, &BOX, &r), FT_E_EMPTY, "0 row(s)");
     assert_error_names(ft_loglog_fit_range(t, 0.0, 0.0, NULL, &r), FT_E_INVALID, "map");
-    const ft_dim_map flat = {1.0, 0.0};
+    const ft_dim_map flat = {1.0, 0.0, 0.0, 0.0};
     assert_error_names(ft_loglog_fit_range(t, 0.0, 0.0, &flat, &r), FT_E_INVALID, "b != 0");
 
     ft_loglog_opts o = FT_LOGLOG_OPTS_DEFAULT;
@@ -468,6 +474,228 @@ static void test_no_straight_run(void **state)
     ft_loglog_free(t);
 }
 
+/* A staircase about the trend D = 1.7 of a divider table (L ~ step^(1 - D), slope p = -0.7): K periods
+ * of M rows, dx = 0.025 (log10) between rows, so a period spans P = M dx = 0.2 decades (a factor 1.58,
+ * the lacunarity of a midpoint curve). Within a period the rows climb as a tread of slope +1 (length
+ * proportional to the ruler, D = 0, as while a divider takes the same number of steps); between periods
+ * the value drops so that the period's mean slope is p:
+ *   y_i = p x_i + (1 - p) r dx,   x_i = i dx,   r = i mod M.
+ * Least squares over all N = K M rows: x = dx (M j + r) with j, r independent and uniform, so
+ * cov(x, r dx) = dx² var(r) and var(x) = dx² (M² var(j) + var(r)), var(r) = (M² - 1)/12,
+ * var(j) = (K² - 1)/12, and the slope is p + (1 - p)(M² - 1)/(N² - 1): D = 1.7 - 1.7 (M² - 1)/(N² - 1). */
+#define STAIR_M 8
+#define STAIR_K 8
+#define STAIR_DX 0.025
+#define STAIR_D 1.7
+static ft_loglog *staircase(void)
+{
+    const double p = 1.0 - STAIR_D;
+    ft_loglog *t = ft_loglog_create(STAIR_M * STAIR_K);
+    assert_non_null(t);
+    for (int i = 0; i < STAIR_M * STAIR_K; i++) {
+        double x = i * STAIR_DX, y = 1.0 + p * x + (1.0 - p) * (i % STAIR_M) * STAIR_DX;
+        assert_int_equal(ft_loglog_push(t, pow(10.0, x), pow(10.0, y), 0.0), FT_OK);
+    }
+    return t;
+}
+
+static double staircase_ls_D(void)
+{
+    const double n = STAIR_M * STAIR_K, m = STAIR_M;
+    return STAIR_D - STAIR_D * (m * m - 1.0) / (n * n - 1.0);
+}
+
+static void check_whole_range(const ft_dim_result *r, size_t rows)
+{
+    assert_string_equal(r->segmentation, FT_LOGLOG_WHOLE_RANGE);
+    assert_non_null(r->warning);
+    assert_non_null(strstr(r->warning, "whole range"));
+    assert_int_equal(r->fit.first, 0);
+    assert_int_equal(r->fit.n, rows);
+    for (size_t i = 0; i < r->table->n; i++)
+        assert_int_equal(r->table->rows[i].used, 1);
+}
+
+static void test_staircase_gives_trend(void **state)
+{
+    (void)state;
+    ft_loglog *t = staircase();
+    const ft_dim_map div = FT_DIM_MAP_DIVIDER, div_unbounded = {1.0, -1.0, 0.0, 0.0};
+    const size_t n = STAIR_M * STAIR_K;
+    ft_dim_result *r = NULL;
+
+    /* the rule before min_span and bounds: the longest straight run is a tread, D = 0 exactly */
+    ft_loglog_opts old = FT_LOGLOG_OPTS_DEFAULT;
+    old.min_span = 1.0;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &old, &div_unbounded, &r), FT_OK);
+    assert_near(r->D, 0.0, 1e-9);
+    assert_int_equal(r->fit.n, STAIR_M);
+    assert_string_equal(r->segmentation, "ils");
+    ft_dim_result_free(r);
+
+    /* default: no tread qualifies (a factor 10^(7 x 0.025) = 1.50 < 4, D = 0 outside [1, 2]); D is the
+     * whole table's least-squares trend, flagged */
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    assert_near(r->D, staircase_ls_D(), 1e-9);
+    assert_near(r->D, STAIR_D, 0.03);
+    check_whole_range(r, n);
+    assert_int_equal(r->best, FT_LOGLOG_NONE);
+    assert_true(r->nsegments >= STAIR_K); /* every tread is still reported as a minimax segment */
+    for (size_t k = 0; k < r->nsegments; k++)
+        if (r->segments[k].n >= 3)
+            assert_near(r->segments[k].D, 0.0, 1e-9);
+    ft_dim_result_free(r);
+
+    /* each rule alone is enough here: bounds only, span only; and the minimax method alike */
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &old, &div, &r), FT_OK);
+    assert_near(r->D, staircase_ls_D(), 1e-9);
+    check_whole_range(r, n);
+    ft_dim_result_free(r);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div_unbounded, &r), FT_OK);
+    assert_near(r->D, staircase_ls_D(), 1e-9);
+    check_whole_range(r, n);
+    ft_dim_result_free(r);
+    ft_loglog_opts mm = FT_LOGLOG_OPTS_DEFAULT;
+    mm.method = FT_LOGLOG_MINIMAX;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &mm, &div, &r), FT_OK);
+    assert_near(r->D, staircase_ls_D(), 1e-9);
+    check_whole_range(r, n);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+}
+
+/* Rows at 2^0 .. 2^14: a divider-style table with slope -0.3 (D = 1.3) up to 2^5 (rows 0..5, 6 rows, a
+ * factor 32) and slope s_long from there on (rows 5..14, 10 rows, a factor 512). */
+static ft_loglog *short_in_long_out(double s_long)
+{
+    ft_loglog *t = ft_loglog_create(15);
+    double xb = 5.0 * log10(2.0);
+    for (int i = 0; i < 15; i++) {
+        double x = i * log10(2.0), y = x <= xb ? -0.3 * x : -0.3 * xb + s_long * (x - xb);
+        assert_int_equal(ft_loglog_push(t, pow(10.0, x), pow(10.0, y), 0.0), FT_OK);
+    }
+    return t;
+}
+
+static void test_out_of_bounds_never_chosen(void **state)
+{
+    (void)state;
+    const ft_dim_map div = FT_DIM_MAP_DIVIDER, div_unbounded = {1.0, -1.0, 0.0, 0.0};
+    ft_loglog_opts mm = FT_LOGLOG_OPTS_DEFAULT;
+    mm.method = FT_LOGLOG_MINIMAX;
+    ft_dim_result *r = NULL;
+    /* the long run has slope +0.5, D = 0.5: without bounds it wins, with them the short run (D = 1.3) */
+    ft_loglog *t = short_in_long_out(0.5);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div_unbounded, &r), FT_OK);
+    assert_near(r->D, 0.5, 1e-12);
+    ft_dim_result_free(r);
+    for (int method = 0; method < 2; method++) {
+        assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, method ? &mm : NULL, &div, &r), FT_OK);
+        assert_near(r->D, 1.3, 1e-12);
+        assert_int_equal(r->fit.first, 0);
+        assert_int_equal(r->fit.last, 5);
+        assert_string_equal(r->segmentation, method ? "minimax" : "ils");
+        assert_null(r->warning);
+        assert_int_equal(r->best, 0);
+        ft_dim_result_free(r);
+    }
+    ft_loglog_free(t);
+
+    /* D = 2.04 is within the tolerance 0.05 of [1, 2] and the long run wins; D = 2.1 is not */
+    t = short_in_long_out(-1.04);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    assert_near(r->D, 2.04, 1e-12);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+    t = short_in_long_out(-1.1);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    assert_near(r->D, 1.3, 1e-12);
+    ft_dim_result_free(r);
+    ft_loglog_opts wide = FT_LOGLOG_OPTS_DEFAULT;
+    wide.bounds_tol = 0.2;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &wide, &div, &r), FT_OK);
+    assert_near(r->D, 2.1, 1e-12);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+
+    /* a power law whose D lies outside the bounds everywhere: the whole range, flagged, says so */
+    t = power_law(10, 1.0, 0.5); /* divider: D = 1 - 0.5 = 0.5 */
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    assert_near(r->D, 0.5, 1e-12);
+    check_whole_range(r, 10);
+    assert_non_null(strstr(r->warning, "outside [1, 2]"));
+    ft_dim_result_free(r);
+    /* a user range is fitted as asked, with the same warning */
+    assert_int_equal(ft_loglog_fit_range(t, 0.0, 0.0, &div, &r), FT_OK);
+    assert_near(r->D, 0.5, 1e-12);
+    assert_string_equal(r->segmentation, "range");
+    assert_non_null(r->warning);
+    assert_non_null(strstr(r->warning, "outside [1, 2]"));
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+}
+
+/* An exact power law over a factor 2^1.75 = 3.4 (8 rows, 2^(i/4)): straight, but too short to assert a
+ * power law under the default min_span 4; min_span 3 accepts it. */
+static void test_short_window_flagged(void **state)
+{
+    (void)state;
+    ft_loglog *t = ft_loglog_create(8);
+    for (int i = 0; i < 8; i++) {
+        double s = pow(2.0, i / 4.0);
+        assert_int_equal(ft_loglog_push(t, s, pow(s, -1.25), 0.0), FT_OK);
+    }
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &BOX, &r), FT_OK);
+    assert_near(r->D, 1.25, 1e-12);
+    check_whole_range(r, 8);
+    assert_non_null(strstr(r->warning, "factor of 4"));
+    assert_int_equal(r->best, 0); /* the one minimax segment spans the whole window */
+    ft_dim_result_free(r);
+    ft_loglog_opts o = FT_LOGLOG_OPTS_DEFAULT;
+    o.min_span = 3.0;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &o, &BOX, &r), FT_OK);
+    assert_near(r->D, 1.25, 1e-12);
+    assert_string_equal(r->segmentation, "ils");
+    assert_null(r->warning);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+}
+
+static void test_bounds_options(void **state)
+{
+    (void)state;
+    ft_loglog *t = power_law(8, 1.0, -1.5);
+    ft_dim_result *r = NULL;
+    ft_loglog_opts o = FT_LOGLOG_OPTS_DEFAULT;
+    o.min_span = 0.5;
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, &o, &BOX, &r), FT_E_INVALID, "min_span must be >= 1");
+    o.min_span = NAN;
+    assert_error_names(ft_loglog_segment_ils(t, &o, &BOX, &r), FT_E_INVALID, "min_span");
+    o = (ft_loglog_opts)FT_LOGLOG_OPTS_DEFAULT;
+    o.bounds_tol = -0.1;
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, &o, &BOX, &r), FT_E_INVALID, "bounds_tol must be >= 0");
+    const ft_dim_map reversed = {0.0, -1.0, 2.0, 1.0}, half = {0.0, -1.0, 1.0, 1.0};
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &reversed, &r), FT_E_INVALID, "[2, 1]");
+    assert_error_names(ft_loglog_fit_range(t, 0.0, 0.0, &half, &r), FT_E_INVALID, "d_min < d_max");
+    assert_null(r);
+    /* every estimator map carries its interval */
+    const ft_dim_map maps[] = {FT_DIM_MAP_DIVIDER, FT_DIM_MAP_BOXCOUNT_LINE, FT_DIM_MAP_VARIOGRAM_PROFILE,
+                               FT_DIM_MAP_INCREMENT_PROFILE, FT_DIM_MAP_SPECTRUM_PROFILE, FT_DIM_MAP_PRISM,
+                               FT_DIM_MAP_BOXCOUNT_SURFACE, FT_DIM_MAP_VARIOGRAM_SURFACE,
+                               FT_DIM_MAP_INCREMENT_SURFACE, FT_DIM_MAP_SPECTRUM_SURFACE, FT_DIM_MAP_BOXCOUNT};
+    for (size_t i = 0; i < sizeof maps / sizeof maps[0]; i++) {
+        double lo = i < 5 ? 1.0 : i < 10 ? 2.0 : 1.0, hi = i < 5 ? 2.0 : 3.0;
+        assert_near(maps[i].d_min, lo, 0.0);
+        assert_near(maps[i].d_max, hi, 0.0);
+    }
+    /* profile maps: H = 0.5 (D = 1.5) as gamma ~ lag^1, E|dz| ~ d^0.5, P(f) ~ f^-2 */
+    assert_near(maps[2].a + maps[2].b * 1.0, 1.5, 1e-15);
+    assert_near(maps[3].a + maps[3].b * 0.5, 1.5, 1e-15);
+    assert_near(maps[4].a + maps[4].b * -2.0, 1.5, 1e-15);
+    ft_loglog_free(t);
+}
+
 static void test_free_null(void **state)
 {
     (void)state;
@@ -495,6 +723,10 @@ int main(void)
         cmocka_unit_test(test_bad_tables),
         cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_no_straight_run),
+        cmocka_unit_test(test_staircase_gives_trend),
+        cmocka_unit_test(test_out_of_bounds_never_chosen),
+        cmocka_unit_test(test_short_window_flagged),
+        cmocka_unit_test(test_bounds_options),
         cmocka_unit_test(test_free_null),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

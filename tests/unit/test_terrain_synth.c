@@ -158,8 +158,11 @@ static void test_fft_spectrum_slope(void **state)
         ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
         o.dim = dims[i];
         o.periodic = 1;
+        /* One 512² tile's slope scatters by about 0.033 (sd over 200 seeds at D = 2.8), and the aliasing
+         * correction puts the expected slope about 0.06 above -(2H+2) at high D: 16 tiles bring the mean's
+         * scatter to 0.008, well inside the 0.1 tolerance. */
         double sum = 0.0;
-        for (uint64_t s = 1; s <= 4; s++) {
+        for (uint64_t s = 1; s <= 16; s++) {
             o.seed = s;
             ft_grid *g = NULL;
             assert_int_equal(ft_terrain_synth(512, 512, &o, &g), 0);
@@ -167,7 +170,7 @@ static void test_fft_spectrum_slope(void **state)
             ft_grid_free(g);
         }
         double H = 3.0 - dims[i];
-        assert_near(sum / 4.0, -(2.0 * H + 2.0), 0.1);
+        assert_near(sum / 16.0, -(2.0 * H + 2.0), 0.1);
     }
 }
 

@@ -1,0 +1,161 @@
+/* fracterra — cli/cmd_dim_map.c: `fracterra dim map DEM OUT --window W`: a local fractal-dimension
+ * (roughness) map, D of every window of a moving window (ft_surface_dim_map), written as a two-band raster
+ * aligned with the DEM: band 1 D, band 2 the r² of each window's log-log fit, nodata where a window could
+ * not be measured. docs/surface-grid.md.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "surface_cli.h"
+#include "terrain_cli.h"
+
+#include <math.h>
+#include <stdio.h>
+
+typedef struct {
+    const char *method, *driver;
+    int band, window, step, json;
+    long pairs; /* -1: automatic */
+    uint64_t seed;
+    double min_scale, max_scale, min_valid;
+    int nscales;
+} map_args;
+
+static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
+{
+    map_args *a = ctx;
+    switch (opt) {
+    case 'm': a->method = arg; return CLI_CONTINUE;
+    case 'f': a->driver = arg; return CLI_CONTINUE;
+    case 'w': return cli_parse_int(cmd, "--window", arg, 4, 1000000, &a->window);
+    case 'S': return cli_parse_int(cmd, "--step", arg, 1, 1000000, &a->step);
+    case 'b': return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->band);
+    case 'p': return surface_parse_pairs(cmd, arg, &a->pairs);
+    case 's': return terrain_parse_seed(cmd, arg, &a->seed);
+    case 'v': return cli_parse_double(cmd, "--min-valid", arg, 0.0, 1.0, CLI_OPEN_LO, &a->min_valid);
+    case 1: return cli_parse_double(cmd, "--min-scale", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->min_scale);
+    case 2: return cli_parse_double(cmd, "--max-scale", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->max_scale);
+    case 3: return cli_parse_int(cmd, "--scales", arg, 3, 1000, &a->nscales);
+    case 'j': a->json = 1; return CLI_CONTINUE;
+    default: return cli_usage_error(cmd, "unexpected option");
+    }
+}
+
+static int report(const cli_command *cmd, const map_args *a, const char *in, const char *out, const ft_grid *D,
+                  ft_surface_method m)
+{
+    size_t measured = ft_grid_count_valid(D);
+    double lo = NAN, hi = NAN, sum = 0.0;
+    if (measured)
+        ft_grid_minmax(D, &lo, &hi);
+    for (size_t i = 0; i < D->nx * D->ny; i++)
+        if (D->mask == NULL || D->mask[i])
+            sum += D->z[i];
+    json_object *o = terrain_report_start(a->json, in, out);
+    if (o == NULL) {
+        printf("%zu of %zu windows measured, D %.3f .. %.3f\n", measured, D->nx * D->ny, lo, hi);
+        return CLI_OK;
+    }
+    json_object *size = json_object_new_array();
+    json_object_array_add(size, json_object_new_int64((int64_t)D->nx));
+    json_object_array_add(size, json_object_new_int64((int64_t)D->ny));
+    json_object_object_add(o, "method", json_object_new_string(ft_surface_method_name(m)));
+    json_object_object_add(o, "window", json_object_new_int(a->window));
+    json_object_object_add(o, "step", json_object_new_int(a->step));
+    json_object_object_add(o, "size", size);
+    json_object_object_add(o, "bands", json_object_new_string("1: D, 2: r2"));
+    json_object_object_add(o, "windows", json_object_new_int64((int64_t)(D->nx * D->ny)));
+    json_object_object_add(o, "windows_measured", json_object_new_int64((int64_t)measured));
+    json_object_object_add(o, "D_min", cli_json_double(lo));
+    json_object_object_add(o, "D_max", cli_json_double(hi));
+    json_object_object_add(o, "D_mean", cli_json_double(measured ? sum / (double)measured : NAN));
+    return cli_print_json(cmd, o);
+}
+
+static int run_dim_map(const cli_command *cmd, int argc, char **argv)
+{
+    static const struct option longopts[] = {
+        {"window", required_argument, NULL, 'w'},  {"step", required_argument, NULL, 'S'},
+        {"method", required_argument, NULL, 'm'},  {"band", required_argument, NULL, 'b'},
+        {"pairs", required_argument, NULL, 'p'},   {"seed", required_argument, NULL, 's'},
+        {"min-valid", required_argument, NULL, 'v'}, {"min-scale", required_argument, NULL, 1},
+        {"max-scale", required_argument, NULL, 2}, {"scales", required_argument, NULL, 3},
+        {"format", required_argument, NULL, 'f'},  {"json", no_argument, NULL, 'j'},
+        CLI_OPT_HELP,                              CLI_OPT_END,
+    };
+    static const char *const names[] = {"DEM", "OUT"};
+    map_args a = {"variogram", NULL, 1, 0, 0, 0, -1, 1, 0.0, 0.0, 0.5, 0};
+    ft_surface_method m;
+    int first = 0, nm = 0;
+    int rc = cli_parse_options(cmd, argc, argv, longopts, "w:S:m:b:p:s:v:f:j", on_option, &a, &first);
+    if (rc == CLI_CONTINUE)
+        rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE && a.window == 0)
+        rc = cli_usage_error(cmd, "--window W is required (cells, >= 4)");
+    if (rc == CLI_CONTINUE && a.min_scale > 0.0 && a.max_scale > 0.0 && !(a.max_scale > a.min_scale))
+        rc = cli_usage_error(cmd, "--max-scale %g must exceed --min-scale %g", a.max_scale, a.min_scale);
+    if (rc == CLI_CONTINUE)
+        rc = surface_parse_methods(cmd, a.method, 0, &m, &nm);
+    if (rc != CLI_CONTINUE)
+        return rc;
+    const char *in = argv[first], *out = argv[first + 1];
+    if (ft_io_check_writable(out) != FT_OK)
+        return cli_fail(cmd);
+    ft_grid *g = NULL, *D = NULL, *r2 = NULL;
+    if ((rc = surface_read_dem(cmd, in, a.band, &g)) != CLI_CONTINUE)
+        return rc;
+    ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+    o.min_scale = a.min_scale;
+    o.max_scale = a.max_scale;
+    o.nscales = a.nscales;
+    o.fit_whole_range = 1; /* every window over the same range: the map compares like with like */
+    o.pairs = a.pairs >= 0 ? (size_t)a.pairs : 0;
+    o.seed = a.seed;
+    o.min_valid = a.min_valid;
+    o.progress = cli_progress();
+    size_t step = a.step > 0 ? (size_t)a.step : ((size_t)a.window / 4 > 0 ? (size_t)a.window / 4 : 1);
+    a.step = (int)step;
+    rc = ft_surface_dim_map(g, (size_t)a.window, step, m, &o, &D, &r2) == FT_OK ? CLI_OK : cli_fail(cmd);
+    if (rc == CLI_OK) {
+        ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+        wo.driver = a.driver;
+        const ft_grid *bands[2] = {D, r2};
+        rc = ft_io_write_grids(out, bands, 2, &wo) == FT_OK ? report(cmd, &a, in, out, D, m) : cli_fail(cmd);
+    }
+    ft_grid_free(D);
+    ft_grid_free(r2);
+    ft_grid_free(g);
+    return rc;
+}
+
+const cli_command cli_cmd_dim_map = {
+    "dim map",
+    "local fractal-dimension (roughness) map of an elevation grid",
+    "fracterra dim map DEM OUT --window W [--step S] [--method M] [--pairs N] [--seed N] [--band N]\n"
+    "                          [--min-scale S] [--max-scale S] [--scales N] [--min-valid F] [-f DRIVER]\n"
+    "                          [--json]",
+    "Measures D in every window of W x W cells whose corner moves by S cells, and writes a raster aligned\n"
+    "with the DEM (same CRS; one cell of S x S DEM cells centred on each window's centre): band 1 holds D,\n"
+    "band 2 the r\xc2\xb2 of the window's log-log fit. A window with fewer valid cells than --min-valid of its\n"
+    "area, or that the method cannot measure (flat), is nodata. Every window is fitted over the same scale\n"
+    "range (the method's default for W, or --min-scale/--max-scale), so the map compares like with like.\n"
+    "Windows run in parallel (OMP_NUM_THREADS); the map is the same on any thread count.\n\n"
+    "Options:\n"
+    "  -w, --window W       window side, cells (>= 4; required)\n"
+    "  -S, --step S         distance between windows, cells (default W / 4)\n"
+    "  -m, --method M       variogram (default), yokoya, pentland, spectrum, prism or cubes\n"
+    "                       (docs/surface-grid.md; lag methods use lags 1 .. W/8 cells by default)\n"
+    "  -p, --pairs N        lag methods: N random points per window (default 0: every pair)\n"
+    "  -s, --seed N         seed of the random points (default 1)\n"
+    "  -b, --band N         band of the DEM (default 1)\n"
+    "      --min-scale S    smallest lag, side or wavelength in map units (default: the method's)\n"
+    "      --max-scale S    largest (default: the method's for a W x W grid)\n"
+    "      --scales N       lags or frequency bins (3..1000)\n"
+    "  -v, --min-valid F    fewest valid cells of a window, as a fraction in (0, 1] (default 0.5)\n"
+    "  -f, --format DRIVER  GDAL driver of OUT (default: from the extension, GeoTIFF)\n"
+    "  -j, --json           print {\"input\", \"output\", \"method\", \"window\", \"step\", \"size\", \"windows\",\n"
+    "                       \"windows_measured\", \"D_min\", \"D_max\", \"D_mean\"}\n"
+    "  -h, --help           print this help\n\n"
+    "Example:\n"
+    "  fracterra dim map dem.tif roughness.tif --window 64 --step 16\n",
+    run_dim_map,
+};

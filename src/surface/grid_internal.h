@@ -1,0 +1,72 @@
+/* fracterra — surface/grid_internal.h (private): what the grid estimators of src/surface/ share.
+ *
+ *  - lag_pairs.c: the pairs of cells at integer lags (exhaustive along rows and columns, or Mark &
+ *    Aronson's random points in the inscribed circle) with the sums A = Σ|Δz|, B = Σ(Δz)², C = pairs
+ *    of Arakawa & Krotkov §2.4, and the whole estimate from them: the variogram (B/C), Yokoya (A/C)
+ *    and Pentland (the sample standard deviation of |Δz|) differ only in the statistic and the map;
+ *  - grid_cells.c: validity of a cell, cell sizes, the elevation range, the sizes and elevation scale of
+ *    the estimators measuring at powers of two (prism, cubes), the final fit.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_SURFACE_GRID_INTERNAL_H
+#define FRACTERRA_SURFACE_GRID_INTERNAL_H
+
+#include <math.h>
+
+#include "fracterra/surface.h"
+
+/* The statistic of the pairs at one lag that the log-log table holds. */
+typedef enum {
+    FT_LAG_STAT_MEAN_SQ = 0, /* B / C: twice the semivariance (variogram) */
+    FT_LAG_STAT_MEAN_ABS = 1, /* A / C: mean |Δz| (Yokoya) */
+    FT_LAG_STAT_SD_ABS = 2    /* sqrt((B - A²/C) / (C - 1)): sample sd of |Δz| (Pentland) */
+} ft_lag_stat;
+
+/* The whole lag-based estimate: checks the options, accumulates the pairs (OpenMP, per-row or
+ * per-block partial sums added in order), builds the table of the statistic against the mean ground
+ * distance of the pairs and fits it with map. name (static) is result->method and starts messages. */
+int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_stat stat, const char *name,
+                       const ft_dim_map *map, ft_dim_result **out);
+
+/* 1 if cell i is valid: not masked and finite. */
+static inline int ft_surface_cell_ok(const ft_grid *g, size_t i)
+{
+    return (g->mask == NULL || g->mask[i]) && isfinite(g->z[i]);
+}
+
+/* Ground size of a cell along rows (cx) and columns (cy), from the geotransform. */
+void ft_surface_cell_size(const ft_grid *g, double *cx, double *cy);
+/* Minimum and maximum of the valid cells; FT_E_EMPTY naming `name` if none is valid. */
+int ft_surface_valid_range(const ft_grid *g, const char *name, double *zmin, double *zmax);
+/* FT_E_INVALID naming `name` unless g holds at least min_side x min_side cells. */
+int ft_surface_check_grid(const ft_grid *g, const char *name, size_t min_side);
+
+/* Prism and cubes: the sizes 2^kmin .. 2^kmax cells of opts (checked, defaults applied), and the
+ * elevation scale zs (ground units per elevation unit, automatic when opts->zscale is 0) with the
+ * smallest valid elevation zmin. FT_E_INVALID / FT_E_EMPTY naming `name` and the value. */
+int ft_surface_dyadic_setup(const ft_grid *g, const ft_dyadic_opts *opts, const char *name, int *kmin, int *kmax,
+                            double *zmin, double *zs);
+
+/* What a dyadic estimator's one size needs: the elevation offset and scale, the cell sizes. */
+typedef struct {
+    double zmin, zs, cx, cy;
+} ft_dyadic_ctx;
+/* Measures squares or blocks of side s cells: value (the table's value) and count (squares or blocks
+ * measured; 0 = none, the size is left out). part is scratch of 2 doubles per row of squares. */
+typedef int (*ft_dyadic_size_fn)(const ft_grid *g, size_t s, const ft_dyadic_ctx *c, double *part, double *value,
+                                 double *count);
+/* Sums the per-row pairs part[2r], part[2r + 1] of rows 0 .. rows - 1 in order. */
+void ft_surface_sum_rows(const double *part, size_t rows, double *first, double *second);
+/* The whole estimate of a dyadic estimator (prism, cubes): setup, every size 2^kmin .. 2^kmax with progress
+ * (scale = s x sqrt(cx cy)), the fit with map; `what` names the unit in the message when fewer than two
+ * sizes could be measured ("a square without nodata corners"). result->method is name. */
+int ft_surface_dyadic_dim(const ft_grid *g, const ft_dyadic_opts *opts, const char *name, const char *what,
+                          const ft_dim_map *map, ft_dyadic_size_fn fn, ft_dim_result **out);
+
+/* Fits a finished table: least squares over every row (whole = 1) or ft_loglog_fit_auto; sets
+ * result->method to name. */
+int ft_surface_fit_table(const ft_loglog *t, int whole, const ft_loglog_opts *fit, const ft_dim_map *map,
+                         const char *name, ft_dim_result **out);
+
+#endif /* FRACTERRA_SURFACE_GRID_INTERNAL_H */
