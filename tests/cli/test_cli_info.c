@@ -23,20 +23,6 @@
 
 #define DATA(f) FT_TEST_DATA "/" f
 
-/* Runs `fracterra info --json FILE` and returns the parsed object (asserting exit 0). */
-static json_object *info_json(const char *path)
-{
-    ft_run_result r;
-    assert_int_equal(ft_run(&r, "info", "--json", path, NULL), 0);
-    if (r.status != 0)
-        fprintf(stderr, "stderr: %s\n", r.err);
-    assert_int_equal(r.status, 0);
-    json_object *o = ft_run_json(&r);
-    assert_non_null(o);
-    ft_run_free(&r);
-    return o;
-}
-
 static double at(json_object *a, size_t i)
 {
     return json_object_get_double(json_object_array_get_idx(a, i));
@@ -52,7 +38,7 @@ static void assert_crs(json_object *o, const char *name, int epsg)
 
 static void test_newfoundland(void **state)
 {
-    json_object *o = info_json(DATA("gshhg_newfoundland_utm21n.geojson"));
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", DATA("gshhg_newfoundland_utm21n.geojson"));
     assert_string_equal(ft_test_json_str(o, "kind"), "chains");
     assert_string_equal(ft_test_json_str(o, "driver"), "GeoJSON");
     assert_int_equal(ft_test_json_int(o, "features"), 1);
@@ -72,7 +58,7 @@ static void test_newfoundland(void **state)
 
 static void test_us_states(void **state)
 {
-    json_object *o = info_json(DATA("dcw_us_states_small_albers5070.geojson"));
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", DATA("dcw_us_states_small_albers5070.geojson"));
     assert_string_equal(ft_test_json_str(o, "kind"), "chains");
     assert_int_equal(ft_test_json_int(o, "features"), 4);
     assert_true(ft_test_json_int(o, "rings") >= 4);
@@ -90,7 +76,7 @@ static void test_us_states(void **state)
 
 static void test_volcano(void **state)
 {
-    json_object *o = info_json(DATA("dem_volcano_maunga_whau_10m.tif"));
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", DATA("dem_volcano_maunga_whau_10m.tif"));
     assert_string_equal(ft_test_json_str(o, "kind"), "grid");
     assert_string_equal(ft_test_json_str(o, "driver"), "GTiff");
     json_object *size = ft_test_json_key(o, "size");
@@ -111,7 +97,7 @@ static void test_volcano(void **state)
 
 static void test_luxembourg(void **state)
 {
-    json_object *o = info_json(DATA("dem_luxembourg_terra_30s.tif"));
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", DATA("dem_luxembourg_terra_30s.tif"));
     assert_string_equal(ft_test_json_str(o, "kind"), "grid");
     json_object *size = ft_test_json_key(o, "size");
     assert_int_equal(at(size, 0), 95);
@@ -128,7 +114,7 @@ static void test_luxembourg(void **state)
 
 static void test_mass_points(void **state)
 {
-    json_object *o = info_json(DATA("points_mass_topo_davis1973.csv"));
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", DATA("points_mass_topo_davis1973.csv"));
     assert_string_equal(ft_test_json_str(o, "kind"), "points");
     assert_int_equal(ft_test_json_int(o, "points"), 52);
     json_object *z = ft_test_json_key(o, "z_range");
@@ -184,7 +170,7 @@ static void test_large_line(void **state)
     fputs("]}}]}\n", f);
     assert_int_equal(fclose(f), 0);
 
-    json_object *o = info_json(path);
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", path);
     assert_string_equal(ft_test_json_str(o, "kind"), "chains");
     assert_int_equal(ft_test_json_int(o, "lines"), 1);
     assert_int_equal(ft_test_json_int(o, "rings"), 0);
@@ -215,7 +201,7 @@ static void test_large_grid(void **state)
     free(row);
     GDALClose(ds);
 
-    json_object *o = info_json(path);
+    json_object *o = FT_TEST_RUN_JSON("info", "--json", path);
     assert_int_equal(ft_test_json_int(o, "cells"), (int64_t)side * side);
     assert_int_equal(ft_test_json_int(o, "nodata"), hole * hole);
     assert_int_equal(ft_test_json_int(o, "valid"), (int64_t)side * side - hole * hole);

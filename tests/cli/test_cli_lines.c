@@ -32,52 +32,6 @@
 
 /* ---- running the binary ---- */
 
-/* Runs fracterra with argv (NULL-terminated), expects exit 0 and one JSON object on stdout. */
-static json_object *run_json(const char *const *argv)
-{
-    ft_run_result r;
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    if (r.status != 0)
-        fprintf(stderr, "%s %s failed (%d): %s", argv[0], argv[1] ? argv[1] : "", r.status, r.err);
-    assert_int_equal(r.status, 0);
-    json_object *o = ft_run_json(&r);
-    assert_non_null(o);
-    ft_run_free(&r);
-    return o;
-}
-#define RUN_JSON(...) run_json((const char *const[]){__VA_ARGS__, NULL})
-
-/* Runs fracterra with argv and expects exit `code`, nothing on stdout, "fracterra: PREFIX: " and needle on
- * stderr (prefix: the command, or "dim line"). */
-static void expect_failure(int code, const char *prefix, const char *needle, const char *const *argv)
-{
-    ft_run_result r;
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    char head[64];
-    snprintf(head, sizeof head, "fracterra: %s: ", prefix);
-    if (r.status != code || strstr(r.err, head) != r.err || strstr(r.err, needle) == NULL)
-        fprintf(stderr, "expected exit %d, '%s' and '%s'; got %d: %s", code, head, needle, r.status, r.err);
-    assert_false(r.signaled);
-    assert_int_equal(r.status, code);
-    assert_int_equal(r.out_len, 0);
-    assert_true(strstr(r.err, head) == r.err);
-    assert_non_null(strstr(r.err, needle));
-    ft_run_free(&r);
-}
-#define EXPECT_FAILURE(code, prefix, needle, ...)                                                              \
-    expect_failure(code, prefix, needle, (const char *const[]){__VA_ARGS__, NULL})
-
-static double num(json_object *o, const char *key)
-{
-    return json_object_get_double(ft_test_json_key(o, key));
-}
-
-static json_object *at(json_object *a, size_t i)
-{
-    assert_true(i < json_object_array_length(a));
-    return json_object_array_get_idx(a, i);
-}
-
 /* A number as an argument (one of 8 static buffers reused in turn). */
 static const char *arg_num(double v)
 {
@@ -217,38 +171,29 @@ static const char *write_coverage_geojson(const char *name)
     return fixture_file(&t, name, 2);
 }
 
-static ft_layer *read_layer(const char *path)
-{
-    ft_layer *l = NULL;
-    ft_read_layer_opts o = FT_READ_LAYER_OPTS_DEFAULT;
-    if (ft_io_read_layer(path, &o, &l) != FT_OK)
-        fprintf(stderr, "%s\n", ft_last_error());
-    assert_non_null(l);
-    return l;
-}
-
 /* ---- JSON shape ---- */
 
 /* The members every estimator prints (DESIGN.md "JSON results"). */
 static void assert_result_shape(json_object *r)
 {
     assert_non_null(ft_test_json_str(r, "method"));
-    assert_true(isfinite(num(r, "D")));
-    double r2 = num(r, "r2");
+    assert_true(isfinite(ft_test_json_num(r, "D")));
+    double r2 = ft_test_json_num(r, "r2");
     assert_true(r2 >= 0.0 && r2 <= 1.0);
-    assert_true(num(r, "stderr") >= 0.0);
+    assert_true(ft_test_json_num(r, "stderr") >= 0.0);
     json_object *range = ft_test_json_key(r, "range"), *table = ft_test_json_key(r, "table");
     assert_int_equal(json_object_array_length(range), 2);
-    assert_true(json_object_get_double(at(range, 0)) < json_object_get_double(at(range, 1)));
+    assert_true(json_object_get_double(ft_test_json_at(range, 0)) < json_object_get_double(ft_test_json_at(range, 1)));
     size_t n = json_object_array_length(table), used = 0;
     assert_true(n >= 3);
     for (size_t i = 0; i < n; i++) {
-        json_object *row = at(table, i);
-        assert_true(num(row, "scale") > 0.0 && num(row, "value") > 0.0 && num(row, "count") >= 0.0);
+        json_object *row = ft_test_json_at(table, i);
+        assert_true(ft_test_json_num(row, "scale") > 0.0 && ft_test_json_num(row, "value") > 0.0 &&
+                    ft_test_json_num(row, "count") >= 0.0);
         ft_test_json_key(row, "slope");
         used += json_object_get_boolean(ft_test_json_key(row, "used"));
         if (i > 0)
-            assert_true(num(row, "scale") > num(at(table, i - 1), "scale"));
+            assert_true(ft_test_json_num(row, "scale") > ft_test_json_num(ft_test_json_at(table, i - 1), "scale"));
     }
     assert_true(used >= 3);
 }
@@ -258,7 +203,7 @@ static void assert_result_shape(json_object *r)
 static void test_dim_straight_line_all_methods(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
-    json_object *o = RUN_JSON("dim", "line", in, "--where", "name = 'straight'", "--method", "all", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", in, "--where", "name = 'straight'", "--method", "all", "--json");
     assert_int_equal(ft_test_json_int(o, "features"), 1);
     assert_int_equal(ft_test_json_int(o, "chains"), 1);
     assert_int_equal(ft_test_json_int(o, "vertices"), 1001);
@@ -266,10 +211,10 @@ static void test_dim_straight_line_all_methods(void **state)
     assert_int_equal(json_object_array_length(results), 4);
     const char *names[] = {"divider", "equipaced", "hybrid", "box"};
     for (size_t i = 0; i < 4; i++) {
-        json_object *r = at(results, i);
+        json_object *r = ft_test_json_at(results, i);
         assert_result_shape(r);
         assert_string_equal(ft_test_json_str(r, "method"), names[i]);
-        assert_true(fabs(num(r, "D") - 1.0) < 0.005);
+        assert_true(fabs(ft_test_json_num(r, "D") - 1.0) < 0.005);
     }
     json_object_put(o);
 }
@@ -277,11 +222,11 @@ static void test_dim_straight_line_all_methods(void **state)
 static void test_dim_koch_gmt_text(void **state)
 {
     const char *in = write_koch_gmt("koch.gmt");
-    json_object *o = RUN_JSON("dim", "line", in, "--method", "divider,box", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", in, "--method", "divider,box", "--json");
     json_object *results = ft_test_json_key(o, "results");
     assert_int_equal(json_object_array_length(results), 2);
-    assert_true(fabs(num(at(results, 0), "D") - KOCH_D) < 0.01); /* divider */
-    assert_true(fabs(num(at(results, 1), "D") - KOCH_D) < 0.02); /* box */
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(results, 0), "D") - KOCH_D) < 0.01); /* divider */
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(results, 1), "D") - KOCH_D) < 0.02); /* box */
     json_object_put(o);
 }
 
@@ -289,7 +234,7 @@ static void test_dim_koch_gmt_text(void **state)
 static void test_dim_single_result_segments(void **state)
 {
     const char *in = write_koch_gmt("koch.gmt");
-    json_object *o = RUN_JSON("dim", "line", in, "--segments", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", in, "--segments", "--json");
     assert_result_shape(o);
     assert_string_equal(ft_test_json_str(o, "method"), "divider");
     assert_false(json_object_object_get_ex(o, "results", NULL));
@@ -297,10 +242,10 @@ static void test_dim_single_result_segments(void **state)
     assert_true(json_object_array_length(segs) >= 1);
     int chosen = 0;
     for (size_t i = 0; i < json_object_array_length(segs); i++) {
-        json_object *s = at(segs, i);
+        json_object *s = ft_test_json_at(segs, i);
         assert_int_equal(json_object_array_length(ft_test_json_key(s, "range")), 2);
         assert_true(ft_test_json_int(s, "rows") >= 2);
-        assert_true(isfinite(num(s, "D")) && num(s, "max_err") >= 0.0);
+        assert_true(isfinite(ft_test_json_num(s, "D")) && ft_test_json_num(s, "max_err") >= 0.0);
         chosen += json_object_get_boolean(ft_test_json_key(s, "chosen"));
     }
     assert_true(chosen <= 1);
@@ -311,22 +256,22 @@ static void test_dim_single_result_segments(void **state)
 static void test_dim_by_field_and_fid(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
-    json_object *o = RUN_JSON("dim", "line", in, "--by", "name", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", in, "--by", "name", "--json");
     assert_string_equal(ft_test_json_str(o, "by"), "name");
     json_object *f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 2);
-    assert_string_equal(ft_test_json_str(at(f, 0), "id"), "straight");
-    assert_string_equal(ft_test_json_str(at(f, 1), "id"), "koch");
-    assert_true(fabs(num(at(f, 0), "D") - 1.0) < 0.005);
-    assert_true(fabs(num(at(f, 1), "D") - KOCH_D) < 0.03);
-    assert_result_shape(at(f, 1));
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 0), "id"), "straight");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 1), "id"), "koch");
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(f, 0), "D") - 1.0) < 0.005);
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(f, 1), "D") - KOCH_D) < 0.03);
+    assert_result_shape(ft_test_json_at(f, 1));
     json_object_put(o);
 
-    o = RUN_JSON("dim", "line", in, "--by", "fid", "--method", "all", "--json");
+    o = FT_TEST_RUN_JSON("dim", "line", in, "--by", "fid", "--method", "all", "--json");
     f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 2);
-    assert_true(json_object_is_type(ft_test_json_key(at(f, 0), "id"), json_type_int));
-    assert_int_equal(json_object_array_length(ft_test_json_key(at(f, 1), "results")), 4);
+    assert_true(json_object_is_type(ft_test_json_key(ft_test_json_at(f, 0), "id"), json_type_int));
+    assert_int_equal(json_object_array_length(ft_test_json_key(ft_test_json_at(f, 1), "results")), 4);
     json_object_put(o);
 }
 
@@ -335,17 +280,17 @@ static void test_dim_plot(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
     const char *plot = ft_test_tmp("koch.svg");
-    json_object *o = RUN_JSON("dim", "line", in, "--where", "rank = 2", "--plot", plot, "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", in, "--where", "rank = 2", "--plot", plot, "--json");
     assert_string_equal(ft_test_json_str(o, "plot"), plot);
     free(ft_test_read_svg(plot, NULL));
     json_object_put(o);
 
-    o = RUN_JSON("dim", "line", in, "--by", "name", "--method", "divider,box", "--plot", ft_test_tmp("p.png"),
-                 "--json");
+    o = FT_TEST_RUN_JSON("dim", "line", in, "--by", "name", "--method", "divider,box", "--plot", ft_test_tmp("p.png"),
+                         "--json");
     json_object *f = ft_test_json_key(o, "features");
     const char *expect[] = {"p-straight-divider.png", "p-straight-box.png", "p-koch-divider.png", "p-koch-box.png"};
     for (size_t i = 0; i < 4; i++) {
-        json_object *r = at(ft_test_json_key(at(f, i / 2), "results"), i % 2);
+        json_object *r = ft_test_json_at(ft_test_json_key(ft_test_json_at(f, i / 2), "results"), i % 2);
         assert_string_equal(ft_test_json_str(r, "plot"), ft_test_tmp(expect[i]));
         size_t size = 0;
         char *png = ft_test_read_file(ft_test_tmp(expect[i]), &size);
@@ -370,15 +315,15 @@ static void test_dim_human_table(void **state)
 /* A real polygon layer, per state: every state gets a D between 1 and 1.5. */
 static void test_dim_us_states_by_code(void **state)
 {
-    json_object *o = RUN_JSON("dim", "line", US_STATES, "--by", "code", "--method", "box", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", US_STATES, "--by", "code", "--method", "box", "--json");
     json_object *f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 4);
     for (size_t i = 0; i < 4; i++) {
-        json_object *g = at(f, i);
+        json_object *g = ft_test_json_at(f, i);
         assert_non_null(strstr(ft_test_json_str(g, "id"), "US."));
         if (json_object_object_get_ex(g, "error", NULL))
             continue; /* a state too small for the box sizes is reported, not fatal */
-        assert_true(num(g, "D") >= 1.0 && num(g, "D") < 1.5);
+        assert_true(ft_test_json_num(g, "D") >= 1.0 && ft_test_json_num(g, "D") < 1.5);
     }
     json_object_put(o);
 }
@@ -389,21 +334,22 @@ static void test_dim_us_states_by_code(void **state)
 static void test_enhance_counts_and_keys(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson"), *out = ft_test_tmp("enh.geojson");
-    json_object *o = RUN_JSON("enhance", in, out, "--sd", "1.5", "--uc", "0.5", "--json");
+    json_object *o = FT_TEST_RUN_JSON("enhance", in, out, "--sd", "1.5", "--uc", "0.5", "--json");
     size_t n = 1001 + 4097;
     assert_int_equal(ft_test_json_int(o, "vertices_in"), n);
     assert_int_equal(ft_test_json_int(o, "vertices_out"), 2 * n - 2); /* two chains: 2n - 1 each */
     assert_true(ft_test_json_int(o, "self_intersections") >= 0);
     assert_string_equal(ft_test_json_str(o, "output"), out);
-    assert_true(num(o, "sd") == 1.5 && num(o, "uc") == 0.5 && num(o, "sm") == 0.0);
+    assert_true(ft_test_json_num(o, "sd") == 1.5 && ft_test_json_num(o, "uc") == 0.5 &&
+                ft_test_json_num(o, "sm") == 0.0);
     assert_null(ft_test_json_key(o, "st")); /* no limit */
     assert_int_equal(ft_test_json_int(o, "iterations"), 1);
     assert_false(json_object_get_boolean(ft_test_json_key(o, "coverage"))); /* lines */
     json_object *stages = ft_test_json_key(o, "stages");
     assert_int_equal(json_object_array_length(stages), 1);
-    assert_string_equal(ft_test_json_str(at(stages, 0), "step"), "fractalize");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(stages, 0), "step"), "fractalize");
     json_object_put(o);
-    ft_layer *l = read_layer(out);
+    ft_layer *l = ft_test_read_layer(out);
     assert_int_equal(ft_layer_vertex_count(l), 2 * n - 2);
     ft_layer_free(l);
 }
@@ -412,17 +358,17 @@ static void test_enhance_counts_and_keys(void **state)
 static void test_enhance_all_steps_repair(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson"), *out = ft_test_tmp("enh.gpkg");
-    json_object *o = RUN_JSON("enhance", in, out, "--sd", "1.8", "--uc", "-1", "--iterations", "3", "--sm", "0.2",
-                              "--weed", "--smooth", "2", "--roundness", "0.25", "--repair", "--json");
+    json_object *o = FT_TEST_RUN_JSON("enhance", in, out, "--sd", "1.8", "--uc", "-1", "--iterations", "3", "--sm",
+                                      "0.2", "--weed", "--smooth", "2", "--roundness", "0.25", "--repair", "--json");
     json_object *stages = ft_test_json_key(o, "stages");
     const char *steps[] = {"fractalize", "weed", "smooth", "repair"};
     assert_int_equal(json_object_array_length(stages), 4);
     for (size_t i = 0; i < 4; i++)
-        assert_string_equal(ft_test_json_str(at(stages, i), "step"), steps[i]);
+        assert_string_equal(ft_test_json_str(ft_test_json_at(stages, i), "step"), steps[i]);
     assert_true(ft_test_json_int(o, "self_intersections_before_repair") >= 0);
     assert_int_equal(ft_test_json_int(o, "self_intersections"), 0);
     assert_int_equal(ft_test_json_int(o, "vertices_out"),
-                     ft_test_json_int(at(stages, 3), "vertices"));
+                     ft_test_json_int(ft_test_json_at(stages, 3), "vertices"));
     json_object_put(o);
 }
 
@@ -457,15 +403,16 @@ static void test_outputs_keep_crs_and_attributes(void **state)
     const char *outs[] = {"s.gpkg", "s.shp", "s.geojson"}, *drivers[] = {"GPKG", "ESRI Shapefile", "GeoJSON"};
     for (int i = 0; i < 3; i++) {
         const char *out = ft_test_tmp(outs[i]);
-        json_object *o = RUN_JSON("smooth", in, out, "--json");
+        json_object *o = FT_TEST_RUN_JSON("smooth", in, out, "--json");
         json_object_put(o);
         assert_ogr_output(out, drivers[i], 2, "name", "straight", 32621);
     }
-    json_object *o = RUN_JSON("simplify", US_STATES, ft_test_tmp("states.gpkg"), "--tolerance", "2000", "--json");
+    json_object *o = FT_TEST_RUN_JSON("simplify", US_STATES, ft_test_tmp("states.gpkg"), "--tolerance", "2000",
+                                      "--json");
     assert_true(ft_test_json_int(o, "vertices_out") < ft_test_json_int(o, "vertices_in"));
     assert_true(json_object_get_boolean(ft_test_json_key(o, "coverage")));
     json_object_put(o);
-    ft_layer *l = read_layer(US_STATES);
+    ft_layer *l = ft_test_read_layer(US_STATES);
     char first[64];
     snprintf(first, sizeof first, "%s", l->features[0].values[ft_layer_field_index(l, "code")].s);
     ft_layer_free(l);
@@ -476,13 +423,13 @@ static void test_outputs_keep_crs_and_attributes(void **state)
 static void test_format_option_and_text_output(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
-    json_object_put(RUN_JSON("weed", in, ft_test_tmp("w.data"), "--min-segment", "2", "-f", "GPKG", "--json"));
+    json_object_put(FT_TEST_RUN_JSON("weed", in, ft_test_tmp("w.data"), "--min-segment", "2", "-f", "GPKG", "--json"));
     assert_ogr_output(ft_test_tmp("w.data"), "GPKG", 2, "name", "straight", 32621);
-    json_object *o = RUN_JSON("weed", in, ft_test_tmp("w.gmt"), "--min-segment", "2", "--json");
+    json_object *o = FT_TEST_RUN_JSON("weed", in, ft_test_tmp("w.gmt"), "--min-segment", "2", "--json");
     size_t out = (size_t)ft_test_json_int(o, "vertices_out");
     assert_true(out < 1001 + 4097);
     json_object_put(o);
-    ft_layer *l = read_layer(ft_test_tmp("w.gmt"));
+    ft_layer *l = ft_test_read_layer(ft_test_tmp("w.gmt"));
     assert_int_equal(ft_layer_vertex_count(l), out);
     ft_layer_free(l);
 }
@@ -491,20 +438,20 @@ static void test_format_option_and_text_output(void **state)
 static void test_weed_and_simplify_counts(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
-    json_object *o = RUN_JSON("weed", in, ft_test_tmp("w.geojson"), "--where", "rank = 1", "--min-segment", "10",
-                              "--json");
+    json_object *o = FT_TEST_RUN_JSON("weed", in, ft_test_tmp("w.geojson"), "--where", "rank = 1", "--min-segment",
+                                      "10", "--json");
     assert_int_equal(ft_test_json_int(o, "vertices_in"), 1001);
     assert_int_equal(ft_test_json_int(o, "vertices_out"), 101);
-    assert_true(num(o, "min_segment") == 10.0);
+    assert_true(ft_test_json_num(o, "min_segment") == 10.0);
     json_object_put(o);
-    o = RUN_JSON("simplify", in, ft_test_tmp("s.geojson"), "--where", "rank = 1", "--tolerance", "0.001",
-                 "--json");
+    o = FT_TEST_RUN_JSON("simplify", in, ft_test_tmp("s.geojson"), "--where", "rank = 1", "--tolerance", "0.001",
+                         "--json");
     assert_int_equal(ft_test_json_int(o, "vertices_out"), 2); /* a straight line keeps its end points */
     json_object_put(o);
-    o = RUN_JSON("simplify", in, ft_test_tmp("s.geojson"), "--where", "rank = 2", "--vertices", "50", "--json");
+    o = FT_TEST_RUN_JSON("simplify", in, ft_test_tmp("s.geojson"), "--where", "rank = 2", "--vertices", "50", "--json");
     assert_true(ft_test_json_int(o, "vertices_out") <= 50 && ft_test_json_int(o, "vertices_out") >= 2);
     assert_int_equal(ft_test_json_int(o, "target_vertices"), 50);
-    assert_true(num(o, "tolerance") > 0.0);
+    assert_true(ft_test_json_num(o, "tolerance") > 0.0);
     json_object_put(o);
 }
 
@@ -544,24 +491,25 @@ static double layer_area(const ft_layer *l)
 static void test_coverage_keeps_shared_boundaries(void **state)
 {
     const char *in = write_coverage_geojson("cover.geojson");
-    json_object *o = RUN_JSON("enhance", in, ft_test_tmp("cov.geojson"), "--sd", "1.5", "--st", "5", "--json");
+    json_object *o = FT_TEST_RUN_JSON("enhance", in, ft_test_tmp("cov.geojson"), "--sd", "1.5", "--st", "5", "--json");
     assert_true(json_object_get_boolean(ft_test_json_key(o, "coverage")));
     json_object_put(o);
-    ft_layer *before = read_layer(in), *cov = read_layer(ft_test_tmp("cov.geojson"));
+    ft_layer *before = ft_test_read_layer(in), *cov = ft_test_read_layer(ft_test_tmp("cov.geojson"));
     assert_int_equal(common_vertices(before->parts[0].chain, before->parts[1].chain), 11);
     assert_int_equal(common_vertices(cov->parts[0].chain, cov->parts[1].chain), 21);
     assert_true(fabs(layer_area(cov) - layer_area(before)) < 0.01 * layer_area(before));
     assert_string_equal(cov->features[1].values[ft_layer_field_index(cov, "name")].s, "east");
 
-    json_object_put(RUN_JSON("enhance", in, ft_test_tmp("rings.geojson"), "--sd", "1.5", "--no-coverage", "--json"));
-    ft_layer *rings = read_layer(ft_test_tmp("rings.geojson"));
+    json_object_put(FT_TEST_RUN_JSON("enhance", in, ft_test_tmp("rings.geojson"), "--sd", "1.5", "--no-coverage",
+                                     "--json"));
+    ft_layer *rings = ft_test_read_layer(ft_test_tmp("rings.geojson"));
     assert_true(common_vertices(rings->parts[0].chain, rings->parts[1].chain) < 21);
     ft_layer_free(before);
     ft_layer_free(cov);
     ft_layer_free(rings);
 
-    json_object_put(RUN_JSON("smooth", in, ft_test_tmp("sm.geojson"), "--passes", "2", "--json"));
-    ft_layer *sm = read_layer(ft_test_tmp("sm.geojson"));
+    json_object_put(FT_TEST_RUN_JSON("smooth", in, ft_test_tmp("sm.geojson"), "--passes", "2", "--json"));
+    ft_layer *sm = ft_test_read_layer(ft_test_tmp("sm.geojson"));
     size_t c = common_vertices(sm->parts[0].chain, sm->parts[1].chain);
     assert_true(c >= 11 * 4 - 8); /* two passes of corner cutting on the shared arc, nodes kept */
     ft_layer_free(sm);
@@ -573,12 +521,12 @@ static void test_coverage_keeps_shared_boundaries(void **state)
 static void test_enhance_us_states(void **state)
 {
     const char *out = ft_test_tmp("states.geojson");
-    json_object *o = RUN_JSON("enhance", US_STATES, out, "--sd", "1.5", "--uc", "0.5", "--sm", "160", "--st",
-                              "80000", "--smooth", "1", "--repair", "--json");
+    json_object *o = FT_TEST_RUN_JSON("enhance", US_STATES, out, "--sd", "1.5", "--uc", "0.5", "--sm", "160", "--st",
+                                      "80000", "--smooth", "1", "--repair", "--json");
     assert_int_equal(ft_test_json_int(o, "self_intersections"), 0);
     assert_true(ft_test_json_int(o, "vertices_out") > 2 * ft_test_json_int(o, "vertices_in"));
     json_object_put(o);
-    ft_layer *before = read_layer(US_STATES), *after = read_layer(out);
+    ft_layer *before = ft_test_read_layer(US_STATES), *after = ft_test_read_layer(out);
     assert_int_equal(after->nfeatures, 4);
     ft_test_assert_same_crs(before->crs_wkt, after->crs_wkt);
     int code = ft_layer_field_index(after, "code");
@@ -601,49 +549,52 @@ static void test_bad_input_every_command(void **state)
     const char *good[] = {"1.3", "10", "10", "1"};
     for (int i = 0; i < 4; i++) {
         const char *out = ft_test_tmp("out.geojson");
-        EXPECT_FAILURE(1, cmds[i], "/nonexistent/x.geojson", cmds[i], "/nonexistent/x.geojson", out, opt[i], good[i]);
-        EXPECT_FAILURE(1, cmds[i], "dem_volcano_maunga_whau_10m.tif", cmds[i], VOLCANO, out, opt[i], good[i]);
-        EXPECT_FAILURE(1, cmds[i], "/nonexistent/folder", cmds[i], in, "/nonexistent/folder/o.geojson", opt[i],
-                       good[i]);
-        EXPECT_FAILURE(2, cmds[i], "missing OUTPUT", cmds[i], in, opt[i], good[i]);
-        EXPECT_FAILURE(2, cmds[i], opt[i], cmds[i], in, out, opt[i], "-3");
-        EXPECT_FAILURE(1, cmds[i], "out.xyz123", cmds[i], in, ft_test_tmp("out.xyz123"), opt[i], good[i]);
+        FT_TEST_EXPECT_FAILURE(1, cmds[i], "/nonexistent/x.geojson", cmds[i], "/nonexistent/x.geojson", out, opt[i],
+                               good[i]);
+        FT_TEST_EXPECT_FAILURE(1, cmds[i], "dem_volcano_maunga_whau_10m.tif", cmds[i], VOLCANO, out, opt[i], good[i]);
+        FT_TEST_EXPECT_FAILURE(1, cmds[i], "/nonexistent/folder", cmds[i], in, "/nonexistent/folder/o.geojson", opt[i],
+                               good[i]);
+        FT_TEST_EXPECT_FAILURE(2, cmds[i], "missing OUTPUT", cmds[i], in, opt[i], good[i]);
+        FT_TEST_EXPECT_FAILURE(2, cmds[i], opt[i], cmds[i], in, out, opt[i], "-3");
+        FT_TEST_EXPECT_FAILURE(1, cmds[i], "out.xyz123", cmds[i], in, ft_test_tmp("out.xyz123"), opt[i], good[i]);
         assert_int_equal(ft_test_dir_count(), 1); /* only the input: nothing written, no temporary left */
     }
-    EXPECT_FAILURE(2, "enhance", "--sd must be a number in [1,2], got '2.7'", "enhance", in, "o.geojson", "--sd",
-                   "2.7");
-    EXPECT_FAILURE(2, "enhance", "--uc", "enhance", in, "o.geojson", "--uc", "1.5");
-    EXPECT_FAILURE(2, "enhance", "--roundness", "enhance", in, "o.geojson", "--roundness", "0");
-    EXPECT_FAILURE(2, "enhance", "--iterations", "enhance", in, "o.geojson", "--iterations", "99");
-    EXPECT_FAILURE(2, "enhance", "--weed", "enhance", in, "o.geojson", "--weed");
-    EXPECT_FAILURE(2, "enhance", "--sm", "enhance", in, "o.geojson", "--sm", "10", "--st", "5");
-    EXPECT_FAILURE(2, "enhance", "unknown option '--bogus'", "enhance", in, "o.geojson", "--bogus");
-    EXPECT_FAILURE(2, "simplify", "either --tolerance", "simplify", in, "o.geojson");
-    EXPECT_FAILURE(2, "simplify", "either --tolerance", "simplify", in, "o.geojson", "--tolerance", "1",
-                   "--vertices", "9");
-    EXPECT_FAILURE(2, "weed", "missing --min-segment", "weed", in, "o.geojson");
-    EXPECT_FAILURE(2, "smooth", "--roundness", "smooth", in, "o.geojson", "--roundness", "1.5");
-    EXPECT_FAILURE(2, "smooth", "--passes", "smooth", in, "o.geojson", "--passes", "0");
-    EXPECT_FAILURE(2, "smooth", "bad filter", "smooth", in, "o.geojson", "--where", "name ==== 'x'");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--sd must be a number in [1,2], got '2.7'", "enhance", in, "o.geojson",
+                           "--sd", "2.7");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--uc", "enhance", in, "o.geojson", "--uc", "1.5");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--roundness", "enhance", in, "o.geojson", "--roundness", "0");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--iterations", "enhance", in, "o.geojson", "--iterations", "99");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--weed", "enhance", in, "o.geojson", "--weed");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--sm", "enhance", in, "o.geojson", "--sm", "10", "--st", "5");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "unknown option '--bogus'", "enhance", in, "o.geojson", "--bogus");
+    FT_TEST_EXPECT_FAILURE(2, "simplify", "either --tolerance", "simplify", in, "o.geojson");
+    FT_TEST_EXPECT_FAILURE(2, "simplify", "either --tolerance", "simplify", in, "o.geojson", "--tolerance", "1",
+                           "--vertices", "9");
+    FT_TEST_EXPECT_FAILURE(2, "weed", "missing --min-segment", "weed", in, "o.geojson");
+    FT_TEST_EXPECT_FAILURE(2, "smooth", "--roundness", "smooth", in, "o.geojson", "--roundness", "1.5");
+    FT_TEST_EXPECT_FAILURE(2, "smooth", "--passes", "smooth", in, "o.geojson", "--passes", "0");
+    FT_TEST_EXPECT_FAILURE(2, "smooth", "bad filter", "smooth", in, "o.geojson", "--where", "name ==== 'x'");
     assert_int_equal(ft_test_dir_count(), 1);
 }
 
 static void test_bad_input_dim(void **state)
 {
     const char *in = write_lines_geojson("lines.geojson");
-    EXPECT_FAILURE(2, "dim", "missing SUBCOMMAND", "dim");
-    EXPECT_FAILURE(2, "dim", "unknown subcommand 'curve'", "dim", "curve", in);
-    EXPECT_FAILURE(1, "dim line", "/nonexistent/x.geojson", "dim", "line", "/nonexistent/x.geojson");
-    EXPECT_FAILURE(1, "dim line", "dem_volcano_maunga_whau_10m.tif", "dim", "line", VOLCANO);
-    EXPECT_FAILURE(2, "dim line", "--method", "dim", "line", in, "--method", "ruler");
-    EXPECT_FAILURE(2, "dim line", "--method", "dim", "line", in, "--method", "divider,divider");
-    EXPECT_FAILURE(2, "dim line", "--scales", "dim", "line", in, "--scales", "2");
-    EXPECT_FAILURE(2, "dim line", "--min-scale", "dim", "line", in, "--min-scale", "-1");
-    EXPECT_FAILURE(2, "dim line", "below --max-scale", "dim", "line", in, "--min-scale", "10", "--max-scale", "5");
-    EXPECT_FAILURE(2, "dim line", "--plot", "dim", "line", in, "--plot", ft_test_tmp("p.jpg"));
-    EXPECT_FAILURE(1, "dim line", "/nonexistent/folder", "dim", "line", in, "--plot", "/nonexistent/folder/p.svg");
-    EXPECT_FAILURE(1, "dim line", "'nosuch'", "dim", "line", in, "--by", "nosuch");
-    EXPECT_FAILURE(2, "dim line", "missing INPUT", "dim", "line");
+    FT_TEST_EXPECT_FAILURE(2, "dim", "missing SUBCOMMAND", "dim");
+    FT_TEST_EXPECT_FAILURE(2, "dim", "unknown subcommand 'curve'", "dim", "curve", in);
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "/nonexistent/x.geojson", "dim", "line", "/nonexistent/x.geojson");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "dem_volcano_maunga_whau_10m.tif", "dim", "line", VOLCANO);
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--method", "dim", "line", in, "--method", "ruler");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--method", "dim", "line", in, "--method", "divider,divider");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--scales", "dim", "line", in, "--scales", "2");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--min-scale", "dim", "line", in, "--min-scale", "-1");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "below --max-scale", "dim", "line", in, "--min-scale", "10", "--max-scale",
+                           "5");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--plot", "dim", "line", in, "--plot", ft_test_tmp("p.jpg"));
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "/nonexistent/folder", "dim", "line", in, "--plot",
+                           "/nonexistent/folder/p.svg");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "'nosuch'", "dim", "line", in, "--by", "nosuch");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "missing INPUT", "dim", "line");
     const char *one = ft_test_tmp_text("one.geojson", "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":"
                                                       "\"Feature\",\"properties\":{},\"geometry\":{\"type\":"
                                                       "\"LineString\",\"coordinates\":[[0,0],[1,1]]}}]}\n");
@@ -663,10 +614,12 @@ static double dim_on_rulers(const char *path, json_object *table)
     size_t n = json_object_array_length(table);
     char scales[16];
     snprintf(scales, sizeof scales, "%zu", n);
-    json_object *o = RUN_JSON("dim", "line", path, "--min-scale", arg_num(num(at(table, 0), "scale")),
-                              "--max-scale", arg_num(num(at(table, n - 1), "scale")), "--scales", scales, "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "line", path, "--min-scale",
+                                      arg_num(ft_test_json_num(ft_test_json_at(table, 0), "scale")), "--max-scale",
+                                      arg_num(ft_test_json_num(ft_test_json_at(table, n - 1), "scale")), "--scales",
+                                      scales, "--json");
     assert_int_equal(json_object_array_length(ft_test_json_key(o, "table")), n);
-    double d = num(o, "D");
+    double d = ft_test_json_num(o, "D");
     json_object_put(o);
     return d;
 }
@@ -689,23 +642,24 @@ static void test_newfoundland_sequence(void **state)
 {
     const char *gen = ft_test_tmp("nf158.geojson"), *enh = ft_test_tmp("nf_enh.geojson");
     const char *weed = ft_test_tmp("nf_weed.geojson"), *smooth = ft_test_tmp("nf_smooth.geojson");
-    size_t n158 = vertices_out(RUN_JSON("simplify", NEWFOUNDLAND, gen, "--vertices", "158", "--json"));
+    size_t n158 = vertices_out(FT_TEST_RUN_JSON("simplify", NEWFOUNDLAND, gen, "--vertices", "158", "--json"));
     assert_true(n158 >= 150 && n158 <= 158);
 
-    ft_layer *l = read_layer(NEWFOUNDLAND);
+    ft_layer *l = ft_test_read_layer(NEWFOUNDLAND);
     double x0, y0, x1, y1;
     assert_int_equal(ft_layer_bbox(l, &x0, &y0, &x1, &y1), FT_OK);
     ft_layer_free(l);
     const char *sm = arg_num(0.01 * (x1 - x0));
 
-    json_object *d0 = RUN_JSON("dim", "line", gen, "--json");
+    json_object *d0 = FT_TEST_RUN_JSON("dim", "line", gen, "--json");
     json_object *table = ft_test_json_key(d0, "table");
-    double dgen = num(d0, "D");
+    double dgen = ft_test_json_num(d0, "D");
     assert_true(dgen > 1.2 && dgen < 1.6);
 
-    size_t nenh = vertices_out(RUN_JSON("enhance", gen, enh, "--sd", "1.3", "--uc", "0.7", "--sm", sm, "--json"));
-    size_t nweed = vertices_out(RUN_JSON("weed", enh, weed, "--min-segment", sm, "--json"));
-    size_t nsmooth = vertices_out(RUN_JSON("smooth", weed, smooth, "--sm", sm, "--json"));
+    size_t nenh = vertices_out(FT_TEST_RUN_JSON("enhance", gen, enh, "--sd", "1.3", "--uc", "0.7", "--sm", sm,
+                                                "--json"));
+    size_t nweed = vertices_out(FT_TEST_RUN_JSON("weed", enh, weed, "--min-segment", sm, "--json"));
+    size_t nsmooth = vertices_out(FT_TEST_RUN_JSON("smooth", weed, smooth, "--sm", sm, "--json"));
     assert_true(nenh > 1.8 * n158 && nenh <= 2 * n158); /* a ring: 2n when every segment is split */
     assert_true(nweed < nenh && nweed > 0.7 * nenh);
     assert_true(nsmooth > 1.8 * nweed && nsmooth <= 2 * nweed);
@@ -719,12 +673,12 @@ static void test_newfoundland_sequence(void **state)
     assert_true(fabs(dsmooth - dgen) < 0.08);
 
     /* the same in one command */
-    json_object *o = RUN_JSON("enhance", gen, ft_test_tmp("nf_one.geojson"), "--sd", "1.3", "--uc", "0.7", "--sm",
-                              sm, "--weed", "--smooth", "1", "--json");
+    json_object *o = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_one.geojson"), "--sd", "1.3", "--uc", "0.7",
+                                      "--sm", sm, "--weed", "--smooth", "1", "--json");
     json_object *stages = ft_test_json_key(o, "stages");
-    assert_int_equal(ft_test_json_int(at(stages, 0), "vertices"), nenh);
-    assert_int_equal(ft_test_json_int(at(stages, 1), "vertices"), nweed);
-    assert_int_equal(ft_test_json_int(at(stages, 2), "vertices"), nsmooth);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(stages, 0), "vertices"), nenh);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(stages, 1), "vertices"), nweed);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(stages, 2), "vertices"), nsmooth);
     json_object_put(o);
     json_object_put(d0);
 }

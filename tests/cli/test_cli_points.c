@@ -65,11 +65,6 @@ static void expect_error(ft_run_result r, int code, const char *needle1, const c
     ft_run_free(&r);
 }
 
-static double json_d(json_object *o, const char *k)
-{
-    return json_object_get_double(ft_test_json_key(o, k));
-}
-
 /* The default lags (0.5 to 4 mean spacings, eps half the smallest gap) hold fewer than 100 pairs each
  * among 52 points: a clear failure listing every dropped lag with its pair count. */
 static void test_davis_default_too_few_lags(void **state)
@@ -86,8 +81,8 @@ static void test_davis_explicit_lags(void **state)
     assert_int_equal(ft_test_json_int(o, "points"), 52);
     assert_string_equal(ft_test_json_str(o, "method"), "yokoya");
     assert_string_equal(ft_test_json_str(o, "pairs"), "grid");
-    assert_true(json_d(o, "eps") == 0.25);
-    double D = json_d(o, "D");
+    assert_true(ft_test_json_num(o, "eps") == 0.25);
+    double D = ft_test_json_num(o, "D");
     assert_true(D > 2.0 && D < 3.0);
     assert_int_equal(json_object_array_length(ft_test_json_key(o, "table")), 5);
     assert_int_equal(json_object_array_length(ft_test_json_key(o, "dropped_lags")), 0);
@@ -98,7 +93,7 @@ static void test_davis_explicit_lags(void **state)
     json_object *dropped = ft_test_json_key(o, "dropped_lags");
     assert_int_equal(json_object_array_length(dropped), 2);
     json_object *d0 = json_object_array_get_idx(dropped, 0);
-    assert_true(json_d(d0, "lag") == 1.0);
+    assert_true(ft_test_json_num(d0, "lag") == 1.0);
     assert_int_equal(ft_test_json_int(d0, "pairs"), 91);
     assert_string_equal(ft_test_json_str(d0, "reason"), "pairs");
     assert_int_equal(json_object_array_length(ft_test_json_key(o, "table")), 3);
@@ -138,26 +133,26 @@ static void test_plane_all_methods_exact(void **state)
     json_object *o = json_of(&r), *res = ft_test_json_key(o, "results");
     assert_int_equal(json_object_array_length(res), 2);
     for (size_t i = 0; i < 2; i++)
-        assert_true(fabs(json_d(json_object_array_get_idx(res, i), "D") - 2.0) < 0.02);
-    double grid_D = json_d(json_object_array_get_idx(res, 0), "D");
+        assert_true(fabs(ft_test_json_num(json_object_array_get_idx(res, i), "D") - 2.0) < 0.02);
+    double grid_D = ft_test_json_num(json_object_array_get_idx(res, 0), "D");
     json_object_put(o);
     r = POINTS(csv, "--x", "E", "--y", "N", "--z", "H", "--exact", "--json");
     o = json_of(&r);
     assert_string_equal(ft_test_json_str(o, "pairs"), "exact");
-    assert_true(json_d(o, "D") == grid_D);
+    assert_true(ft_test_json_num(o, "D") == grid_D);
     json_object_put(o);
     /* sampled pairs: reproducible per seed, with a standard error */
     r = POINTS(csv, "--x", "E", "--y", "N", "--z", "H", "--sample", "200000", "--seed", "5", "--json");
     o = json_of(&r);
     assert_string_equal(ft_test_json_str(o, "pairs"), "sample");
     assert_int_equal(ft_test_json_int(o, "seed"), 5);
-    double se = json_d(o, "sample_stderr"), D = json_d(o, "D");
+    double se = ft_test_json_num(o, "sample_stderr"), D = ft_test_json_num(o, "D");
     assert_true(se > 0.0 && se < 0.05);
     assert_true(fabs(D - 2.0) < 0.03);
     json_object_put(o);
     r = POINTS(csv, "--x", "E", "--y", "N", "--z", "H", "--sample", "200000", "--seed", "5", "--json");
     o = json_of(&r);
-    assert_true(json_d(o, "D") == D);
+    assert_true(ft_test_json_num(o, "D") == D);
     json_object_put(o);
     /* a plot */
     const char *svg = ft_test_tmp("plane.svg");

@@ -48,11 +48,6 @@ static json_object *run(int code, const char *cmd, const char *needle, const cha
     return o;
 }
 
-static double member_double(json_object *o, const char *k)
-{
-    return json_object_get_double(ft_test_json_key(o, k));
-}
-
 /* A 256 x 256 D = 2.5 surface with a CRS, as GeoTIFF. */
 static const char *synthetic_dem(void)
 {
@@ -78,13 +73,13 @@ static void test_dim_surface(void **state)
     const char *a1[] = {"dim", "surface", dem, "--json", NULL};
     json_object *o = run(0, NULL, NULL, a1, 1);
     assert_string_equal(ft_test_json_str(o, "method"), "variogram");
-    assert_true(fabs(member_double(o, "D") - 2.5) < 0.08);
+    assert_true(fabs(ft_test_json_num(o, "D") - 2.5) < 0.08);
     assert_string_equal(ft_test_json_str(o, "pairs"), "exhaustive");
     assert_int_equal(ft_test_json_int(o, "cells_valid"), 256 * 256);
     assert_true(json_object_array_length(ft_test_json_key(o, "table")) >= 3);
     /* scales in map units: the first lag is one 30 m cell */
     json_object *row0 = json_object_array_get_idx(ft_test_json_key(o, "table"), 0);
-    assert_true(fabs(member_double(row0, "scale") - 30.0) < 1e-6);
+    assert_true(fabs(ft_test_json_num(row0, "scale") - 30.0) < 1e-6);
     json_object_put(o);
     const char *plot = ft_test_tmp("p.svg");
     const char *a2[] = {"dim", "surface", dem, "--method", "all", "--pairs", "4000", "--plot", plot, "--json", NULL};
@@ -94,7 +89,7 @@ static void test_dim_surface(void **state)
     for (size_t i = 0; i < FT_SURFACE_NMETHODS; i++) {
         json_object *ri = json_object_array_get_idx(res, i);
         assert_string_equal(ft_test_json_str(ri, "method"), ft_surface_method_name((ft_surface_method)i));
-        double D = member_double(ri, "D");
+        double D = ft_test_json_num(ri, "D");
         assert_true(D > 2.2 && D < 2.7);
     }
     assert_int_equal(ft_test_json_int(o, "pairs"), 4000);
@@ -103,7 +98,7 @@ static void test_dim_surface(void **state)
     /* the real DEMs: human table, D in [2, 3] */
     const char *a3[] = {"dim", "surface", VOLCANO, "--method", "yokoya", "--json", NULL};
     o = run(0, NULL, NULL, a3, 1);
-    assert_true(member_double(o, "D") >= 2.0 && member_double(o, "D") < 2.5);
+    assert_true(ft_test_json_num(o, "D") >= 2.0 && ft_test_json_num(o, "D") < 2.5);
     json_object_put(o);
     const char *a4[] = {"dim", "surface", LUXEMBOURG, "--method", "prism", NULL};
     run(0, NULL, NULL, a4, 0);
@@ -117,7 +112,7 @@ static void test_dim_map(void **state)
     json_object *o = run(0, NULL, NULL, a1, 1);
     assert_int_equal(ft_test_json_int(o, "windows"), 7 * 7);
     assert_int_equal(ft_test_json_int(o, "windows_measured"), 7 * 7);
-    assert_true(fabs(member_double(o, "D_mean") - 2.5) < 0.1);
+    assert_true(fabs(ft_test_json_num(o, "D_mean") - 2.5) < 0.1);
     json_object_put(o);
     ft_grid *D = NULL, *r2 = NULL;
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;

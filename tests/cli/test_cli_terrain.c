@@ -24,37 +24,6 @@
 #define LUXEMBOURG FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 
-/* Runs argv (NULL-terminated) expecting exit 0 and one JSON object on stdout. */
-static json_object *run_json(const char *const *argv)
-{
-    ft_run_result r;
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    if (r.status != 0)
-        fprintf(stderr, "stderr: %s\n", r.err);
-    assert_int_equal(r.status, 0);
-    json_object *o = ft_run_json(&r);
-    assert_non_null(o);
-    ft_run_free(&r);
-    return o;
-}
-
-/* Runs argv expecting exit `code`, nothing on stdout, "fracterra: CMD: " and the needle on stderr. */
-static void expect_failure(const char *const *argv, int code, const char *cmd, const char *needle)
-{
-    ft_run_result r;
-    char prefix[64];
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    if (r.status != code || strstr(r.err, needle) == NULL)
-        fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err);
-    assert_false(r.signaled);
-    assert_int_equal(r.status, code);
-    assert_int_equal(r.out_len, 0);
-    snprintf(prefix, sizeof prefix, "fracterra: %s: ", cmd);
-    assert_true(strncmp(r.err, prefix, strlen(prefix)) == 0);
-    assert_non_null(strstr(r.err, needle));
-    ft_run_free(&r);
-}
-
 static ft_grid *read_grid(const char *path)
 {
     ft_grid *g = NULL;
@@ -77,7 +46,7 @@ static void test_synth(void **state)
     const char *a = ft_test_tmp("a.tif"), *b = ft_test_tmp("b.tif");
     const char *argv[] = {"synth", a, "--dim", "2.4", "--size", "120x80", "--cell", "25", "--origin",
                           "500000,4600000", "--crs", "EPSG:32632", "--sigma", "30", "--seed", "77", "--json", NULL};
-    json_object *o = run_json(argv);
+    json_object *o = ft_test_run_json(argv);
     assert_string_equal(ft_test_json_str(o, "output"), a);
     assert_string_equal(ft_test_json_str(o, "method"), "fft");
     assert_int_equal(ft_test_json_int(o, "seed"), 77);
@@ -94,12 +63,12 @@ static void test_synth(void **state)
     ft_test_assert_crs_epsg(g->crs_wkt, 32632);
 
     argv[1] = b; /* same seed: the same cells */
-    json_object_put(run_json(argv));
+    json_object_put(ft_test_run_json(argv));
     ft_grid *h = read_grid(b);
     assert_memory_equal(g->z, h->z, 120 * 80 * sizeof(float));
     ft_grid_free(h);
     argv[15] = "78"; /* another seed: other cells */
-    json_object_put(run_json(argv));
+    json_object_put(ft_test_run_json(argv));
     h = read_grid(b);
     assert_true(memcmp(g->z, h->z, 120 * 80 * sizeof(float)) != 0);
     ft_grid_free(h);
@@ -107,7 +76,7 @@ static void test_synth(void **state)
 
     const char *sra[] = {"synth", ft_test_tmp("sra.tif"), "--dim", "2.2", "--size", "64x64", "--method", "sra",
                          "--json", NULL};
-    o = run_json(sra);
+    o = ft_test_run_json(sra);
     assert_string_equal(ft_test_json_str(o, "method"), "sra");
     assert_int_equal(ft_test_json_int(o, "seed"), 1); /* the default seed, printed */
     json_object_put(o);
@@ -117,19 +86,19 @@ static void test_synth_bad(void **state)
 {
     const char *out = ft_test_tmp("x.tif");
     const char *size[] = {"synth", out, "--dim", "2.3", "--size", "12x", NULL};
-    expect_failure(size, 2, "synth", "'12x'");
+    ft_test_expect_failure(2, "synth", "'12x'", size);
     const char *dim[] = {"synth", out, "--dim", "3.5", "--size", "10x10", NULL};
-    expect_failure(dim, 2, "synth", "--dim");
+    ft_test_expect_failure(2, "synth", "--dim", dim);
     const char *nodim[] = {"synth", out, "--size", "10x10", NULL};
-    expect_failure(nodim, 2, "synth", "--dim");
+    ft_test_expect_failure(2, "synth", "--dim", nodim);
     const char *method[] = {"synth", out, "--dim", "2.3", "--size", "10x10", "--method", "perlin", NULL};
-    expect_failure(method, 2, "synth", "perlin");
+    ft_test_expect_failure(2, "synth", "perlin", method);
     const char *crs[] = {"synth", out, "--dim", "2.3", "--size", "10x10", "--crs", "EPSG:999999", NULL};
-    expect_failure(crs, 2, "synth", "EPSG:999999");
+    ft_test_expect_failure(2, "synth", "EPSG:999999", crs);
     const char *seed[] = {"synth", out, "--dim", "2.3", "--size", "10x10", "--seed", "-3", NULL};
-    expect_failure(seed, 2, "synth", "--seed");
+    ft_test_expect_failure(2, "synth", "--seed", seed);
     const char *folder[] = {"synth", ft_test_tmp("missing/x.tif"), "--dim", "2.3", "--size", "10x10", NULL};
-    expect_failure(folder, 1, "synth", "missing");
+    ft_test_expect_failure(1, "synth", "missing", folder);
     assert_int_equal(ft_test_dir_count(), 0);
 }
 
@@ -139,7 +108,7 @@ static void test_model_round_trip(void **state)
 {
     const char *model = ft_test_tmp("volcano.json"), *sim = ft_test_tmp("sim.tif");
     const char *fit[] = {"model", "fit", VOLCANO, "-o", model, "--json", NULL};
-    json_object *o = run_json(fit);
+    json_object *o = ft_test_run_json(fit);
     const char *keys[] = {"method", "D", "D_clarke_eq8", "r2", "stderr", "range", "c", "grid", "original",
                           "trend", "harmonics", "regression", "input", "output"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
@@ -155,7 +124,7 @@ static void test_model_round_trip(void **state)
     json_object_put(o);
 
     const char *simulate[] = {"model", "simulate", model, sim, "--refine", "2", "--seed", "5", "--json", NULL};
-    o = run_json(simulate);
+    o = ft_test_run_json(simulate);
     assert_int_equal(ft_test_json_int(o, "seed"), 5);
     json_object_put(o);
     ft_grid *g = read_grid(sim), *v = read_grid(VOLCANO);
@@ -177,7 +146,7 @@ static void test_model_round_trip(void **state)
 static void test_model_luxembourg(void **state)
 {
     const char *fit[] = {"model", "fit", LUXEMBOURG, "--json", NULL};
-    json_object *o = run_json(fit);
+    json_object *o = ft_test_run_json(fit);
     json_object *orig = ft_test_json_key(o, "original");
     assert_true(ft_test_json_int(orig, "nodata_filled") > 0);
     assert_int_equal(ft_test_json_int(orig, "nodata_filled") + ft_test_json_int(orig, "valid"), 95 * 90);
@@ -193,26 +162,26 @@ static void test_model_luxembourg(void **state)
 static void test_model_bad(void **state)
 {
     const char *missing[] = {"model", "fit", ft_test_tmp("none.tif"), NULL};
-    expect_failure(missing, 1, "model fit", "none.tif");
+    ft_test_expect_failure(1, "model fit", "none.tif", missing);
     const char *vector[] = {"model", "fit", NEWFOUNDLAND, NULL};
-    expect_failure(vector, 1, "model fit", "gshhg_newfoundland_utm21n.geojson");
+    ft_test_expect_failure(1, "model fit", "gshhg_newfoundland_utm21n.geojson", vector);
     const char *cutoff[] = {"model", "fit", VOLCANO, "--cutoff", "150", NULL};
-    expect_failure(cutoff, 2, "model fit", "--cutoff");
+    ft_test_expect_failure(2, "model fit", "--cutoff", cutoff);
     const char *folder[] = {"model", "fit", VOLCANO, "-o", ft_test_tmp("missing/m.json"), NULL};
-    expect_failure(folder, 1, "model fit", "missing");
+    ft_test_expect_failure(1, "model fit", "missing", folder);
     const char *sub[] = {"model", "guess", NULL};
-    expect_failure(sub, 2, "model", "guess");
+    ft_test_expect_failure(2, "model", "guess", sub);
 
     const char *bad = ft_test_tmp_text("bad.json", "{\"model\": \"clarke1987\", \"harmonics\": {\"list\": []}}");
     const char *sim[] = {"model", "simulate", bad, ft_test_tmp("o.tif"), NULL};
-    expect_failure(sim, 1, "model simulate", "key \"harmonics.cutoff\"");
+    ft_test_expect_failure(1, "model simulate", "key \"harmonics.cutoff\"", sim);
     const char *notjson = ft_test_tmp_text("bad2.json", "{ not json");
     sim[2] = notjson;
-    expect_failure(sim, 1, "model simulate", "not valid JSON");
+    ft_test_expect_failure(1, "model simulate", "not valid JSON", sim);
     sim[2] = ft_test_tmp("absent.json");
-    expect_failure(sim, 1, "model simulate", "absent.json");
+    ft_test_expect_failure(1, "model simulate", "absent.json", sim);
     const char *refine[] = {"model", "simulate", bad, ft_test_tmp("o.tif"), "--refine", "0", NULL};
-    expect_failure(refine, 2, "model simulate", "--refine");
+    ft_test_expect_failure(2, "model simulate", "--refine", refine);
     assert_int_equal(ft_test_dir_count(), 2); /* the two bad models, nothing else */
 }
 
@@ -222,19 +191,19 @@ static void test_hillshade_render(void **state)
 {
     const char *png = ft_test_tmp("hs.png"), *tif = ft_test_tmp("hs.tif"), *view = ft_test_tmp("view.png");
     const char *hs[] = {"hillshade", VOLCANO, png, "--z-factor", "2", "--color", "--json", NULL};
-    json_object *o = run_json(hs);
+    json_object *o = ft_test_run_json(hs);
     assert_true(json_object_get_boolean(ft_test_json_key(o, "color")));
     json_object_put(o);
     assert_png(png, 61, 87);
     const char *hs2[] = {"hillshade", LUXEMBOURG, tif, "--json", NULL};
-    json_object_put(run_json(hs2));
+    json_object_put(ft_test_run_json(hs2));
     ft_grid *g = read_grid(tif);
     assert_int_equal(g->nx, 95);
     ft_test_assert_crs_epsg(g->crs_wkt, 4326);
     ft_grid_free(g);
     const char *r[] = {"render", VOLCANO, view, "--view", "perspective", "--azimuth", "30", "--elevation", "30",
                        "--exaggeration", "2", "--width", "300", "--json", NULL};
-    o = run_json(r);
+    o = ft_test_run_json(r);
     assert_string_equal(ft_test_json_str(o, "view"), "perspective");
     json_object_put(o);
     assert_png(view, 300, 100);
@@ -245,25 +214,25 @@ static void test_hillshade_render_bad(void **state)
 {
     const char *png = ft_test_tmp("x.png");
     const char *missing[] = {"hillshade", ft_test_tmp("none.tif"), png, NULL};
-    expect_failure(missing, 1, "hillshade", "none.tif");
+    ft_test_expect_failure(1, "hillshade", "none.tif", missing);
     const char *vector[] = {"hillshade", NEWFOUNDLAND, png, NULL};
-    expect_failure(vector, 1, "hillshade", "gshhg_newfoundland_utm21n.geojson");
+    ft_test_expect_failure(1, "hillshade", "gshhg_newfoundland_utm21n.geojson", vector);
     const char *alt[] = {"hillshade", VOLCANO, png, "--altitude", "95", NULL};
-    expect_failure(alt, 2, "hillshade", "--altitude");
+    ft_test_expect_failure(2, "hillshade", "--altitude", alt);
     const char *folder[] = {"hillshade", VOLCANO, ft_test_tmp("missing/x.png"), NULL};
-    expect_failure(folder, 1, "hillshade", "missing");
+    ft_test_expect_failure(1, "hillshade", "missing", folder);
     const char *rmissing[] = {"render", ft_test_tmp("none.tif"), png, NULL};
-    expect_failure(rmissing, 1, "render", "none.tif");
+    ft_test_expect_failure(1, "render", "none.tif", rmissing);
     const char *rvector[] = {"render", NEWFOUNDLAND, png, NULL};
-    expect_failure(rvector, 1, "render", "gshhg_newfoundland_utm21n.geojson");
+    ft_test_expect_failure(1, "render", "gshhg_newfoundland_utm21n.geojson", rvector);
     const char *rview[] = {"render", VOLCANO, png, "--view", "map", NULL};
-    expect_failure(rview, 2, "render", "--view");
+    ft_test_expect_failure(2, "render", "--view", rview);
     const char *relev[] = {"render", VOLCANO, png, "--elevation", "1", NULL};
-    expect_failure(relev, 2, "render", "--elevation");
+    ft_test_expect_failure(2, "render", "--elevation", relev);
     const char *rext[] = {"render", VOLCANO, ft_test_tmp("x.svg"), NULL};
-    expect_failure(rext, 1, "render", ".png");
+    ft_test_expect_failure(1, "render", ".png", rext);
     const char *rfolder[] = {"render", VOLCANO, ft_test_tmp("missing/x.png"), NULL};
-    expect_failure(rfolder, 1, "render", "missing");
+    ft_test_expect_failure(1, "render", "missing", rfolder);
     assert_int_equal(ft_test_dir_count(), 0);
 }
 

@@ -29,51 +29,6 @@
 #define US_STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
 #define CRS_UTM21N "\"crs\":{\"type\":\"name\",\"properties\":{\"name\":\"urn:ogc:def:crs:EPSG::32621\"}},"
 
-/* ---- running the binary ---- */
-
-/* Runs fracterra (arguments NULL-terminated), expects exit 0 and returns stdout as one JSON object. */
-static json_object *json_of(const char *const *argv)
-{
-    ft_run_result r;
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    if (r.status != 0)
-        fprintf(stderr, "fracterra %s %s: exit %d: %s", argv[0], argv[1] ? argv[1] : "", r.status, r.err);
-    assert_int_equal(r.status, 0);
-    json_object *o = ft_run_json(&r);
-    assert_non_null(o);
-    ft_run_free(&r);
-    return o;
-}
-#define JSON_OF(...) json_of((const char *const[]){__VA_ARGS__, NULL})
-
-/* Runs fracterra and expects exit `code`, an empty stdout and "fracterra: CMD: ...needle..." on stderr. */
-static void fails(int code, const char *cmd, const char *needle, const char *const *argv)
-{
-    ft_run_result r;
-    char head[64];
-    assert_int_equal(ft_run_argv(&r, argv), 0);
-    snprintf(head, sizeof head, "fracterra: %s: ", cmd);
-    int ok = r.status == code && !r.signaled && r.out_len == 0 && strstr(r.err, head) == r.err &&
-             strstr(r.err, needle) != NULL;
-    if (!ok)
-        fprintf(stderr, "expected exit %d, '%s...%s'; got exit %d, stdout %zu bytes, stderr: %s", code, head,
-                needle, r.status, r.out_len, r.err);
-    assert_true(ok);
-    ft_run_free(&r);
-}
-#define FAILS(code, cmd, needle, ...) fails(code, cmd, needle, (const char *const[]){__VA_ARGS__, NULL})
-
-static double num(json_object *o, const char *key)
-{
-    return json_object_get_double(ft_test_json_key(o, key));
-}
-
-static json_object *item(json_object *a, size_t i)
-{
-    assert_true(i < json_object_array_length(a));
-    return json_object_array_get_idx(a, i);
-}
-
 /* ---- fixtures ---- */
 
 /* A GeoJSON square ring [x, x + s] x [y, y + s] (closed, counter-clockwise). */
@@ -196,27 +151,19 @@ static const char *write_coverage(const char *name)
     return ft_test_tmp_text(name, text);
 }
 
-static ft_layer *read_layer(const char *path)
-{
-    ft_layer *l = NULL;
-    ft_read_layer_opts o = FT_READ_LAYER_OPTS_DEFAULT;
-    if (ft_io_read_layer(path, &o, &l) != FT_OK)
-        fprintf(stderr, "%s\n", ft_last_error());
-    assert_non_null(l);
-    return l;
-}
-
 /* The members every estimator prints (DESIGN.md "JSON results"). */
 static void assert_result_shape(json_object *r)
 {
     assert_non_null(ft_test_json_str(r, "method"));
-    assert_true(isfinite(num(r, "D")) && num(r, "r2") >= 0.0 && num(r, "r2") <= 1.0 && num(r, "stderr") >= 0.0);
+    assert_true(isfinite(ft_test_json_num(r, "D")) && ft_test_json_num(r, "r2") >= 0.0 &&
+                ft_test_json_num(r, "r2") <= 1.0 && ft_test_json_num(r, "stderr") >= 0.0);
     assert_int_equal(json_object_array_length(ft_test_json_key(r, "range")), 2);
     json_object *t = ft_test_json_key(r, "table");
     assert_true(json_object_array_length(t) >= 3);
     for (size_t i = 0; i < json_object_array_length(t); i++) {
-        json_object *row = item(t, i);
-        assert_true(num(row, "scale") > 0.0 && num(row, "value") > 0.0 && num(row, "count") >= 0.0);
+        json_object *row = ft_test_json_at(t, i);
+        assert_true(ft_test_json_num(row, "scale") > 0.0 && ft_test_json_num(row, "value") > 0.0 &&
+                    ft_test_json_num(row, "count") >= 0.0);
         ft_test_json_key(row, "slope");
         ft_test_json_key(row, "used");
     }
@@ -228,30 +175,31 @@ static void assert_result_shape(json_object *r)
 static void test_dim_area_filled_square(void **state)
 {
     const char *sq = write_square("square.geojson");
-    json_object *a = JSON_OF("dim", "area", sq, "--what", "area", "--json");
-    json_object *b = JSON_OF("dim", "area", sq, "--json");
+    json_object *a = FT_TEST_RUN_JSON("dim", "area", sq, "--what", "area", "--json");
+    json_object *b = FT_TEST_RUN_JSON("dim", "area", sq, "--json");
     assert_result_shape(a);
     assert_result_shape(b);
-    fprintf(stderr, "filled square: area D = %.4f, boundary D = %.4f\n", num(a, "D"), num(b, "D"));
-    assert_true(fabs(num(a, "D") - 2.0) <= 0.02);
-    assert_true(fabs(num(b, "D") - 1.0) <= 0.02);
+    fprintf(stderr, "filled square: area D = %.4f, boundary D = %.4f\n", ft_test_json_num(a, "D"), ft_test_json_num(b,
+            "D"));
+    assert_true(fabs(ft_test_json_num(a, "D") - 2.0) <= 0.02);
+    assert_true(fabs(ft_test_json_num(b, "D") - 1.0) <= 0.02);
     assert_string_equal(ft_test_json_str(a, "what"), "area");
     assert_string_equal(ft_test_json_str(b, "what"), "boundary");
     assert_string_equal(ft_test_json_str(a, "method"), "box-area");
-    assert_true(fabs(num(a, "area") - 1e6) < 1e-6);
+    assert_true(fabs(ft_test_json_num(a, "area") - 1e6) < 1e-6);
     assert_int_equal(ft_test_json_int(a, "polygons"), 1);
-    assert_true(fabs(num(a, "perimeter") - 4000.0) < 1e-9);
+    assert_true(fabs(ft_test_json_num(a, "perimeter") - 4000.0) < 1e-9);
     json_object_put(a);
     json_object_put(b);
 
     /* explicit box sides: every one counted, D fitted over all of them */
-    json_object *c = JSON_OF("dim", "area", sq, "--what", "area", "--cell", "10,20", "--cell", "40", "--json");
+    json_object *c = FT_TEST_RUN_JSON("dim", "area", sq, "--what", "area", "--cell", "10,20", "--cell", "40", "--json");
     json_object *t = ft_test_json_key(c, "table");
     assert_int_equal(json_object_array_length(t), 3);
     for (size_t i = 0; i < 3; i++)
-        assert_true(json_object_get_boolean(ft_test_json_key(item(t, i), "used")));
-    assert_true(fabs(num(item(t, 0), "value") - 10000.0) < 0.5); /* (1000 / 10)^2 boxes */
-    assert_true(fabs(num(c, "D") - 2.0) <= 0.02);
+        assert_true(json_object_get_boolean(ft_test_json_key(ft_test_json_at(t, i), "used")));
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(t, 0), "value") - 10000.0) < 0.5); /* (1000 / 10)^2 boxes */
+    assert_true(fabs(ft_test_json_num(c, "D") - 2.0) <= 0.02);
     json_object_put(c);
 }
 
@@ -259,32 +207,33 @@ static void test_dim_area_filled_square(void **state)
 static void test_dim_area_classes(void **state)
 {
     const char *in = write_landuse("landuse.geojson");
-    json_object *o = JSON_OF("dim", "area", in, "--class", "use", "--what", "area", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "area", in, "--class", "use", "--what", "area", "--json");
     assert_string_equal(ft_test_json_str(o, "class"), "use");
     json_object *f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 3);
-    assert_null(ft_test_json_key(item(f, 0), "id"));
-    assert_string_equal(ft_test_json_str(item(f, 0), "scope"), "layer");
-    assert_string_equal(ft_test_json_str(item(f, 1), "id"), "industrial");
-    assert_string_equal(ft_test_json_str(item(f, 2), "id"), "residential");
-    assert_string_equal(ft_test_json_str(item(f, 2), "scope"), "class");
-    assert_int_equal(ft_test_json_int(item(f, 0), "polygons"), 3);
-    assert_int_equal(ft_test_json_int(item(f, 1), "polygons"), 1);
-    assert_int_equal(ft_test_json_int(item(f, 2), "polygons"), 2);
-    assert_true(fabs(num(item(f, 2), "area") - (400.0 * 400.0 + 300.0 * 300.0)) < 1e-6);
+    assert_null(ft_test_json_key(ft_test_json_at(f, 0), "id"));
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 0), "scope"), "layer");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 1), "id"), "industrial");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 2), "id"), "residential");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(f, 2), "scope"), "class");
+    assert_int_equal(ft_test_json_int(ft_test_json_at(f, 0), "polygons"), 3);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(f, 1), "polygons"), 1);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(f, 2), "polygons"), 2);
+    assert_true(fabs(ft_test_json_num(ft_test_json_at(f, 2), "area") - (400.0 * 400.0 + 300.0 * 300.0)) < 1e-6);
     for (size_t i = 0; i < 3; i++) {
-        assert_result_shape(item(f, i));
-        assert_true(num(item(f, i), "D") > 1.8 && num(item(f, i), "D") < 2.05);
+        assert_result_shape(ft_test_json_at(f, i));
+        assert_true(ft_test_json_num(ft_test_json_at(f, i), "D") > 1.8 &&
+                    ft_test_json_num(ft_test_json_at(f, i), "D") < 2.05);
     }
     json_object_put(o);
 
     /* integer field: ids are numbers; --plot writes one file per set */
-    o = JSON_OF("dim", "area", in, "--class", "n", "--plot", ft_test_tmp("p.svg"), "--json");
+    o = FT_TEST_RUN_JSON("dim", "area", in, "--class", "n", "--plot", ft_test_tmp("p.svg"), "--json");
     f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 4);
-    assert_true(json_object_is_type(ft_test_json_key(item(f, 1), "id"), json_type_int));
+    assert_true(json_object_is_type(ft_test_json_key(ft_test_json_at(f, 1), "id"), json_type_int));
     for (size_t i = 0; i < 4; i++)
-        free(ft_test_read_svg(ft_test_json_str(item(f, i), "plot"), NULL));
+        free(ft_test_read_svg(ft_test_json_str(ft_test_json_at(f, i), "plot"), NULL));
     json_object_put(o);
 }
 
@@ -299,9 +248,9 @@ static void test_dim_area_table_and_where(void **state)
     assert_non_null(strstr(r.out, "industrial"));
     assert_non_null(strstr(r.out, "box-boundary D = "));
     ft_run_free(&r);
-    json_object *o = JSON_OF("dim", "area", in, "--where", "use = 'industrial'", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "area", in, "--where", "use = 'industrial'", "--json");
     assert_int_equal(ft_test_json_int(o, "features"), 1);
-    assert_true(fabs(num(o, "area") - 250000.0) < 1e-6);
+    assert_true(fabs(ft_test_json_num(o, "area") - 250000.0) < 1e-6);
     json_object_put(o);
 }
 
@@ -310,17 +259,17 @@ static void test_dim_area_table_and_where(void **state)
 static void test_dim_area_raster(void **state)
 {
     const char *tif = write_classes_tif("classes.tif");
-    json_object *o = JSON_OF("dim", "area", tif, "--what", "area", "--cell", "10,20,50,100", "--json");
+    json_object *o = FT_TEST_RUN_JSON("dim", "area", tif, "--what", "area", "--cell", "10,20,50,100", "--json");
     json_object *f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 2);
     for (size_t i = 0; i < 2; i++) {
-        json_object *g = item(f, i);
-        assert_true(num(g, "id") == (double)(i + 1));
+        json_object *g = ft_test_json_at(f, i);
+        assert_true(ft_test_json_num(g, "id") == (double)(i + 1));
         assert_int_equal(ft_test_json_int(g, "cells"), 20000);
-        assert_true(fabs(num(g, "area") - 2e6) < 1e-6);
+        assert_true(fabs(ft_test_json_num(g, "area") - 2e6) < 1e-6);
         assert_result_shape(g);
-        assert_true(fabs(num(g, "D") - 2.0) < 0.02);
-        assert_true(num(item(ft_test_json_key(g, "table"), 0), "value") == 20000.0);
+        assert_true(fabs(ft_test_json_num(g, "D") - 2.0) < 0.02);
+        assert_true(ft_test_json_num(ft_test_json_at(ft_test_json_key(g, "table"), 0), "value") == 20000.0);
     }
     json_object_put(o);
 }
@@ -361,33 +310,34 @@ static void test_table_regress_round_trip(void **state)
     ft_run_free(&r);
     free(text);
 
-    json_object *t = JSON_OF("urban", "table", y1, y2, y3, "--class", "use", "-o", js, "--json");
+    json_object *t = FT_TEST_RUN_JSON("urban", "table", y1, y2, y3, "--class", "use", "-o", js, "--json");
     assert_string_equal(ft_test_json_str(t, "output"), js);
     json_object *rows = ft_test_json_key(t, "rows");
     assert_int_equal(json_object_array_length(rows), 3);
-    assert_string_equal(ft_test_json_str(item(rows, 0), "label"), "y1990");
-    json_object *res = ft_test_json_key(ft_test_json_key(item(rows, 2), "classes"), "residential");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(rows, 0), "label"), "y1990");
+    json_object *res = ft_test_json_key(ft_test_json_key(ft_test_json_at(rows, 2), "classes"), "residential");
     double koch = sqrt(3.0) / 4.0 * 2700.0 * 2700.0 * (1.0 + 1.0 / 3.0 * (1.0 - pow(4.0 / 9.0, 4)) / (1.0 - 4.0 / 9.0));
-    assert_true(fabs(num(res, "area") - koch) < 1e-6 * koch); /* a Koch island of 4 levels */
+    assert_true(fabs(ft_test_json_num(res, "area") - koch) < 1e-6 * koch); /* a Koch island of 4 levels */
     assert_int_equal(ft_test_json_int(res, "polygons"), 1);
     json_object_put(t);
 
-    json_object *a = JSON_OF("urban", "regress", csv, "--class", "residential", "--x", "D", "--y", "area",
-                             "--log-y", "--json");
-    json_object *b = JSON_OF("urban", "regress", js, "--class", "residential", "--x", "D", "--y", "area",
-                             "--log-y", "--json");
+    json_object *a = FT_TEST_RUN_JSON("urban", "regress", csv, "--class", "residential", "--x", "D", "--y", "area",
+                                      "--log-y", "--json");
+    json_object *b = FT_TEST_RUN_JSON("urban", "regress", js, "--class", "residential", "--x", "D", "--y", "area",
+                                      "--log-y", "--json");
     assert_int_equal(ft_test_json_int(a, "n"), 3);
     assert_string_equal(ft_test_json_str(a, "y"), "ln(residential.area)");
-    fprintf(stderr, "Koch islands: %s, r = %.4f\n", ft_test_json_str(a, "equation"), num(a, "r"));
-    assert_true(num(a, "slope") > 0.0); /* more detail, more area */
-    assert_true(fabs(num(a, "slope") - num(b, "slope")) < 1e-6 * fabs(num(a, "slope")) + 1e-9);
-    assert_true(fabs(num(a, "r") - num(b, "r")) < 1e-6); /* the CSV holds D to 10 digits */
+    fprintf(stderr, "Koch islands: %s, r = %.4f\n", ft_test_json_str(a, "equation"), ft_test_json_num(a, "r"));
+    assert_true(ft_test_json_num(a, "slope") > 0.0); /* more detail, more area */
+    assert_true(fabs(ft_test_json_num(a, "slope") - ft_test_json_num(b, "slope")) < 1e-6 * fabs(ft_test_json_num(a,
+                "slope")) + 1e-9);
+    assert_true(fabs(ft_test_json_num(a, "r") - ft_test_json_num(b, "r")) < 1e-6); /* the CSV holds D to 10 digits */
     json_object_put(a);
     json_object_put(b);
 
     /* year against area of the whole layer (bare column names) */
-    a = JSON_OF("urban", "regress", csv, "--x", "label", "--y", "area", "--json");
-    assert_true(num(a, "slope") > 0.0 && num(a, "r") > 0.95);
+    a = FT_TEST_RUN_JSON("urban", "regress", csv, "--x", "label", "--y", "area", "--json");
+    assert_true(ft_test_json_num(a, "slope") > 0.0 && ft_test_json_num(a, "r") > 0.95);
     json_object_put(a);
 }
 
@@ -397,13 +347,15 @@ static void test_regress_paper_table2(void **state)
 {
     const char *csv = ft_test_tmp_text("table2.csv", "year,area,D\n1959,116442,1.3614\n1980,190456,1.3722\n"
                                                      "1989,285423,1.4414\n1997,413110,1.4872\n");
-    json_object *o = JSON_OF("urban", "regress", csv, "--x", "D", "--y", "area", "--log-y", "--json");
-    fprintf(stderr, "Table 2: ln(area) = %.4f + %.4f D, r = %.4f +- %.4f, p = %.4f\n", num(o, "intercept"),
-            num(o, "slope"), num(o, "r"), num(o, "stderr_r"), num(o, "p_value"));
+    json_object *o = FT_TEST_RUN_JSON("urban", "regress", csv, "--x", "D", "--y", "area", "--log-y", "--json");
+    fprintf(stderr, "Table 2: ln(area) = %.4f + %.4f D, r = %.4f +- %.4f, p = %.4f\n", ft_test_json_num(o,
+            "intercept"), ft_test_json_num(o, "slope"), ft_test_json_num(o, "r"), ft_test_json_num(o, "stderr_r"),
+            ft_test_json_num(o, "p_value"));
     assert_int_equal(ft_test_json_int(o, "n"), 4);
-    assert_true(fabs(num(o, "r") - 0.954) < 0.0005);
-    assert_true(fabs(num(o, "slope") - 8.7229) < 0.001);
-    assert_true(num(o, "stderr_slope") > 0.0 && num(o, "stderr_intercept") > 0.0 && num(o, "stderr_r") > 0.0);
+    assert_true(fabs(ft_test_json_num(o, "r") - 0.954) < 0.0005);
+    assert_true(fabs(ft_test_json_num(o, "slope") - 8.7229) < 0.001);
+    assert_true(ft_test_json_num(o, "stderr_slope") > 0.0 && ft_test_json_num(o, "stderr_intercept") > 0.0 &&
+                ft_test_json_num(o, "stderr_r") > 0.0);
     assert_true(json_object_get_boolean(ft_test_json_key(o, "log_y")));
     assert_non_null(strstr(ft_test_json_str(o, "equation"), "ln(area) = "));
     json_object_put(o);
@@ -417,10 +369,10 @@ static void test_regress_paper_table2(void **state)
     /* missing values are skipped, quoted fields read */
     csv = ft_test_tmp_text("t2q.csv", "\"year\",\"area, m2\",D\n1959,116442,1.3614\n1970,NA,1.37\n1980,190456,"
                                       "1.3722\n\n1989,\"285423\",1.4414\n1997,413110,1.4872\n");
-    o = JSON_OF("urban", "regress", csv, "--y", "area, m2", "--log-y", "--json");
+    o = FT_TEST_RUN_JSON("urban", "regress", csv, "--y", "area, m2", "--log-y", "--json");
     assert_int_equal(ft_test_json_int(o, "n"), 4);
     assert_int_equal(ft_test_json_int(o, "rows_skipped"), 1);
-    assert_true(fabs(num(o, "r") - 0.954) < 0.0005);
+    assert_true(fabs(ft_test_json_num(o, "r") - 0.954) < 0.0005);
     json_object_put(o);
 }
 
@@ -465,18 +417,19 @@ static size_t common_vertices(const ft_chain *a, const ft_chain *b)
 static void test_boundary_coverage(void **state)
 {
     const char *in = write_coverage("cover.geojson"), *out = ft_test_tmp("b.gpkg");
-    json_object *o = JSON_OF("boundary", in, out, "--dim", "1.3", "--min", "0.05", "--json");
+    json_object *o = FT_TEST_RUN_JSON("boundary", in, out, "--dim", "1.3", "--min", "0.05", "--json");
     assert_string_equal(ft_test_json_str(o, "output"), out);
     assert_int_equal(ft_test_json_int(o, "seed"), 1);
     assert_int_equal(ft_test_json_int(o, "vertices_in"), 26);
     assert_true(ft_test_json_int(o, "vertices_out") > 4 * 26);
     assert_true(json_object_get_boolean(ft_test_json_key(o, "coverage")));
-    assert_true(num(o, "dim") == 1.3 && num(o, "min") == 0.05 && num(o, "max") > 0.0);
-    assert_true(fabs(num(o, "angle") - 31.55) < 0.01); /* acos(2^(1/1.3 - 1)), Eq. 9 */
+    assert_true(ft_test_json_num(o, "dim") == 1.3 && ft_test_json_num(o, "min") == 0.05 &&
+                ft_test_json_num(o, "max") > 0.0);
+    assert_true(fabs(ft_test_json_num(o, "angle") - 31.55) < 0.01); /* acos(2^(1/1.3 - 1)), Eq. 9 */
     ft_test_json_key(o, "self_intersections");
     json_object_put(o);
     assert_ogr_output(out, "GPKG");
-    ft_layer *before = read_layer(in), *after = read_layer(out);
+    ft_layer *before = ft_test_read_layer(in), *after = ft_test_read_layer(out);
     size_t shared = common_vertices(after->parts[0].chain, after->parts[1].chain);
     fprintf(stderr, "coverage: shared boundary 11 -> %zu vertices on both sides\n", shared);
     assert_true(shared > 11);
@@ -493,11 +446,11 @@ static void test_boundary_max_keeps_long_segments(void **state)
     const char *in = ft_test_tmp_text("walls.gmt", "> walls\n0 0\n100 0\n102 0\n104 0\n104 100\n106 100\n"
                                                    "108 100\n208 100\n");
     const char *out = ft_test_tmp("walls-out.gmt");
-    json_object *o = JSON_OF("boundary", in, out, "--dim", "1.5", "--min", "0.1", "--max", "10", "--json");
-    assert_true(num(o, "max") == 10.0);
+    json_object *o = FT_TEST_RUN_JSON("boundary", in, out, "--dim", "1.5", "--min", "0.1", "--max", "10", "--json");
+    assert_true(ft_test_json_num(o, "max") == 10.0);
     assert_false(json_object_get_boolean(ft_test_json_key(o, "coverage")));
     json_object_put(o);
-    ft_layer *l = read_layer(out);
+    ft_layer *l = ft_test_read_layer(out);
     const ft_chain *c = l->parts[0].chain;
     static const double walls[3][4] = {{0, 0, 100, 0}, {104, 0, 104, 100}, {108, 100, 208, 100}};
     for (size_t w = 0; w < 3; w++) {
@@ -511,11 +464,11 @@ static void test_boundary_max_keeps_long_segments(void **state)
     ft_layer_free(l);
 
     /* --repair: the loops of a rough curve removed, as a second stage */
-    o = JSON_OF("boundary", in, ft_test_tmp("r.gmt"), "--dim", "1.8", "--min", "0.5", "--max", "200", "--repair",
-                "--json");
+    o = FT_TEST_RUN_JSON("boundary", in, ft_test_tmp("r.gmt"), "--dim", "1.8", "--min", "0.5", "--max", "200",
+                         "--repair", "--json");
     json_object *stages = ft_test_json_key(o, "stages");
     assert_int_equal(json_object_array_length(stages), 2);
-    assert_string_equal(ft_test_json_str(item(stages, 1), "step"), "repair");
+    assert_string_equal(ft_test_json_str(ft_test_json_at(stages, 1), "step"), "repair");
     assert_true(ft_test_json_int(o, "self_intersections_before_repair") > 0);
     assert_int_equal(ft_test_json_int(o, "self_intersections"), 0);
     json_object_put(o);
@@ -526,12 +479,12 @@ static void test_boundary_reproducible(void **state)
 {
     const char *in = write_coverage("cover.geojson");
     const char *a = ft_test_tmp("a.geojson"), *b = ft_test_tmp("b.geojson"), *c = ft_test_tmp("c.geojson");
-    json_object_put(JSON_OF("boundary", in, a, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed", "42",
-                            "--json"));
-    json_object_put(JSON_OF("boundary", in, b, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed", "42",
-                            "--json"));
-    json_object *o = JSON_OF("boundary", in, c, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed", "43",
-                             "--json");
+    json_object_put(FT_TEST_RUN_JSON("boundary", in, a, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed",
+                                     "42", "--json"));
+    json_object_put(FT_TEST_RUN_JSON("boundary", in, b, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed",
+                                     "42", "--json"));
+    json_object *o = FT_TEST_RUN_JSON("boundary", in, c, "--dim", "1.4", "--min", "0.02", "--jitter", "0.3", "--seed",
+                                      "43", "--json");
     assert_int_equal(ft_test_json_int(o, "seed"), 43);
     json_object_put(o);
     size_t na = 0, nb = 0, nc = 0;
@@ -549,17 +502,20 @@ static void test_boundary_reproducible(void **state)
 static void test_bad_input_dim_area(void **state)
 {
     const char *in = write_landuse("landuse.geojson");
-    FAILS(1, "dim area", "/nonexistent/x.geojson", "dim", "area", "/nonexistent/x.geojson");
-    FAILS(1, "dim area", "'nosuch'", "dim", "area", in, "--class", "nosuch");
-    FAILS(2, "dim area", "is a raster", "dim", "area", VOLCANO, "--class", "use");
-    FAILS(2, "dim area", "--what must be boundary or area, got 'edges'", "dim", "area", in, "--what", "edges");
-    FAILS(2, "dim area", "--cell", "dim", "area", in, "--cell", "-1");
-    FAILS(2, "dim area", "at least 3", "dim", "area", in, "--cell", "10,20");
-    FAILS(2, "dim area", "given twice", "dim", "area", in, "--cell", "10,20,10");
-    FAILS(2, "dim area", "--cell gives the box sides", "dim", "area", in, "--cell", "1,2,4", "--scales", "5");
-    FAILS(2, "dim area", "--offsets", "dim", "area", in, "--offsets", "17");
-    FAILS(1, "dim area", "/nonexistent/folder", "dim", "area", in, "--plot", "/nonexistent/folder/p.svg");
-    FAILS(2, "dim area", "missing INPUT", "dim", "area");
+    FT_TEST_EXPECT_FAILURE(1, "dim area", "/nonexistent/x.geojson", "dim", "area", "/nonexistent/x.geojson");
+    FT_TEST_EXPECT_FAILURE(1, "dim area", "'nosuch'", "dim", "area", in, "--class", "nosuch");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "is a raster", "dim", "area", VOLCANO, "--class", "use");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "--what must be boundary or area, got 'edges'", "dim", "area", in, "--what",
+                           "edges");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "--cell", "dim", "area", in, "--cell", "-1");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "at least 3", "dim", "area", in, "--cell", "10,20");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "given twice", "dim", "area", in, "--cell", "10,20,10");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "--cell gives the box sides", "dim", "area", in, "--cell", "1,2,4",
+                           "--scales", "5");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "--offsets", "dim", "area", in, "--offsets", "17");
+    FT_TEST_EXPECT_FAILURE(1, "dim area", "/nonexistent/folder", "dim", "area", in, "--plot",
+                           "/nonexistent/folder/p.svg");
+    FT_TEST_EXPECT_FAILURE(2, "dim area", "missing INPUT", "dim", "area");
     ft_grid *g = ft_grid_create(20, 20);
     assert_non_null(g);
     for (size_t i = 0; i < 400; i++)
@@ -567,7 +523,7 @@ static void test_bad_input_dim_area(void **state)
     ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
     assert_int_equal(ft_io_write_grid(ft_test_tmp("dem.tif"), g, &wo), FT_OK);
     ft_grid_free(g);
-    FAILS(1, "dim area", "not a whole number", "dim", "area", ft_test_tmp("dem.tif"));
+    FT_TEST_EXPECT_FAILURE(1, "dim area", "not a whole number", "dim", "area", ft_test_tmp("dem.tif"));
     assert_int_equal(ft_test_dir_count(), 2);
 }
 
@@ -577,47 +533,53 @@ static void test_bad_input_urban(void **state)
     const char *csv = ft_test_tmp_text("t.csv", "year,area,D\n1959,116442,1.3614\n1980,190456,x\n");
     const char *two = ft_test_tmp_text("two.csv", "year,area,D\n1959,116442,1.3614\n1980,190456,1.3722\n");
     const char *out = ft_test_tmp("out.csv");
-    FAILS(2, "urban", "missing SUBCOMMAND", "urban");
-    FAILS(2, "urban", "unknown subcommand 'tabel'", "urban", "tabel", in);
-    FAILS(1, "urban table", "/nonexistent/x.geojson", "urban", "table", in, "/nonexistent/x.geojson", "--class",
-          "use", "-o", out);
-    FAILS(2, "urban table", "missing --class", "urban", "table", in, "-o", out);
-    FAILS(1, "urban table", "'nosuch'", "urban", "table", in, "--class", "nosuch", "-o", out);
-    FAILS(2, "urban table", "2 --label given for 1 inputs", "urban", "table", in, "--class", "use", "--label",
-          "1959", "--label", "1980");
-    FAILS(2, "urban table", "-o file must end in .csv or .json", "urban", "table", in, "--class", "use", "-o",
-          ft_test_tmp("t.txt"));
-    FAILS(1, "urban table", "/nonexistent/folder", "urban", "table", in, "--class", "use", "-o",
-          "/nonexistent/folder/t.csv");
-    FAILS(1, "urban table", "/nonexistent/folder", "urban", "table", in, "--class", "use", "-o", out, "--chart",
-          "/nonexistent/folder/c.png");
-    FAILS(1, "urban table", "dem_volcano_maunga_whau_10m.tif", "urban", "table", VOLCANO, "--class", "use", "-o",
-          out);
-    FAILS(2, "urban table", "missing LAYER", "urban", "table", "--class", "use");
-    FAILS(1, "urban regress", "/nonexistent/t.csv", "urban", "regress", "/nonexistent/t.csv");
-    FAILS(1, "urban regress", "has no column 'residential.D'", "urban", "regress", two, "--class", "residential");
-    FAILS(1, "urban regress", "has no column 'population'", "urban", "regress", two, "--y", "population");
-    FAILS(1, "urban regress", "line 3, column 'D': 'x' is not a number", "urban", "regress", csv);
-    FAILS(1, "urban regress", "at least 3", "urban", "regress", two);
-    FAILS(2, "urban regress", "missing TABLE", "urban", "regress");
+    FT_TEST_EXPECT_FAILURE(2, "urban", "missing SUBCOMMAND", "urban");
+    FT_TEST_EXPECT_FAILURE(2, "urban", "unknown subcommand 'tabel'", "urban", "tabel", in);
+    FT_TEST_EXPECT_FAILURE(1, "urban table", "/nonexistent/x.geojson", "urban", "table", in, "/nonexistent/x.geojson",
+                           "--class", "use", "-o", out);
+    FT_TEST_EXPECT_FAILURE(2, "urban table", "missing --class", "urban", "table", in, "-o", out);
+    FT_TEST_EXPECT_FAILURE(1, "urban table", "'nosuch'", "urban", "table", in, "--class", "nosuch", "-o", out);
+    FT_TEST_EXPECT_FAILURE(2, "urban table", "2 --label given for 1 inputs", "urban", "table", in, "--class", "use",
+                           "--label", "1959", "--label", "1980");
+    FT_TEST_EXPECT_FAILURE(2, "urban table", "-o file must end in .csv or .json", "urban", "table", in, "--class",
+                           "use", "-o", ft_test_tmp("t.txt"));
+    FT_TEST_EXPECT_FAILURE(1, "urban table", "/nonexistent/folder", "urban", "table", in, "--class", "use", "-o",
+                           "/nonexistent/folder/t.csv");
+    FT_TEST_EXPECT_FAILURE(1, "urban table", "/nonexistent/folder", "urban", "table", in, "--class", "use", "-o", out,
+                           "--chart", "/nonexistent/folder/c.png");
+    FT_TEST_EXPECT_FAILURE(1, "urban table", "dem_volcano_maunga_whau_10m.tif", "urban", "table", VOLCANO, "--class",
+                           "use", "-o", out);
+    FT_TEST_EXPECT_FAILURE(2, "urban table", "missing LAYER", "urban", "table", "--class", "use");
+    FT_TEST_EXPECT_FAILURE(1, "urban regress", "/nonexistent/t.csv", "urban", "regress", "/nonexistent/t.csv");
+    FT_TEST_EXPECT_FAILURE(1, "urban regress", "has no column 'residential.D'", "urban", "regress", two, "--class",
+                           "residential");
+    FT_TEST_EXPECT_FAILURE(1, "urban regress", "has no column 'population'", "urban", "regress", two, "--y",
+                           "population");
+    FT_TEST_EXPECT_FAILURE(1, "urban regress", "line 3, column 'D': 'x' is not a number", "urban", "regress", csv);
+    FT_TEST_EXPECT_FAILURE(1, "urban regress", "at least 3", "urban", "regress", two);
+    FT_TEST_EXPECT_FAILURE(2, "urban regress", "missing TABLE", "urban", "regress");
     assert_int_equal(ft_test_dir_count(), 3); /* the three inputs: nothing written */
 }
 
 static void test_bad_input_boundary(void **state)
 {
     const char *in = write_coverage("cover.geojson"), *out = ft_test_tmp("out.geojson");
-    FAILS(1, "boundary", "/nonexistent/x.geojson", "boundary", "/nonexistent/x.geojson", out, "--dim", "1.3");
-    FAILS(1, "boundary", "dem_volcano_maunga_whau_10m.tif", "boundary", VOLCANO, out, "--dim", "1.3");
-    FAILS(2, "boundary", "--dim must be a number in (1,2), got '2.5'", "boundary", in, out, "--dim", "2.5");
-    FAILS(2, "boundary", "--dim", "boundary", in, out, "--dim", "1");
-    FAILS(2, "boundary", "missing --dim", "boundary", in, out);
-    FAILS(2, "boundary", "--min must be a number > 0, got '-1'", "boundary", in, out, "--dim", "1.3", "--min", "-1");
-    FAILS(2, "boundary", "--max 1 must be at least --min 2", "boundary", in, out, "--dim", "1.3", "--min", "2",
-          "--max", "1");
-    FAILS(2, "boundary", "--jitter", "boundary", in, out, "--dim", "1.9", "--jitter", "0.6");
-    FAILS(2, "boundary", "--seed", "boundary", in, out, "--dim", "1.3", "--seed", "-4");
-    FAILS(1, "boundary", "/nonexistent/folder", "boundary", in, "/nonexistent/folder/o.geojson", "--dim", "1.3");
-    FAILS(2, "boundary", "missing OUTPUT", "boundary", in, "--dim", "1.3");
+    FT_TEST_EXPECT_FAILURE(1, "boundary", "/nonexistent/x.geojson", "boundary", "/nonexistent/x.geojson", out, "--dim",
+                           "1.3");
+    FT_TEST_EXPECT_FAILURE(1, "boundary", "dem_volcano_maunga_whau_10m.tif", "boundary", VOLCANO, out, "--dim", "1.3");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--dim must be a number in (1,2), got '2.5'", "boundary", in, out, "--dim",
+                           "2.5");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--dim", "boundary", in, out, "--dim", "1");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "missing --dim", "boundary", in, out);
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--min must be a number > 0, got '-1'", "boundary", in, out, "--dim", "1.3",
+                           "--min", "-1");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--max 1 must be at least --min 2", "boundary", in, out, "--dim", "1.3",
+                           "--min", "2", "--max", "1");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--jitter", "boundary", in, out, "--dim", "1.9", "--jitter", "0.6");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "--seed", "boundary", in, out, "--dim", "1.3", "--seed", "-4");
+    FT_TEST_EXPECT_FAILURE(1, "boundary", "/nonexistent/folder", "boundary", in, "/nonexistent/folder/o.geojson",
+                           "--dim", "1.3");
+    FT_TEST_EXPECT_FAILURE(2, "boundary", "missing OUTPUT", "boundary", in, "--dim", "1.3");
     assert_int_equal(ft_test_dir_count(), 1); /* only the input: nothing written, no temporary left */
 }
 

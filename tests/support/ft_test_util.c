@@ -191,3 +191,55 @@ const char *ft_test_json_str(json_object *o, const char *k)
 {
     return json_object_get_string(ft_test_json_key(o, k));
 }
+
+ft_layer *ft_test_read_layer(const char *path)
+{
+    ft_layer *l = NULL;
+    ft_read_layer_opts o = FT_READ_LAYER_OPTS_DEFAULT;
+    if (ft_io_read_layer(path, &o, &l) != FT_OK)
+        fprintf(stderr, "%s\n", ft_last_error());
+    assert_non_null(l);
+    return l;
+}
+
+double ft_test_json_num(json_object *o, const char *k)
+{
+    return json_object_get_double(ft_test_json_key(o, k));
+}
+
+json_object *ft_test_json_at(json_object *a, size_t i)
+{
+    assert_true(i < json_object_array_length(a));
+    return json_object_array_get_idx(a, i);
+}
+
+json_object *ft_test_run_json(const char *const *argv)
+{
+    ft_run_result r;
+    assert_int_equal(ft_run_argv(&r, argv), 0);
+    if (r.status != 0)
+        fprintf(stderr, "fracterra %s %s: exit %d: %s", argv[0], argv[1] ? argv[1] : "", r.status, r.err);
+    assert_int_equal(r.status, 0);
+    json_object *o = ft_run_json(&r);
+    assert_non_null(o);
+    ft_run_free(&r);
+    return o;
+}
+
+void ft_test_expect_failure(int code, const char *prefix, const char *needle, const char *const *argv)
+{
+    ft_run_result r;
+    assert_int_equal(ft_run_argv(&r, argv), 0);
+    char head[64];
+    snprintf(head, sizeof head, "fracterra: %s: ", prefix);
+    if (r.status != code || r.signaled || r.out_len != 0 || strstr(r.err, head) != r.err ||
+        strstr(r.err, needle) == NULL)
+        fprintf(stderr, "expected exit %d, '%s...%s'; got exit %d, stdout %zu bytes, stderr: %s", code, head,
+                needle, r.status, r.out_len, r.err);
+    assert_false(r.signaled);
+    assert_int_equal(r.status, code);
+    assert_int_equal(r.out_len, 0);
+    assert_true(strstr(r.err, head) == r.err);
+    assert_non_null(strstr(r.err, needle));
+    ft_run_free(&r);
+}

@@ -75,4 +75,25 @@ int64_t ft_test_json_int(json_object *o, const char *k);
 /** Member k of o as a string (ft_test_json_key). */
 const char *ft_test_json_str(json_object *o, const char *k);
 
+/** Member k of o as a double (ft_test_json_key). */
+double ft_test_json_num(json_object *o, const char *k);
+/** Reads the layer at path with the default options; prints the error and fails the test if it cannot. */
+ft_layer *ft_test_read_layer(const char *path);
+
+/** Element i of the JSON array a; fails the test unless i < its length. */
+json_object *ft_test_json_at(json_object *a, size_t i);
+
+/** Runs FT_BIN with argv (NULL-terminated), expects exit 0 and returns stdout as one JSON object (release
+ *  with json_object_put); prints stderr and fails the test if not. */
+json_object *ft_test_run_json(const char *const *argv);
+/** ft_test_run_json on a list of arguments: FT_TEST_RUN_JSON("info", "--json", path). */
+#define FT_TEST_RUN_JSON(...) ft_test_run_json((const char *const[]){__VA_ARGS__, NULL})
+/** Runs FT_BIN with argv and fails the test unless it exits with code (not from a signal), writes nothing
+ *  to stdout, and its stderr starts with "fracterra: PREFIX: " (prefix: the command, or "dim line") and
+ *  holds needle. */
+void ft_test_expect_failure(int code, const char *prefix, const char *needle, const char *const *argv);
+/** ft_test_expect_failure on a list of arguments. */
+#define FT_TEST_EXPECT_FAILURE(code, prefix, needle, ...)                                                      \
+    ft_test_expect_failure(code, prefix, needle, (const char *const[]){__VA_ARGS__, NULL})
+
 #endif /* FT_TEST_UTIL_H */

@@ -11,16 +11,7 @@
 #include <string.h>
 
 #include "fracterra/core.h"
-
-/* cmocka 1.1 compares floats only: a double comparison that prints both values. */
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
+#include "ft_test_assert.h"
 
 static const double square_ccw[] = {0, 0, 1, 0, 1, 1, 0, 1};
 

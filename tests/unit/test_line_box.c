@@ -14,15 +14,7 @@
 
 #include "fracterra/line.h"
 #include "line/line_dim_internal.h"
-
-#define assert_error_names(rc, code, text)                                                                   \
-    do {                                                                                                     \
-        assert_int_equal((rc), (code));                                                                      \
-        if (strstr(ft_last_error(), (text)) == NULL) {                                                       \
-            print_error("error \"%s\" does not name \"%s\"\n", ft_last_error(), (text));                    \
-            _fail(__FILE__, __LINE__);                                                                       \
-        }                                                                                                    \
-    } while (0)
+#include "ft_test_assert.h"
 
 static ft_chain *chain_of(const double *xy, size_t n, int closed)
 {

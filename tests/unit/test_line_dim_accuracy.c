@@ -25,25 +25,9 @@
 #include <string.h>
 
 #include "fracterra/line.h"
+#include "ft_test_assert.h"
 
 static const double pi = 3.14159265358979323846;
-
-static inline void check_near(double a, double b, double tol, const char *what, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%s: %.6f != %.6f (tolerance %g)\n", what, a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), #a, __FILE__, __LINE__)
-#define assert_error_names(rc, code, text)                                                                   \
-    do {                                                                                                     \
-        assert_int_equal((rc), (code));                                                                      \
-        if (strstr(ft_last_error(), (text)) == NULL) {                                                       \
-            print_error("error \"%s\" does not name \"%s\"\n", ft_last_error(), (text));                    \
-            _fail(__FILE__, __LINE__);                                                                       \
-        }                                                                                                    \
-    } while (0)
 
 /* ------------------------------------------------------------------------------------------------
  * Curves

@@ -14,23 +14,7 @@
 
 #include "fracterra/line.h"
 #include "line/line_dim_internal.h"
-
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
-#define assert_error_names(rc, code, text)                                                                   \
-    do {                                                                                                     \
-        assert_int_equal((rc), (code));                                                                      \
-        if (strstr(ft_last_error(), (text)) == NULL) {                                                       \
-            print_error("error \"%s\" does not name \"%s\"\n", ft_last_error(), (text));                    \
-            _fail(__FILE__, __LINE__);                                                                       \
-        }                                                                                                    \
-    } while (0)
+#include "ft_test_assert.h"
 
 static ft_chain *chain_of(const double *xy, size_t n, int closed)
 {

@@ -14,15 +14,8 @@
 #include <string.h>
 
 #include "fracterra/line.h"
-
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
+#include "ft_test_assert.h"
+#include "test_line.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -304,23 +297,6 @@ static void test_straight_line_stays(void **state)
     ft_chain_free(out);
 }
 
-/* Divider D of a chain over [lo, hi], every scale fitted. */
-static ft_dim_result *divider(const ft_chain *c, double lo, double hi)
-{
-    ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
-    o.min_scale = lo;
-    o.max_scale = hi;
-    o.nscales = 12;
-    o.fit_whole_range = 1;
-    ft_dim_result *res = NULL;
-    const ft_chain *chains[] = {c};
-    int rc = ft_line_dim(chains, 1, FT_LINE_DIVIDER, &o, &res);
-    if (rc != FT_OK)
-        print_error("%s\n", ft_last_error());
-    assert_int_equal(rc, FT_OK);
-    return res;
-}
-
 /* Six iterations with UC = 1, measured by the divider over the scales the iterations made (2 finest
  * segments to half the input's mean segment). Issue 3 asks for D within 0.05 of SD = 1.3; with
  * the contract's geometry (base M1 M2, apex angle pi - 2a, cos a = 2^(1/SD - 1)) that cannot hold: each
@@ -344,7 +320,7 @@ static void test_divider_dimension_after_six_iterations(void **state)
             ft_chain *out = enhance(in, sds[k], 1.0, INFINITY, 0.0, 6);
             assert_int_equal(out->n, 64 * (in->n - 1) + 1);
             double mean_out = ft_chain_length(out) / (double)(out->n - 1);
-            ft_dim_result *res = divider(out, 2.0 * mean_out, 0.5 * mean_in);
+            ft_dim_result *res = line_divider_fit(out, 2.0 * mean_out, 0.5 * mean_in);
             double f = ft_chain_length(out) / ft_chain_length(five);
             double d_growth = log(2.0) / log(2.0 / f);
             print_message("seed %u, SD %.1f: divider D = %.4f (r2 %.5f) over [%g, %g]; growth %.4f per pass, "

@@ -18,17 +18,10 @@
 
 #include "fracterra/io.h"
 #include "fracterra/line.h"
+#include "ft_test_assert.h"
+#include "test_line.h"
 
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
-
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
 
 static const double PI = 3.14159265358979323846;
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -133,20 +126,10 @@ static double mean_segment(const ft_chain *c)
     return ft_chain_length(c) / (double)ft_chain_segments(c);
 }
 
-/* Divider D over [lo, hi], 12 rulers, every scale fitted (as test_line_dutton.c). */
+/* Divider D over [lo, hi], 12 rulers, every scale fitted (line_divider_fit), and its r2. */
 static double divider(const ft_chain *c, double lo, double hi, double *r2)
 {
-    ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
-    o.min_scale = lo;
-    o.max_scale = hi;
-    o.nscales = 12;
-    o.fit_whole_range = 1;
-    ft_dim_result *res = NULL;
-    const ft_chain *chains[] = {c};
-    int rc = ft_line_dim(chains, 1, FT_LINE_DIVIDER, &o, &res);
-    if (rc != FT_OK)
-        print_error("%s\n", ft_last_error());
-    assert_int_equal(rc, FT_OK);
+    ft_dim_result *res = line_divider_fit(c, lo, hi);
     double d = res->D;
     *r2 = res->r2;
     ft_dim_result_free(res);

@@ -14,15 +14,7 @@
 #include <string.h>
 
 #include "fracterra/line.h"
-
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
+#include "ft_test_assert.h"
 
 static ft_chain *chain_of(const double *xy, size_t n, int closed)
 {

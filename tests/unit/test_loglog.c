@@ -14,23 +14,7 @@
 #include <string.h>
 
 #include "fracterra/core.h"
-
-static inline void check_near(double a, double b, double tol, const char *file, int line)
-{
-    if (!(fabs(a - b) <= tol)) {
-        print_error("%.17g != %.17g (tolerance %g)\n", a, b, tol);
-        _fail(file, line);
-    }
-}
-#define assert_near(a, b, tol) check_near((a), (b), (tol), __FILE__, __LINE__)
-#define assert_error_names(rc, code, text)                                                                   \
-    do {                                                                                                     \
-        assert_int_equal((rc), (code));                                                                      \
-        if (strstr(ft_last_error(), (text)) == NULL) {                                                       \
-            print_error("error \"%s\" does not name \"%s\"\n", ft_last_error(), (text));                    \
-            _fail(__FILE__, __LINE__);                                                                       \
-        }                                                                                                    \
-    } while (0)
+#include "ft_test_assert.h"
 
 static const ft_dim_map BOX = FT_DIM_MAP_BOXCOUNT;  /* D = -slope */
 static const ft_dim_map SLOPE = {0.0, 1.0, 0.0, 0.0}; /* D = slope, no bounds */
