@@ -23,7 +23,7 @@ static int run_dim(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cli_cmd_dim = {
     "dim",
-    "fractal dimension of lines (walking divider, equipaced polygon, hybrid walk, box counting)",
+    "fractal dimension of lines, polygon layers, elevation grids (also as a local map) and scattered points",
     "fracterra dim SUBCOMMAND [OPTIONS] INPUT",
     "Measures the fractal dimension of a file's content; every estimator reports D with r\xc2\xb2, its\n"
     "standard error, the scale range fitted and the whole log-log table (--json, --plot).\n\n"
