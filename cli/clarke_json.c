@@ -127,24 +127,15 @@ json_object *clarke_model_to_json(const ft_clarke_model *m)
     return o;
 }
 
+static int write_model(FILE *f, const void *arg)
+{
+    return cli_json_fput((json_object *)arg, f);
+}
+
 int clarke_model_write(const char *path, const ft_clarke_model *m)
 {
     json_object *o = clarke_model_to_json(m);
-    const int flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
-    const char *text = json_object_to_json_string_ext(o, flags);
-    char *tmp = ft_tmp_path(path);
-    FILE *f = tmp ? fopen(tmp, "w") : NULL;
-    int rc = FT_OK;
-    if (f == NULL) {
-        rc = ft_error(FT_E_IO, "cannot write %s: %s", path, tmp ? strerror(errno) : "out of memory");
-    } else {
-        int bad = fputs(text, f) < 0 || fputc('\n', f) == EOF;
-        bad |= fclose(f) != 0;
-        rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
-        if (rc != FT_OK)
-            ft_tmp_discard(tmp);
-    }
-    free(tmp);
+    int rc = cli_write_file(path, write_model, o);
     json_object_put(o);
     return rc;
 }

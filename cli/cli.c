@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli.h"
+#include "internal.h"
 
 #include <cpl_progress.h>
 #include <errno.h>
@@ -195,11 +196,35 @@ int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, co
     return CLI_CONTINUE;
 }
 
-int cli_print_json(const cli_command *cmd, json_object *o)
+int cli_json_fput(json_object *o, FILE *f)
 {
     const int flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
-    const char *s = json_object_to_json_string_ext(o, flags);
-    int ok = fputs(s, stdout) >= 0 && fputc('\n', stdout) != EOF && fflush(stdout) == 0;
+    return fputs(json_object_to_json_string_ext(o, flags), f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
+}
+
+int cli_write_file(const char *path, cli_write_fn fn, const void *arg)
+{
+    char *tmp = ft_tmp_path(path);
+    if (tmp == NULL)
+        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    FILE *f = fopen(tmp, "w");
+    if (f == NULL) {
+        int rc = ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno));
+        free(tmp);
+        return rc;
+    }
+    int bad = fn(f, arg) != FT_OK || ferror(f);
+    bad |= fclose(f) != 0;
+    int rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
+    if (rc != FT_OK)
+        ft_tmp_discard(tmp);
+    free(tmp);
+    return rc;
+}
+
+int cli_print_json(const cli_command *cmd, json_object *o)
+{
+    int ok = cli_json_fput(o, stdout) == FT_OK && fflush(stdout) == 0;
     json_object_put(o);
     if (!ok) {
         cli_error(cmd, "cannot write to standard output: %s", strerror(errno));

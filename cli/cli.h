@@ -9,6 +9,7 @@
 #include <getopt.h>
 #include <json-c/json.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "fracterra/fracterra.h"
 
@@ -96,6 +97,12 @@ int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, co
 
 /** Prints o pretty-printed on stdout, then releases it. CLI_OK, or CLI_FAIL if stdout cannot be written. */
 int cli_print_json(const cli_command *cmd, json_object *o);
+/** Writes o as pretty JSON (the format --json prints) followed by a newline; FT_OK or FT_E_IO. */
+int cli_json_fput(json_object *o, FILE *f);
+/** Writes path through fn(f, arg) under a temporary name beside it, renamed when complete; nothing is left
+ *  behind on failure. FT_OK, or an FT_E_* code with ft_error naming path. */
+typedef int (*cli_write_fn)(FILE *f, const void *arg);
+int cli_write_file(const char *path, cli_write_fn fn, const void *arg);
 /** A JSON number, or null when v is not finite (JSON has no NaN). */
 json_object *cli_json_double(double v);
 /** GDALTermProgress when stderr is a terminal, NULL otherwise (no progress output in pipes and logs). */

@@ -317,26 +317,18 @@ static void html_page(FILE *f, const demo_ctx *ctx)
     fputs("</body>\n</html>\n", f);
 }
 
+static int write_page(FILE *f, const void *ctx)
+{
+    html_page(f, ctx);
+    return FT_OK;
+}
+
 static int step_index_html(demo_ctx *ctx)
 {
     const char *out = demo_add_output(ctx, "index.html", "the gallery page", "This page.", 0);
     if (out == NULL)
         return ft_last_error_code();
-    char *tmp = ft_tmp_path(out);
-    FILE *f = tmp ? fopen(tmp, "w") : NULL;
-    if (f == NULL) {
-        int rc = ft_error(FT_E_IO, "cannot write %s: %s", out, tmp ? strerror(errno) : "out of memory");
-        free(tmp);
-        return rc;
-    }
-    html_page(f, ctx);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    int rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", out, strerror(errno)) : ft_tmp_commit(tmp, out);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    return cli_write_file(out, write_page, ctx);
 }
 
 /* The demo, in order; index.html comes last so that it shows everything before it. */

@@ -231,22 +231,11 @@ static const cli_command cmd_model_simulate = {
 
 /* ---- dispatch ---- */
 
+static const cli_command *const subcommands[] = {&cmd_model_fit, &cmd_model_simulate};
+
 static int run_model(const cli_command *cmd, int argc, char **argv)
 {
-    if (argc < 2)
-        return cli_usage_error(cmd, "missing SUBCOMMAND (fit or simulate)");
-    const char *name = argv[1];
-    if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
-        cli_print_help(cmd);
-        return CLI_OK;
-    }
-    if (strcmp(name, "fit") == 0)
-        return cmd_model_fit.run(&cmd_model_fit, argc - 1, argv + 1);
-    if (strcmp(name, "simulate") == 0)
-        return cmd_model_simulate.run(&cmd_model_simulate, argc - 1, argv + 1);
-    if (name[0] == '-')
-        return cli_usage_error(cmd, "unknown option '%s' (options follow the SUBCOMMAND)", name);
-    return cli_usage_error(cmd, "unknown subcommand '%s' (fit or simulate)", name);
+    return cli_run_subcommand(cmd, subcommands, sizeof subcommands / sizeof subcommands[0], argc, argv);
 }
 
 const cli_command cli_cmd_model = {

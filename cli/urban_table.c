@@ -268,32 +268,7 @@ static json_object *tab_json(const urban_tab *t, const table_args *a)
 
 static int write_json(FILE *f, const void *arg)
 {
-    json_object *o = (json_object *)arg;
-    const int flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
-    return fputs(json_object_to_json_string_ext(o, flags), f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
-}
-
-/* ---- files ---- */
-
-typedef int (*write_fn)(FILE *f, const void *arg);
-
-/* Writes path through fn under a temporary name, renamed when complete. */
-static int write_atomic(const char *path, write_fn fn, const void *arg)
-{
-    char *tmp = ft_tmp_path(path);
-    FILE *f = tmp ? fopen(tmp, "w") : NULL;
-    if (f == NULL) {
-        int rc = ft_error(FT_E_IO, "cannot write %s: %s", path, tmp ? strerror(errno) : "out of memory");
-        free(tmp);
-        return rc;
-    }
-    int bad = fn(f, arg) != FT_OK;
-    bad |= fclose(f) != 0;
-    int rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    return cli_json_fput((json_object *)arg, f);
 }
 
 static int has_ext(const char *path, const char *ext)
@@ -358,7 +333,7 @@ static int write_outputs(const cli_command *cmd, const urban_tab *t, const table
     json_object *o = tab_json(t, a);
     int rc = FT_OK;
     if (a->out)
-        rc = has_ext(a->out, ".json") ? write_atomic(a->out, write_json, o) : write_atomic(a->out, write_csv, t);
+        rc = has_ext(a->out, ".json") ? cli_write_file(a->out, write_json, o) : cli_write_file(a->out, write_csv, t);
     if (rc != FT_OK) {
         if (a->chart)
             unlink(a->chart);
