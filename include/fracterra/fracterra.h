@@ -4,6 +4,7 @@
 #ifndef FRACTERRA_H
 #define FRACTERRA_H
 
+#include "contour.h"
 #include "core.h"
 #include "io.h"
 #include "line.h"

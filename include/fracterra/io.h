@@ -165,6 +165,11 @@ typedef struct {
  *  temporary name renamed on success. */
 int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
 
+/** Contour polygons of a DEM (GDALContourGenerateEx with POLYGONIZE=YES, as gdal_contour -p -amin elev):
+ *  one polygon feature per band between two levels base + i x interval, with a real field `elev` holding
+ *  its lower level; nodata cells are excluded. The layer carries the grid's CRS. */
+int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out);
+
 /** A CRS given as "EPSG:n", WKT, a PROJ string or anything OSRSetFromUserInput accepts, as malloc'd WKT
  *  (free()). FT_E_INVALID naming the input if GDAL does not know it. */
 int ft_io_crs_to_wkt(const char *user_input, char **wkt);

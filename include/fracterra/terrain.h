@@ -1,8 +1,9 @@
 /* fracterra — terrain.h: terrain synthesis (spectral, successive random addition, midpoint displacement,
- * exact circulant embedding) and Clarke's scale-based model (trend + significant harmonics + fractal noise).
+ * exact circulant embedding), Clarke's scale-based model (trend + significant harmonics + fractal noise)
+ * and reconstruction of dense terrain from sparse points (regularization with fractal priors).
  *
- * Papers: Clarke (1987) "Scale-based simulation of topography" (seeds 004); Arakawa & Krotkov §3.4 (SRA,
- * seeds 003); Voss (1985); Fournier, Fussell & Carpenter (1982); Stein (2002) for exact 2-D fBm.
+ * Papers: Clarke (1987) "Scale-based simulation of topography" (seeds 004); Arakawa & Krotkov §3 (SRA and
+ * reconstruction, seeds 003); Voss (1985); Fournier, Fussell & Carpenter (1982); Stein (2002) for exact 2-D fBm.
  * docs/terrain-*.md hold the equations and limits.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -134,6 +135,85 @@ typedef struct {
  *  the cells covering the fitted extent have the original's mean and variance (Clarke's procedure).
  *  Same model, options and seed => bit-identical cells. */
 int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts *opts, ft_grid **out);
+
+
+/* ------------------------------------------------------------------------------------------------
+ * Reconstruction of dense terrain from sparse elevations (Arakawa & Krotkov §3, after Szeliski):
+ * regularization with a fractal prior on a multiresolution grid, solved by multigrid relaxation
+ * (T = 0: the smooth solution) and then stochastic relaxation (Gibbs sampling) at a temperature per
+ * level T_l = T_0(D) x (SRA variance ratio of level l), T_0 = k sigma0² (eqs. 12-13) with sigma0 from
+ * the Pentland estimate; k is calibrated once by eq. 11 and stored as FT_RECON_K_DEFAULT.
+ * docs/terrain-reconstruct.md holds the discretization, the calibration and the limits.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    FT_RECON_FRACTAL = 0,     /**< the paper's method: smooth solution + Gibbs sampling at T_l per level */
+    FT_RECON_CONDITIONAL = 1, /**< conditional simulation: unconditional fBm of dimension D plus the smooth
+                                   interpolation of the residuals at the data; honours the data exactly */
+    FT_RECON_SMOOTH = 2       /**< T = 0: thin-plate/membrane regularization only (the paper's baseline) */
+} ft_recon_method;
+
+typedef struct {
+    ft_recon_method method;   /**< default FT_RECON_FRACTAL */
+    double dim;               /**< D in (2, 3); 0 (default) = estimate from the data (points: the yokoya
+                                   points estimator with its default range; grid voids: from the valid
+                                   cells) */
+    double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1];
+                                   default 0.1 (Terzopoulos' splines under tension) */
+    double lambda;            /**< weight of the prior against the data term, > 0; default 1 */
+    double sigma;             /**< standard deviation of a datum without its own weight (elevation
+                                   units, >= 0); 0 (default) = interpolate (the data are honoured to
+                                   the solver's tolerance) */
+    double temperature;       /**< fractal: T_0 override, > 0; 0 (default) = k sigma0² */
+    double k;                 /**< fractal: calibration constant of T_0 = k sigma0², > 0;
+                                   0 (default) = FT_RECON_K_DEFAULT */
+    int sweeps;               /**< fractal: Gibbs sweeps per level, >= 1; 0 (default) = the documented
+                                   number */
+    int realizations;         /**< >= 1; default 1. With N > 1 the output is the per-cell mean of N runs
+                                   (seeds seed, seed+1, ... as streams) and sd_out their standard
+                                   deviation */
+    uint64_t seed;            /**< default 1 */
+    int threads;              /**< 0 (default) = OpenMP's default; results do not depend on it */
+    ft_progress_fn progress;  /**< called often enough to cancel within a second */
+    void *progress_arg;
+} ft_recon_opts;
+#define FT_RECON_OPTS_DEFAULT {FT_RECON_FRACTAL, 0.0, 0.1, 1.0, 0.0, 0.0, 0.0, 0, 1, 1, 0, NULL, NULL}
+
+/** What a reconstruction used and achieved. */
+typedef struct {
+    double dim;               /**< D used */
+    int dim_estimated;        /**< 1 if D came from the data */
+    double sigma0;            /**< Pentland's standard deviation of elevation differences at one cell */
+    double k;                 /**< calibration constant used (fractal) */
+    double temperature;       /**< T_0 used (fractal; 0 otherwise) */
+    int levels;               /**< multigrid levels */
+    size_t data_used;         /**< data inside the grid (points) or known cells (voids) */
+    size_t data_outside;      /**< points outside the grid, ignored */
+    size_t filled;            /**< cells without data (voids: the filled cells) */
+    double data_rms;          /**< RMS of (output - datum) over the data used, on the output grid
+                                   interpolated bilinearly at the data positions */
+} ft_recon_info;
+
+/** Fixed by the eq. 11 calibration (docs/terrain-reconstruct.md says how it was measured). */
+extern const double FT_RECON_K_DEFAULT;
+
+const char *ft_recon_method_name(ft_recon_method m);
+/** "fractal", "conditional" or "smooth" (case-insensitive); FT_E_INVALID naming the text otherwise. */
+int ft_recon_method_parse(const char *name, ft_recon_method *m);
+
+/** Reconstructs a grid shaped like `target` (its nx, ny, gt and crs; its cells and mask are ignored)
+ *  from scattered points (p->w, when present, is each point's confidence 1/sigma). Points outside the
+ *  grid are ignored and counted. Needs >= 3 points inside, not on a line. *out receives the
+ *  reconstruction (the mean if realizations > 1); sd_out, if not NULL, the per-cell standard deviation
+ *  over the realizations (zero with one realization or the smooth method). info may be NULL.
+ *  Same data, options and seed => bit-identical cells on any thread count. */
+int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_recon_opts *opts,
+                          ft_grid **out, ft_grid **sd_out, ft_recon_info *info);
+
+/** Fills the nodata cells of a DEM; the valid cells are kept exactly. The output has no mask. A grid
+ *  without nodata is returned as a copy (info->filled = 0). All-nodata is FT_E_EMPTY. */
+int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid **out, ft_grid **sd_out,
+                         ft_recon_info *info);
 
 #ifdef __cplusplus
 }

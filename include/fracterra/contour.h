@@ -1,0 +1,225 @@
+/* fracterra — contour.h: the seed-contour mountain generator (Misawa, Chiba & Saito, seeds 001):
+ * polygon shrinking with three corner joins and the paper's d' join, random midpoint displacement,
+ * P-type Fourier descriptor phase randomization, the improved method, contour stacks and the DEM they
+ * define.
+ *
+ * Conventions: a polygon's outer ring is counter-clockwise, its holes clockwise (y up, as map
+ * coordinates are); rings are ft_chain with closed = 1 and no repeated closing vertex.
+ * docs/contour-mountain.md holds the equations, parameters and figures.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CONTOUR_H
+#define FRACTERRA_CONTOUR_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------------
+ * Polygon sets: the contour(s) of one elevation, possibly several islands, each possibly with holes.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    ft_chain *outer;   /**< counter-clockwise ring */
+    ft_chain **holes;  /**< clockwise rings inside outer */
+    size_t nholes;
+} ft_polygon;
+
+typedef struct {
+    ft_polygon *polys;
+    size_t n, cap;
+} ft_polygon_set;
+
+ft_polygon_set *ft_polygon_set_create(void);
+ft_polygon_set *ft_polygon_set_copy(const ft_polygon_set *s);
+void ft_polygon_set_free(ft_polygon_set *s);
+/** Appends a polygon, taking ownership of outer and holes (holes array included; may be NULL when
+ *  nholes == 0). Rings are reoriented to the convention. On failure nothing is taken. */
+int ft_polygon_set_add(ft_polygon_set *s, ft_chain *outer, ft_chain **holes, size_t nholes);
+/** Total area (outer areas minus hole areas), ground units². */
+double ft_polygon_set_area(const ft_polygon_set *s);
+/** Total vertices over every ring. */
+size_t ft_polygon_set_vertices(const ft_polygon_set *s);
+/** The polygons of a layer: polygon features (outer + inner parts), or line features whose parts are
+ *  closed rings (the first and last vertices equal, or the chain flagged closed), each ring one outer.
+ *  FT_E_EMPTY if there is none; FT_E_FORMAT naming the feature for an open line. */
+int ft_polygon_set_from_layer(const ft_layer *l, ft_polygon_set **out);
+
+/** 1 if every ring is simple (no self-intersection), outer rings are counter-clockwise with a positive
+ *  area, holes clockwise inside their outer ring, and no two polygons overlap (GEOS validity);
+ *  0 otherwise, with the reason in *why (static text, may be NULL). */
+int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why);
+
+/** 1 if every polygon of inner lies inside outer (GEOS covers), 0 otherwise. */
+int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *outer);
+
+/* ------------------------------------------------------------------------------------------------
+ * Polygon shrinking (§2–3): offset every edge inward by d, join the corners, node, keep the faces
+ * the offset curve winds around counter-clockwise, drop tiny faces. d < 0 grows the polygons
+ * (the mountain's foot); grown polygons that meet are merged.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    FT_JOIN_DPRIME = 0, /**< the paper's join: one point on the angle bisector at distance d' from the
+                             vertex, or the intersection of the extended offset lines, whichever is
+                             nearer to the vertex (default) */
+    FT_JOIN_MITRE = 1,  /**< extension lines: the intersection of the extended offset lines */
+    FT_JOIN_BEVEL = 2,  /**< a straight connection between the offset edges' ends */
+    FT_JOIN_ROUND = 3   /**< an arc of radius d: the exact set of points at distance d (GEOS buffer) */
+} ft_contour_join;
+
+typedef struct {
+    ft_contour_join join;  /**< default FT_JOIN_DPRIME */
+    double dprime;         /**< d' as a multiple of d, >= 1; default 1.2 (1.4 looked most real) */
+    int quad_segs;         /**< round join: segments per quarter circle, >= 1; default 8 */
+    double min_area;       /**< faces smaller than min_area x d² are dropped, >= 0; default 0.5 */
+} ft_shrink_opts;
+#define FT_SHRINK_OPTS_DEFAULT {FT_JOIN_DPRIME, 1.2, 8, 0.5}
+
+const char *ft_contour_join_name(ft_contour_join j);
+/** "dprime", "mitre" (or "miter"), "bevel", "round"; FT_E_INVALID naming the text otherwise. */
+int ft_contour_join_parse(const char *name, ft_contour_join *j);
+
+/** The polygons of `in` shrunk by d (> 0) or grown by -d (< 0); d must be finite and non-zero. The
+ *  result may be empty (n == 0): the contour vanished. The result is valid (ft_polygon_set_is_valid). */
+int ft_contour_shrink(const ft_polygon_set *in, double d, const ft_shrink_opts *opts, ft_polygon_set **out);
+
+/** Twists and loops (§4.4): nodes the rings, keeps the faces of positive winding number (a
+ *  counter-clockwise loop of an outer ring, a clockwise one of a hole), drops faces smaller than
+ *  min_area (ground units², >= 0). The result is valid; it may be empty. */
+int ft_contour_clean(const ft_polygon_set *in, double min_area, ft_polygon_set **out);
+
+/* ------------------------------------------------------------------------------------------------
+ * Shape operators on one ring (§4.1, §4.2) and their companion.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double max_seg;       /**< split segments longer than this (ground units, > 0): the paper's 2 d0 */
+    double max_offset;    /**< d'': the largest displacement (ground units, >= 0) */
+    double theta_min;     /**< degrees, 0 <= theta_min <= theta_max < 90; default 20 */
+    double theta_max;     /**< default 40 */
+} ft_midpoint_opts;
+#define FT_MIDPOINT_OPTS_DEFAULT {0.0, 0.0, 20.0, 40.0}
+
+/** Random midpoint displacement (§4.1): every segment longer than max_seg (length 2l) is split at its
+ *  midpoint, displaced perpendicularly to a random side by min(max_offset, |l tan theta|), theta uniform
+ *  in [theta_min, theta_max], recursively until every segment is at most max_seg. Works on rings and
+ *  open chains. The same (seed, stream) gives the same chain. */
+int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_opts *opts, uint64_t seed,
+                                 uint64_t stream, ft_chain **out);
+
+typedef struct {
+    int n;        /**< resample the ring to n equal segments, >= 8; default 1024 */
+    int f0;       /**< randomize the phases of the components with |k| >= f0, 1 <= f0 <= n/2;
+                       default 256 */
+} ft_fourier_opts;
+#define FT_FOURIER_OPTS_DEFAULT {1024, 256}
+
+/** P-type Fourier descriptor phase randomization (§4.2): resample the ring to n equal segments, take
+ *  the DFT c(k) of the unit edge vectors w(j), give every component with |k| >= f0 a uniform random
+ *  phase keeping its magnitude, invert and rebuild the closed ring with the original perimeter,
+ *  centroid and orientation (the closure error is spread evenly). The result has n vertices; it may
+ *  self-intersect (ft_contour_clean removes the loops). */
+int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
+                                 uint64_t stream, ft_chain **out);
+
+/** Removes nearly collinear vertices: a vertex whose turning angle is below angle_deg (degrees, >= 0)
+ *  is dropped, greedily along the ring, keeping at least 3 vertices of a ring. */
+int ft_contour_remove_collinear(const ft_chain *in, double angle_deg, ft_chain **out);
+
+/* ------------------------------------------------------------------------------------------------
+ * The mountain: every contour from seed contour(s) (§3–4.3).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    FT_MOUNTAIN_SIMPLE = 0,   /**< repeated shrinking (and growing below the seed) */
+    FT_MOUNTAIN_MIDPOINT = 1, /**< midpoint displacement then shrink, per level */
+    FT_MOUNTAIN_FOURIER = 2,  /**< shrink then phase randomization, per level */
+    FT_MOUNTAIN_IMPROVED = 3  /**< midpoint, shrink, phase randomization, collinear removal (§4.3) */
+} ft_mountain_method;
+
+typedef struct {
+    ft_mountain_method method;  /**< default FT_MOUNTAIN_IMPROVED */
+    double interval;            /**< elevation step between contours, > 0; default 10 */
+    double spacing;             /**< d: horizontal shrink per contour, > 0 (ground units); 0 (default) =
+                                     the documented fraction of the seed's size */
+    double seed_elevation;      /**< elevation of the seed contour(s); default 0 */
+    int levels_up;              /**< contours above the seed, >= 0; -1 (default) = until they vanish
+                                     (at most 10000) */
+    int levels_down;            /**< contours below the seed (grown outward), >= 0; default 0 */
+    ft_shrink_opts shrink;      /**< join and d' (dprime is a multiple of d); the improved method's
+                                     default d' = 3 d (the paper's best) applies when shrink.dprime is 0 */
+    double dsecond;             /**< d'' as a multiple of d, >= 0; default 0.5 */
+    double theta_min, theta_max;/**< degrees; default 20, 40 */
+    ft_fourier_opts fourier;    /**< default n = 1024, f0 = 256 */
+    double collinear_deg;       /**< collinear removal threshold, degrees; default as documented */
+    uint64_t seed;              /**< default 1 */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_mountain_opts;
+#define FT_MOUNTAIN_OPTS_DEFAULT                                                                             \
+    {FT_MOUNTAIN_IMPROVED, 10.0, 0.0, 0.0, -1, 0, {FT_JOIN_DPRIME, 0.0, 8, 0.5}, 0.5, 20.0, 40.0,           \
+     FT_FOURIER_OPTS_DEFAULT, 0.0, 1, NULL, NULL}
+
+const char *ft_mountain_method_name(ft_mountain_method m);
+/** "simple", "midpoint", "fourier", "improved"; FT_E_INVALID naming the text otherwise. */
+int ft_mountain_method_parse(const char *name, ft_mountain_method *m);
+
+/** One contour level: its elevation and polygons. */
+typedef struct {
+    double elev;
+    ft_polygon_set *polys;
+} ft_contour_level;
+
+/** Contour levels by increasing elevation; every level is valid and lies inside the level below it. */
+typedef struct {
+    ft_contour_level *levels;
+    size_t n;
+    double spacing;   /**< d used (ground units) */
+    double interval;  /**< elevation step */
+} ft_contour_stack;
+
+void ft_contour_stack_free(ft_contour_stack *s);
+
+/** Grows the mountain from seed contour(s) at opts->seed_elevation: levels_down grown outward (merged
+ *  where they meet), the seed level, and the levels above it until levels_up or until nothing is
+ *  left. Same seed polygons, options and seed => identical stack. */
+int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opts, ft_contour_stack **out);
+
+/** A contour layer: one feature per polygon (outer + holes) with a real field `elev` (as
+ *  gdal_contour -p -amin elev), or with as_lines = 1 one line feature per ring. crs_wkt may be NULL. */
+int ft_contour_stack_to_layer(const ft_contour_stack *s, int as_lines, const char *crs_wkt, ft_layer **out);
+
+/** A contour stack from a layer of polygons with an elevation field (levels = the distinct values,
+ *  sorted). FT_E_FORMAT naming the field if it is missing or not numeric. */
+int ft_contour_stack_from_layer(const ft_layer *l, const char *field, ft_contour_stack **out);
+
+/* ------------------------------------------------------------------------------------------------
+ * The DEM of a contour stack (as GRASS r.surf.contour): a cell between the contour of its level and
+ * the next one up gets z = z_lo + (z_hi - z_lo) d_lo / (d_lo + d_hi), d the distances to the two
+ * contours; inside the top contour(s) the summit rises above the last level as documented; outside
+ * the lowest contour cells are nodata.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double cell;       /**< cell size (ground units, > 0); 0 (default) = the lowest level's larger
+                            extent / 512 */
+    double margin;     /**< ground units around the lowest level's extent, >= 0; default 0 (one cell) */
+    double summit;     /**< rise of the summit above the top contour as a multiple of the interval,
+                            >= 0; default 0.5 */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_contour_dem_opts;
+#define FT_CONTOUR_DEM_OPTS_DEFAULT {0.0, 0.0, 0.5, NULL, NULL}
+
+/** A north-up grid covering the lowest level (crs_wkt copied if not NULL). */
+int ft_contour_stack_to_dem(const ft_contour_stack *s, const ft_contour_dem_opts *opts, const char *crs_wkt,
+                            ft_grid **out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FRACTERRA_CONTOUR_H */
