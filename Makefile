@@ -29,9 +29,12 @@ bench: build
 
 # Arakawa & Krotkov Table 1 on the scattered-point estimator; ACCURACY_FLAGS="--surfaces 20" for a shorter run.
 ACCURACY_FLAGS ?= --surfaces 100 --synth exact,sra,fft --snr 30,25,20
+# Arakawa & Krotkov Table 4 and the held-out RMSE against GRASS v.surf.rst (reconstruction, issue 7).
+ACCURACY_RECON_FLAGS ?= --surfaces 4
 accuracy: build
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS)
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --jitter
+	./$(BUILD)/fracterra_accuracy_reconstruct $(ACCURACY_RECON_FLAGS)
 
 install: build
 	cmake --install $(BUILD)

@@ -74,6 +74,8 @@ extern const ft_bench_suite ft_bench_suite_line_enhance;
 extern const ft_bench_suite ft_bench_suite_surface;
 extern const ft_bench_suite ft_bench_suite_urban;
 extern const ft_bench_suite ft_bench_suite_points;
+extern const ft_bench_suite ft_bench_suite_reconstruct;
+extern const ft_bench_suite ft_bench_suite_contour;
 
 /* ------------------------------------------------------------------------------------------------
  * Helpers the harness offers to workloads

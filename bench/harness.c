@@ -41,6 +41,8 @@ static const ft_bench_suite *const bench_suites[] = {
     &ft_bench_suite_surface,
     &ft_bench_suite_urban,
     &ft_bench_suite_points,
+    &ft_bench_suite_reconstruct,
+    &ft_bench_suite_contour,
 };
 #define N_SUITES (sizeof bench_suites / sizeof bench_suites[0])
 

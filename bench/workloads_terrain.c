@@ -8,8 +8,8 @@
  *    the yardstick of the fft target;
  *  - surface.variogram.32k: ft_surface_dim_variogram with 32,000 random points (Mark & Aronson) on a 4096²
  *    fft surface prepared untimed (target: under 0.5 s).
- * Peer: GRASS GIS r.surf.fractal at the same size, run through `grass --tmp-project XY --exec` when grass
- * is on PATH.
+ * Peer: GRASS GIS r.surf.fractal at the same size, run through `grass --tmp-location XY --exec` (GRASS 8.2
+ * and 8.4 accept it) when grass is on PATH.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -36,7 +36,7 @@ static int grass_peer(ft_bench_case *c, double dim)
                                  "dimension=%g --overwrite --quiet", SYNTH_N, SYNTH_N, dim);
     if (script == NULL)
         return ft_error(FT_E_NOMEM, "out of memory");
-    const char *args[] = {"grass", "--tmp-project", "XY", "--exec", "sh", "-c", script};
+    const char *args[] = {"grass", "--tmp-location", "XY", "--exec", "sh", "-c", script};
     for (size_t i = 0; i < sizeof args / sizeof args[0]; i++)
         if ((c->peer_argv[i] = i == 6 ? script : ft_bench_strdup(args[i])) == NULL)
             return ft_error(FT_E_NOMEM, "out of memory");

@@ -342,6 +342,7 @@ static const struct {
     {"Newfoundland enhancement", demo_step_lines},
     {"terrain", demo_step_terrain},
     {"urban boundary", demo_step_urban},
+    {"mountain", demo_step_mountain},
     {"index.html", step_index_html},
 };
 

@@ -49,4 +49,6 @@ int demo_step_terrain(demo_ctx *ctx); /* synthetic and volcano DEMs: hillshades,
 
 int demo_step_urban(demo_ctx *ctx); /* a boundary simulated with the midpoint-subdivision generator, two zooms */
 
+int demo_step_mountain(demo_ctx *ctx); /* a mountain grown from one seed contour: contour map, perspective */
+
 #endif /* FRACTERRA_CLI_DEMO_H */

@@ -27,6 +27,8 @@ static const cli_command *const commands[] = {
     &cli_cmd_urban,
     &cli_cmd_synth,
     &cli_cmd_model,
+    &cli_cmd_reconstruct,
+    &cli_cmd_mountain,
     &cli_cmd_hillshade,
     &cli_cmd_render,
     &cli_cmd_demo,

@@ -141,8 +141,9 @@ int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts *opts,
  * Reconstruction of dense terrain from sparse elevations (Arakawa & Krotkov §3, after Szeliski):
  * regularization with a fractal prior on a multiresolution grid, solved by multigrid relaxation
  * (T = 0: the smooth solution) and then stochastic relaxation (Gibbs sampling) at a temperature per
- * level T_l = T_0(D) x (SRA variance ratio of level l), T_0 = k sigma0² (eqs. 12-13) with sigma0 from
- * the Pentland estimate; k is calibrated once by eq. 11 and stored as FT_RECON_K_DEFAULT.
+ * level T_l = T_0(D) x (SRA variance ratio of level l), T_0 = k g(D) sigma0² (eqs. 12-13; g the SRA
+ * share of the one-cell variance added by the finest level, 1 at D = 2.4) with sigma0 from the Pentland
+ * estimate; k is calibrated once by eq. 11 and stored as FT_RECON_K_DEFAULT.
  * docs/terrain-reconstruct.md holds the discretization, the calibration and the limits.
  * --------------------------------------------------------------------------------------------- */
 
@@ -164,8 +165,8 @@ typedef struct {
     double sigma;             /**< standard deviation of a datum without its own weight (elevation
                                    units, >= 0); 0 (default) = interpolate (the data are honoured to
                                    the solver's tolerance) */
-    double temperature;       /**< fractal: T_0 override, > 0; 0 (default) = k sigma0² */
-    double k;                 /**< fractal: calibration constant of T_0 = k sigma0², > 0;
+    double temperature;       /**< fractal: T_0 override, > 0; 0 (default) = k g(D) sigma0² */
+    double k;                 /**< fractal: calibration constant of T_0 = k g(D) sigma0², > 0;
                                    0 (default) = FT_RECON_K_DEFAULT */
     int sweeps;               /**< fractal: Gibbs sweeps per level, >= 1; 0 (default) = the documented
                                    number */

@@ -32,6 +32,8 @@ static const char *const outputs[] = {"volcano.tif",
                                       "volcano_clarke_model.json",
                                       "urban_boundary.png",
                                       "urban_boundary_zoom.png",
+                                      "mountain_contours.svg",
+                                      "mountain_perspective.png",
                                       "index.html"};
 #define NOUTPUTS (sizeof outputs / sizeof outputs[0])
 

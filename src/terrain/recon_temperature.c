@@ -1,0 +1,101 @@
+/* fracterra — recon_temperature.c: what the data say about their roughness, and the temperatures of the
+ * fractal reconstruction (Arakawa & Krotkov §3.4, eqs. 12-13; docs/terrain-reconstruct.md).
+ *
+ *  - D from the data: Yokoya's estimator (§2.3-2.4) with its default range, on the points or on a DEM's
+ *    valid cells;
+ *  - sigma0: Pentland's statistic S(d), the standard deviation of |dz| at separation d (§2.4), fitted
+ *    over the data's lags and extrapolated to one cell (the paper computes sigma0 with Pentland's method);
+ *  - T_0 = k g(H) sigma0² (eq. 13) and T_l = T_0 2^(2 H l) (eq. 12: successive random addition adds
+ *    variance delta_l^(2H) at spacing delta_l = 2^l cells, synth_sra.c). g(H) = (1 - 2^(2H - 2)) / (1 -
+ *    2^(2 H_c - 2)), H_c = 0.6 (D = 2.4, where the paper calibrated k), is the SRA analogy's share of the
+ *    one-cell increment variance that the finest level adds: SRA's levels add sigma_l² = sigma_0² 2^(2Hl)
+ *    at spacing 2^l, a bilinear ramp between independent nodes 2^l apart has one-cell increments of
+ *    variance 2 sigma_l² 4^-l, so Var(dz_1) = 2 sigma_0² / (1 - 2^(2H - 2)) and the finest level's share
+ *    falls from 0.67 (D = 2.8) to 0.24 (D = 2.2); g(0.6) = 1 keeps k the paper's kind of constant;
+ *  - k: FT_RECON_K_DEFAULT, calibrated by eq. 11 (bench/accuracy/recon_calibrate.c; the figures below).
+ *  Sigma0 and the Yokoya line also give the conditional method's one-cell amplitude.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fracterra/surface.h"
+#include "terrain/reconstruct_internal.h"
+
+/* Calibrated once by eq. 11 (bench/accuracy/recon_calibrate.c): D = 2.4, SRA 256², sparse subset every
+ * 4th cell in each direction plus a random 5%, fractal reconstruction with T_0 = k g(H) sigma0², Yokoya's
+ * grid estimator over its default lags (1 .. 32 cells, whole-range fit) on the original (D*) and the
+ * result (D^). Mean D^ - D* over 8 seeds: k = 8: -0.0109, 9: -0.0030, 10: +0.0044, 11: +0.0115, 12: +0.0182;
+ * k = 9.4 interpolates the zero. With it |D* - D^| <= 0.009 (256², 8 seeds) and <= 0.015 (512², 4 seeds)
+ * for D = 2.2 .. 2.8 (docs/terrain-reconstruct.md, Table 4). */
+const double FT_RECON_K_DEFAULT = 9.4;
+
+static int fit_failed(int rc, const char *what)
+{
+    char msg[400];
+    snprintf(msg, sizeof msg, "%s", ft_last_error());
+    return ft_error(rc, "reconstruct: cannot estimate %s from the data: %s", what, msg);
+}
+
+static void line_from(const ft_dim_result *r, ft_recon_line *out)
+{
+    out->D = r->D;
+    out->a = r->fit.intercept;
+    out->b = r->fit.slope;
+    out->lo = r->range[0];
+    out->hi = r->range[1];
+}
+
+int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out)
+{
+    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
+    o.method = pentland ? FT_POINTS_PENTLAND : FT_POINTS_YOKOYA;
+    ft_dim_result *r = NULL;
+    int rc = ft_surface_dim_points(p, &o, &r);
+    if (rc != FT_OK)
+        return fit_failed(rc, pentland ? "sigma0 (Pentland's points estimator)" : "D (Yokoya's points estimator)");
+    line_from(r, out);
+    ft_dim_result_free(r);
+    return FT_OK;
+}
+
+int ft_recon_fit_grid(const ft_grid *g, int pentland, ft_recon_line *out)
+{
+    ft_variogram_opts o = FT_VARIOGRAM_OPTS_DEFAULT;
+    ft_dim_result *r = NULL;
+    int rc = pentland ? ft_surface_dim_pentland(g, &o, &r) : ft_surface_dim_yokoya(g, &o, &r);
+    if (rc != FT_OK)
+        return fit_failed(rc, pentland ? "sigma0 (Pentland's grid estimator on the valid cells)"
+                                       : "D (Yokoya's grid estimator on the valid cells)");
+    line_from(r, out);
+    ft_dim_result_free(r);
+    return FT_OK;
+}
+
+double ft_recon_line_at(const ft_recon_line *l, double scale)
+{
+    return pow(10.0, l->a + l->b * log10(scale));
+}
+
+/* E|dz| = sqrt(2/pi) sd(dz) for Gaussian increments: the fitted E|dz| at one cell, as an RMS. */
+double ft_recon_amplitude(const ft_recon_line *y, double cell)
+{
+    return ft_recon_line_at(y, cell) * sqrt(M_PI / 2.0);
+}
+
+static double sra_share(double H)
+{
+    return 1.0 - pow(2.0, 2.0 * H - 2.0);
+}
+
+double ft_recon_temperature0(double k, double H, double sigma0)
+{
+    return k * sra_share(H) / sra_share(0.6) * sigma0 * sigma0;
+}
+
+double ft_recon_temperature_level(double T0, double H, int level)
+{
+    return T0 * pow(2.0, 2.0 * H * level);
+}

@@ -1,0 +1,181 @@
+/* fracterra — reconstruct_internal.h (private): what the reconstruction files of src/terrain/ share
+ * (Arakawa & Krotkov §3, after Szeliski; docs/terrain-reconstruct.md).
+ *
+ *  - recon_binding.c: scattered points -> the nodes (cell centres) of the target grid;
+ *  - recon_stencil.c: the discrete energy (data term + lambda [(1 - tension) thin plate + tension
+ *    membrane], h = 1 node of the level) applied at a node, and 5-colour Gauss-Seidel / Gibbs sweeps;
+ *  - recon_multigrid.c: the level hierarchy (spacing 2^l), restriction and prolongation, and the T = 0
+ *    solver (conjugate gradients preconditioned by a symmetric multigrid V-cycle);
+ *  - recon_temperature.c: D from the data, Pentland's sigma0, T_0 = k sigma0² and T_l (eqs. 12-13), k;
+ *  - recon_gibbs.c: the fractal method (stochastic relaxation per level, eq. 10);
+ *  - recon_conditional.c: conditional simulation (fBm + smooth interpolation of the residuals);
+ *  - recon_voids.c: DEM voids -> problems on the boxes around them;
+ *  - reconstruct.c: options, dispatch, realizations (mean, sd), info, method names.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_RECONSTRUCT_INTERNAL_H
+#define FRACTERRA_RECONSTRUCT_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fracterra/terrain.h"
+
+/** Gibbs sweeps per level when opts->sweeps is 0 (docs/terrain-reconstruct.md). */
+#define FT_RECON_SWEEPS_DEFAULT 2
+/** Deterministic Gauss-Seidel sweeps at T = 0 on each level before its Gibbs sweeps. */
+#define FT_RECON_RELAX_SWEEPS 1
+/** The T = 0 solver stops when the residual norm falls below this fraction of the initial one. */
+#define FT_RECON_TOL 1e-6
+#define FT_RECON_MAX_ITER 200
+/** The coarsest level has at most this many nodes per side (solved by dense Cholesky). */
+#define FT_RECON_COARSEST 12
+
+/** Loops over fewer nodes than this run on one thread (a parallel region costs more than it saves, and
+ *  on a busy machine waiting threads spin). */
+#define FT_RECON_PARALLEL_MIN ((size_t)1 << 18)
+static inline int ft_recon_threads(int nthreads, size_t nodes)
+{
+    return nodes >= FT_RECON_PARALLEL_MIN ? nthreads : 1;
+}
+
+/** Stream ids of the random numbers (mixed with the seed by ft_rng_fast_init). */
+#define FT_RECON_STREAM_GIBBS UINT64_C(0x7265630000000000)
+
+/** One level of the hierarchy: nodes at spacing 2^l fine nodes. */
+typedef struct {
+    size_t nx, ny;
+    double tp, mem;   /**< coefficients of the thin-plate and membrane energies at this level */
+    float *c;         /**< data weight per node (>= 0): fine data, or the lumped weights of coarse levels */
+    uint8_t *fixed;   /**< 1: Dirichlet node (its value is not an unknown) */
+    float *x, *b, *r; /**< coarse levels: correction, right-hand side, residual (NULL on level 0) */
+    double *chol;     /**< coarsest level: Cholesky factor of its free-node matrix (NULL elsewhere) */
+    size_t *chol_idx; /**< coarsest level: node index of each free unknown */
+    size_t nchol;
+} ft_recon_level;
+
+/** A reconstruction problem on one grid: the data bound to its nodes and the level hierarchy. */
+typedef struct {
+    size_t nx, ny;
+    float *d;          /**< datum per node: the value of fixed nodes, the weighted mean of soft data */
+    ft_recon_level *lev; /**< lev[0] is the grid itself; lev[0].c and lev[0].fixed describe the data */
+    int nlev;
+    int nthreads;      /**< > 0 */
+} ft_recon_problem;
+
+/** Progress over a whole job: fraction base + span * f. */
+typedef struct {
+    ft_progress_fn fn;
+    void *arg;
+    double base, span;
+} ft_recon_progress;
+int ft_recon_report(const ft_recon_progress *p, double f, const char *msg);
+
+/* ---- recon_binding.c ---- */
+/** Allocates a problem of nx x ny nodes (data arrays zeroed, no hierarchy yet). NULL if out of memory. */
+ft_recon_problem *ft_recon_problem_create(size_t nx, size_t ny, int nthreads);
+void ft_recon_problem_free(ft_recon_problem *p);
+/** Binds each point to its nearest node of target (cell centres; several points on one node: their
+ *  confidence-weighted mean, confidences added). Fixed nodes when sigma == 0 and p has no weights,
+ *  otherwise weights c = w² (w = 1/sigma or the point's own). Checks finiteness, >= 3 nodes with data
+ *  not on a line. *outside receives the points outside the grid. */
+int ft_recon_bind_points(const ft_points *p, const ft_grid *target, double sigma, int nthreads,
+                         ft_recon_problem **out, size_t *outside);
+
+/* ---- recon_stencil.c ---- */
+/** (A x)_i at node (col, row) of level L and the diagonal a_ii (prior + data weight). */
+double ft_recon_apply(const ft_recon_level *L, const float *x, size_t col, size_t row, double *diag);
+/** Noise of a Gibbs sweep: node variance = scale / a_ii, deviates from streams of (seed, stream). */
+typedef struct {
+    double scale;
+    uint64_t seed, stream;
+} ft_recon_noise;
+/** One Gauss-Seidel sweep over the free nodes in 5 colours (0..4, or 4..0 if reverse), x_i += (b_i -
+ *  (A x)_i) / a_ii (b NULL = 0); with noise, plus sqrt(noise->scale / a_ii) N(0, 1) (eq. 10's Gibbs
+ *  conditional). Nodes of one colour do not interact, so rows run in parallel with the same result. */
+int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, const ft_recon_noise *noise,
+                   int nthreads);
+/** r = b - A x on free nodes, 0 on fixed ones (b NULL = 0). Returns sum r² (rows reduced in order). */
+double ft_recon_residual(const ft_recon_level *L, const float *x, const float *b, float *r, int nthreads);
+/** Interior diagonal of the prior at a level (20 tp + 4 mem). */
+double ft_recon_prior_diag(const ft_recon_level *L);
+
+/* ---- recon_multigrid.c ---- */
+/** Builds (or rebuilds) the coarse levels of p (lumped data weights, fixed nodes by injection) and the
+ *  coarsest Cholesky factor. */
+int ft_recon_hierarchy(ft_recon_problem *p, double lambda, double tension);
+/** fine (nx x ny) += bilinear prolongation of coarse (nx/2+1 x ny/2+1); fixed fine nodes untouched. */
+void ft_recon_prolong_add(const ft_recon_level *fine, const ft_recon_level *coarse, const float *xc, float *xf,
+                          int nthreads);
+/** Solves A u = c d (the T = 0 minimum, eq. 9 with T_p = 0) for the free nodes of p, starting from the
+ *  data's weighted mean; fixed nodes of u are set to d. */
+int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress *prog, int *iterations);
+/** Same with any right-hand side: A u = rhs on free nodes, u = fixed_values on fixed ones. */
+int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, const ft_recon_progress *prog,
+                       int *iterations);
+
+/* ---- recon_temperature.c ---- */
+/** A fitted log-log line: log10 value = a + b log10 scale, scale in ground units, fitted over [lo, hi]. */
+typedef struct {
+    double D;      /**< the estimator's dimension */
+    double a, b;
+    double lo, hi;
+} ft_recon_line;
+/** Yokoya's (pentland = 0) or Pentland's (1) points estimator with its default range. Errors name the
+ *  estimate that failed. */
+int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out);
+/** The same on a grid's valid cells (grid estimators, default range). */
+int ft_recon_fit_grid(const ft_grid *g, int pentland, ft_recon_line *out);
+/** The line's value at a scale (ground units). */
+double ft_recon_line_at(const ft_recon_line *l, double scale);
+/** Root-mean-square elevation difference at one cell (ground size `cell`): Yokoya's fitted E|dz|
+ *  extrapolated to one cell, times sqrt(pi / 2) (Gaussian increments). The conditional method's fBm
+ *  amplitude. */
+double ft_recon_amplitude(const ft_recon_line *yokoya, double cell);
+/** T_0 = k g(H) sigma0² (eq. 13 with the SRA factor g, docs/terrain-reconstruct.md). */
+double ft_recon_temperature0(double k, double H, double sigma0);
+/** T_l = T_0 2^(2 H l) (eq. 12: the SRA variance ratio of level l). */
+double ft_recon_temperature_level(double T0, double H, int level);
+
+/* ---- recon_gibbs.c ---- */
+/** The fractal method: u = ustar + delta, delta sampled coarse to fine (levels L..0) by `sweeps` Gibbs
+ *  sweeps at T_l per level after FT_RECON_RELAX_SWEEPS relaxation sweeps, each level starting from the
+ *  prolongation of the coarser one. Deviates from streams of (seed, level, sweep, colour, row). */
+int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, double H, int sweeps,
+                     uint64_t seed, float *u, const ft_recon_progress *prog);
+
+/* ---- recon_conditional.c ---- */
+/** Conditional simulation: s = amp x unconditional fBm (exponent H, seed), u = s + the T = 0 interpolation
+ *  of the residuals d - s at the data nodes (ustar = that of d, so only s's part is solved). */
+int ft_recon_conditional(const ft_recon_problem *p, const float *ustar, double H, double amp, uint64_t seed,
+                         float *u, const ft_recon_progress *prog);
+
+/* ---- reconstruct.c ---- */
+/** What one problem needs to be reconstructed. */
+typedef struct {
+    ft_recon_method method;
+    double H;           /**< 3 - D */
+    double T0;          /**< fractal: temperature of level 0 */
+    double amp;         /**< conditional: RMS one-cell increment of the fBm */
+    int sweeps;         /**< fractal: Gibbs sweeps per level */
+    int realizations;
+    uint64_t seed;      /**< realization r uses seed + r */
+} ft_recon_params;
+/** Builds p's hierarchy, solves u*, then runs the realizations: mean (nx x ny, row stride `stride`,
+ *  written at mean[y * stride + x]) and, if sd is not NULL, the per-cell standard deviation (Welford,
+ *  double accumulators; 0 with one realization). */
+int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_recon_params *par, float *mean,
+                 float *sd, size_t stride, const ft_recon_progress *prog);
+
+/** Checks the options (*o = opts or the defaults, threads resolved), clears info and the outputs. */
+int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *info, ft_grid **out,
+                   ft_grid **sd_out);
+/** D, T_0 and the fBm amplitude of the job from the options and the data (pts, or dem's valid cells);
+ *  cell = the ground size of one cell. Fills info's dim, dim_estimated, sigma0, k, temperature. */
+int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem, double cell,
+                        ft_recon_params *par, ft_recon_info *info);
+/** New output grids shaped like `like` (size, geotransform, CRS, no mask); sd_out only if want_sd. */
+int ft_recon_outputs(const ft_grid *like, int want_sd, ft_grid **out, ft_grid **sd_out);
+
+#endif /* FRACTERRA_RECONSTRUCT_INTERNAL_H */

@@ -1,0 +1,497 @@
+/* fracterra — unit tests of terrain/reconstruct.c and recon_*.c: bad options and data named in the error,
+ * method names, reproducibility (same seed, other seed, 1 and 2 threads), the smooth method on a plane
+ * (the thin plate's null space: exact) and a paraboloid (close), data fidelity (within sigma with soft
+ * data, exact with sigma = 0, for the conditional method and for voids), realizations (mean and sd),
+ * info, cancellation, and void filling of a real DEM (known cells bit-identical).
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fracterra/io.h"
+#include "fracterra/surface.h"
+#include "fracterra/terrain.h"
+#include "ft_test_assert.h"
+
+/* A 64 x 64 grid with cells of 10 ground units, upper-left corner (1000, 2000). */
+static ft_grid *target(size_t nx, size_t ny)
+{
+    ft_grid *g = ft_grid_create(nx, ny);
+    assert_non_null(g);
+    double gt[6] = {1000.0, 10.0, 0.0, 2000.0, 0.0, -10.0};
+    memcpy(g->gt, gt, sizeof gt);
+    return g;
+}
+
+/* A fractional Brownian surface of dimension D on a target-like grid, standard deviation 100. */
+static ft_grid *fbm(size_t n, double D, uint64_t seed)
+{
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.method = FT_SYNTH_EXACT;
+    o.dim = D;
+    o.sigma = 100.0;
+    o.seed = seed;
+    o.cell = 10.0;
+    o.origin_x = 1000.0;
+    o.origin_y = 2000.0;
+    ft_grid *g = NULL;
+    assert_int_equal(ft_terrain_synth(n, n, &o, &g), 0);
+    return g;
+}
+
+/* Every `every`-th cell centre of g in each direction (offset 1), with the cell's value. */
+static ft_points *lattice_points(const ft_grid *g, size_t every)
+{
+    ft_points *p = ft_points_create(0);
+    assert_non_null(p);
+    for (size_t y = 1; y < g->ny; y += every)
+        for (size_t x = 1; x < g->nx; x += every) {
+            double cx, cy;
+            ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
+            assert_int_equal(ft_points_push(p, cx, cy, g->z[y * g->nx + x]), 0);
+        }
+    return p;
+}
+
+static ft_points *sample(const ft_grid *g, double fraction, uint64_t seed)
+{
+    ft_grid_sample_opts o = FT_GRID_SAMPLE_OPTS_DEFAULT;
+    o.fraction = fraction;
+    o.seed = seed;
+    ft_points *p = NULL;
+    assert_int_equal(ft_surface_points_from_grid(g, &o, &p), 0);
+    return p;
+}
+
+static ft_grid *recon(const ft_points *p, const ft_grid *t, const ft_recon_opts *o, ft_recon_info *info)
+{
+    ft_grid *out = NULL;
+    int rc = ft_reconstruct_points(p, t, o, &out, NULL, info);
+    if (rc != 0)
+        print_error("reconstruct: %s\n", ft_last_error());
+    assert_int_equal(rc, 0);
+    assert_non_null(out);
+    return out;
+}
+
+static void test_names(void **state)
+{
+    (void)state;
+    for (int m = 0; m < 3; m++) {
+        ft_recon_method got;
+        assert_int_equal(ft_recon_method_parse(ft_recon_method_name((ft_recon_method)m), &got), 0);
+        assert_int_equal((int)got, m);
+    }
+    ft_recon_method got;
+    assert_int_equal(ft_recon_method_parse("FRACTAL", &got), 0);
+    assert_int_equal(got, FT_RECON_FRACTAL);
+    assert_error_names(ft_recon_method_parse("kriging", &got), FT_E_INVALID, "kriging");
+    assert_string_equal(ft_recon_method_name((ft_recon_method)9), "unknown");
+    assert_true(FT_RECON_K_DEFAULT > 0.0);
+}
+
+static void expect_bad(const ft_points *p, const ft_grid *t, const ft_recon_opts *o, int code, const char *text)
+{
+    ft_grid *out = (ft_grid *)1, *sd = (ft_grid *)1;
+    assert_error_names(ft_reconstruct_points(p, t, o, &out, &sd, NULL), code, text);
+    assert_null(out);
+    assert_null(sd);
+}
+
+static void test_bad_options(void **state)
+{
+    (void)state;
+    ft_grid *t = target(32, 32), *g = fbm(32, 2.5, 1);
+    ft_points *p = lattice_points(g, 4);
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.dim = 3.5;
+    expect_bad(p, t, &o, FT_E_INVALID, "3.5");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.realizations = 0;
+    expect_bad(p, t, &o, FT_E_INVALID, "realizations");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.lambda = 0.0;
+    expect_bad(p, t, &o, FT_E_INVALID, "lambda");
+    o.lambda = -2.0;
+    expect_bad(p, t, &o, FT_E_INVALID, "-2");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.tension = 1.5;
+    expect_bad(p, t, &o, FT_E_INVALID, "tension");
+    o.tension = -0.1;
+    expect_bad(p, t, &o, FT_E_INVALID, "-0.1");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.sigma = NAN;
+    expect_bad(p, t, &o, FT_E_INVALID, "sigma");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.k = -1.0;
+    expect_bad(p, t, &o, FT_E_INVALID, "k must");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.method = (ft_recon_method)7;
+    expect_bad(p, t, &o, FT_E_INVALID, "method");
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    expect_bad(p, NULL, &o, FT_E_INVALID, "target");
+
+    /* fewer than 3 points, collinear points, a NaN datum, a bad weight */
+    o.method = FT_RECON_SMOOTH;
+    ft_points *two = ft_points_create(0);
+    ft_points_push(two, 1005.0, 1995.0, 1.0);
+    ft_points_push(two, 1105.0, 1895.0, 2.0);
+    expect_bad(two, t, &o, FT_E_EMPTY, "at least 3");
+    ft_points_push(two, 1205.0, 1795.0, 3.0); /* nodes (0, 0), (10, 10), (20, 20): one line */
+    expect_bad(two, t, &o, FT_E_INVALID, "line");
+    ft_points_push(two, 5000.0, 5000.0, 3.0); /* outside: still on a line inside */
+    expect_bad(two, t, &o, FT_E_INVALID, "line");
+    ft_points_push(two, 1015.0, 1805.0, NAN);
+    expect_bad(two, t, &o, FT_E_NUMERIC, "point 4");
+    two->z[4] = 1.0;
+    assert_int_equal(ft_points_ensure_weights(two), 0);
+    two->w[1] = 0.0;
+    expect_bad(two, t, &o, FT_E_INVALID, "point 1");
+    ft_points_free(two);
+
+    /* all-nodata DEM */
+    ft_grid *v = ft_grid_copy(g);
+    assert_int_equal(ft_grid_ensure_mask(v), 0);
+    memset(v->mask, 0, v->nx * v->ny);
+    ft_grid *out = (ft_grid *)1;
+    assert_error_names(ft_reconstruct_voids(v, NULL, &out, NULL, NULL), FT_E_EMPTY, "no valid cell");
+    assert_null(out);
+    o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
+    o.dim = 1.5;
+    assert_error_names(ft_reconstruct_voids(g, &o, &out, NULL, NULL), FT_E_INVALID, "1.5");
+    ft_grid_free(v);
+    ft_points_free(p);
+    ft_grid_free(g);
+    ft_grid_free(t);
+}
+
+/* Same seed: bit-identical; another seed: different; 1 and 2 threads: bit-identical. */
+static void test_reproducible(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(96, 2.5, 3);
+    ft_points *p = sample(g, 0.05, 4);
+    for (int m = 0; m < 2; m++) {
+        ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+        o.method = (ft_recon_method)m;
+        o.dim = 2.5;
+        o.seed = 11;
+        o.threads = 1;
+        ft_grid *a = recon(p, g, &o, NULL);
+        o.threads = 2;
+        ft_grid *b = recon(p, g, &o, NULL);
+        o.seed = 12;
+        ft_grid *c = recon(p, g, &o, NULL);
+        size_t n = g->nx * g->ny;
+        assert_memory_equal(a->z, b->z, n * sizeof *a->z);
+        assert_true(memcmp(a->z, c->z, n * sizeof *a->z) != 0);
+        ft_grid_free(a);
+        ft_grid_free(b);
+        ft_grid_free(c);
+    }
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* The thin plate (tension 0) has the planes as its null space: points of a plane give the plane. */
+static void test_smooth_plane(void **state)
+{
+    (void)state;
+    ft_grid *g = target(50, 40);
+    for (size_t y = 0; y < g->ny; y++)
+        for (size_t x = 0; x < g->nx; x++)
+            g->z[y * g->nx + x] = (float)(300.0 + 2.0 * (double)x - 1.5 * (double)y);
+    ft_points *p = sample(g, 0.03, 2);
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.method = FT_RECON_SMOOTH;
+    o.tension = 0.0;
+    ft_recon_info info;
+    ft_grid *out = recon(p, g, &o, &info);
+    double worst = 0.0;
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        worst = fmax(worst, fabs((double)out->z[i] - (double)g->z[i]));
+    print_message("plane: largest error %.3g (range 100 .. 460)\n", worst);
+    assert_true(worst < 1e-4 * 460.0); /* float cells and the solver's tolerance */
+    assert_int_equal(info.data_used, p->n);
+    assert_int_equal(info.data_outside, 0);
+    assert_int_equal(info.filled, g->nx * g->ny - p->n);
+    assert_true(info.levels >= 3);
+    ft_grid_free(out);
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* A paraboloid (biharmonic: it satisfies the thin plate's equation inside) from 5% of its cells: close,
+ * the error coming from the natural boundary conditions near the edges. */
+static void test_smooth_paraboloid(void **state)
+{
+    (void)state;
+    ft_grid *g = target(64, 64);
+    double zmin = INFINITY, zmax = -INFINITY;
+    for (size_t y = 0; y < g->ny; y++)
+        for (size_t x = 0; x < g->nx; x++) {
+            double dx = (double)x - 30.0, dy = (double)y - 35.0;
+            double z = 500.0 - 0.2 * (dx * dx + dy * dy);
+            g->z[y * g->nx + x] = (float)z;
+            zmin = fmin(zmin, z);
+            zmax = fmax(zmax, z);
+        }
+    ft_points *p = sample(g, 0.05, 5);
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.method = FT_RECON_SMOOTH;
+    o.tension = 0.0;
+    ft_grid *out = recon(p, g, &o, NULL);
+    double s = 0.0;
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        s += pow((double)out->z[i] - (double)g->z[i], 2);
+    double rmse = sqrt(s / (double)(g->nx * g->ny));
+    print_message("paraboloid: RMSE %.4f over a range of %.1f\n", rmse, zmax - zmin);
+    assert_true(rmse < 0.005 * (zmax - zmin));
+    ft_grid_free(out);
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* Data fidelity: exact with sigma = 0 (smooth, fractal, conditional), within sigma with soft data. With
+ * soft data lambda sets the balance: the prior's squared second differences per node against (u - d)² /
+ * sigma² per datum; this rough surface (sd 100 over 80 cells) needs lambda = 0.001 for residuals below 5.
+ * The stochastic methods keep the data nodes at the smooth solution's values. */
+static void test_fidelity(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(80, 2.4, 6);
+    ft_points *p = sample(g, 0.05, 7);
+    for (int m = 0; m < 3; m++) {
+        ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+        o.method = (ft_recon_method)m;
+        o.dim = 2.4;
+        ft_recon_info info;
+        ft_grid *out = recon(p, g, &o, &info);
+        print_message("%s, sigma 0: data RMS %.3g\n", ft_recon_method_name(o.method), info.data_rms);
+        assert_true(info.data_rms <= 1e-4 * 100.0);
+        ft_grid_free(out);
+        o.sigma = 5.0;
+        o.lambda = 0.001;
+        out = recon(p, g, &o, &info);
+        print_message("%s, sigma 5: data RMS %.3g\n", ft_recon_method_name(o.method), info.data_rms);
+        assert_true(info.data_rms > 0.0 && info.data_rms <= 5.0);
+        ft_grid_free(out);
+    }
+    /* per-point weights (1/sigma) are soft data too */
+    assert_int_equal(ft_points_ensure_weights(p), 0);
+    for (size_t i = 0; i < p->n; i++)
+        p->w[i] = 0.5;
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.method = FT_RECON_SMOOTH;
+    o.lambda = 0.001;
+    ft_recon_info info;
+    ft_grid *out = recon(p, g, &o, &info);
+    print_message("smooth, weights 0.5: data RMS %.3g\n", info.data_rms);
+    assert_true(info.data_rms > 0.0 && info.data_rms <= 2.0);
+    ft_grid_free(out);
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* Realizations: the mean and the sd; sd is 0 at the data nodes and positive elsewhere; smooth has sd 0. */
+static void test_realizations(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(48, 2.5, 8);
+    ft_points *p = sample(g, 0.15, 14);
+    uint8_t *data = calloc(g->nx * g->ny, 1);
+    for (size_t k = 0; k < p->n; k++) {
+        size_t x = (size_t)((p->x[k] - 1000.0) / 10.0), y = (size_t)((2000.0 - p->y[k]) / 10.0);
+        data[y * g->nx + x] = 1;
+    }
+    ft_points_push(p, 1e6, 1e6, 0.0); /* outside */
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.dim = 2.5;
+    o.realizations = 5;
+    ft_grid *mean = NULL, *sd = NULL;
+    ft_recon_info info;
+    int rc = ft_reconstruct_points(p, g, &o, &mean, &sd, &info);
+    if (rc != 0)
+        print_error("%s\n", ft_last_error());
+    assert_int_equal(rc, 0);
+    assert_int_equal(info.data_outside, 1);
+    assert_int_equal(info.data_used, p->n - 1);
+    assert_near(info.k, FT_RECON_K_DEFAULT, 0.0);
+    assert_true(info.temperature > 0.0 && info.sigma0 > 0.0);
+    size_t free_nodes = 0, positive = 0;
+    for (size_t i = 0; i < g->nx * g->ny; i++) {
+        if (data[i]) {
+            assert_near(sd->z[i], 0.0, 0.0);
+            assert_near(mean->z[i], g->z[i], 1e-3);
+        } else {
+            free_nodes++;
+            positive += sd->z[i] > 0.0f;
+        }
+    }
+    assert_int_equal(positive, free_nodes);
+    free(data);
+    /* the mean of 5 runs is the mean of the 5 single runs with seeds seed .. seed + 4 */
+    double worst = 0.0;
+    float *acc = calloc(g->nx * g->ny, sizeof *acc);
+    for (int r = 0; r < 5; r++) {
+        ft_recon_opts o1 = o;
+        o1.realizations = 1;
+        o1.seed = o.seed + (uint64_t)r;
+        ft_grid *one = recon(p, g, &o1, NULL);
+        for (size_t i = 0; i < g->nx * g->ny; i++)
+            acc[i] += one->z[i] / 5.0f;
+        ft_grid_free(one);
+    }
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        worst = fmax(worst, fabs((double)acc[i] - (double)mean->z[i]));
+    assert_true(worst < 1e-3);
+    free(acc);
+    ft_grid_free(mean);
+    ft_grid_free(sd);
+    o.method = FT_RECON_SMOOTH;
+    assert_int_equal(ft_reconstruct_points(p, g, &o, &mean, &sd, NULL), 0);
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        assert_near(sd->z[i], 0.0, 0.0);
+    ft_grid_free(mean);
+    ft_grid_free(sd);
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* D estimated from the data when dim is 0; the output carries the target's georeferencing. */
+static void test_dim_auto(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(128, 2.5, 9);
+    assert_int_equal(ft_grid_set_crs(g, "EPSG:32633"), 0);
+    ft_points *p = sample(g, 0.1, 10);
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.method = FT_RECON_CONDITIONAL;
+    ft_recon_info info;
+    ft_grid *out = recon(p, g, &o, &info);
+    print_message("estimated D %.3f (true 2.5)\n", info.dim);
+    assert_int_equal(info.dim_estimated, 1);
+    assert_true(fabs(info.dim - 2.5) < 0.15);
+    assert_memory_equal(out->gt, g->gt, sizeof g->gt);
+    assert_non_null(out->crs_wkt);
+    assert_null(out->mask);
+    ft_grid_free(out);
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+static int calls;
+static int cancel_after_3(double frac, const char *msg, void *arg)
+{
+    (void)msg;
+    (void)arg;
+    assert_true(frac >= 0.0 && frac <= 1.0);
+    return ++calls < 3;
+}
+
+static void test_cancel(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(64, 2.5, 12);
+    ft_points *p = sample(g, 0.05, 13);
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.dim = 2.5;
+    o.progress = cancel_after_3;
+    for (int m = 0; m < 3; m++) {
+        o.method = (ft_recon_method)m;
+        calls = 0;
+        ft_grid *out = (ft_grid *)1;
+        assert_int_equal(ft_reconstruct_points(p, g, &o, &out, NULL, NULL), FT_E_CANCELLED);
+        assert_null(out);
+    }
+    ft_points_free(p);
+    ft_grid_free(g);
+}
+
+/* Voids of a real DEM: known cells bit-identical, voids filled, no mask; a DEM without voids is copied. */
+static void test_voids_dem(void **state)
+{
+    (void)state;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ft_grid *dem = NULL;
+    assert_int_equal(ft_io_read_grid(FT_TEST_DATA "/dem_luxembourg_terra_30s.tif", &ro, &dem), 0);
+    ft_grid *holed = ft_grid_copy(dem);
+    assert_int_equal(ft_grid_ensure_mask(holed), 0);
+    size_t holes = 0, voids = 0; /* holes punched in valid cells; all voids (the DEM has nodata) */
+    for (size_t y = 0; y < holed->ny; y++)
+        for (size_t x = 0; x < holed->nx; x++) {
+            size_t i = y * holed->nx + x;
+            double a = (double)x - 40.0, b = (double)y - 45.0, c = (double)x - 60.0, d = (double)y - 60.0;
+            if (ft_grid_is_valid(dem, x, y) && (a * a + b * b < 64.0 || c * c + d * d < 25.0 || (x == 30 && y == 50))) {
+                holed->mask[i] = 0;
+                holed->z[i] = -9999.0f;
+                holes++;
+            }
+            voids += !holed->mask[i];
+        }
+    assert_true(holes > 200);
+    for (int m = 0; m < 3; m++) {
+        ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+        o.method = (ft_recon_method)m;
+        o.realizations = m == 0 ? 3 : 1;
+        ft_grid *out = NULL, *sd = NULL;
+        ft_recon_info info;
+        int rc = ft_reconstruct_voids(holed, &o, &out, &sd, &info);
+        if (rc != 0)
+            print_error("%s\n", ft_last_error());
+        assert_int_equal(rc, 0);
+        assert_null(out->mask);
+        assert_int_equal(info.filled, voids);
+        assert_int_equal(info.data_used, holed->nx * holed->ny - voids);
+        double zmin, zmax, err = 0.0;
+        ft_grid_minmax(dem, &zmin, &zmax);
+        size_t sd_pos = 0;
+        for (size_t i = 0; i < dem->nx * dem->ny; i++) {
+            if (holed->mask[i]) {
+                assert_memory_equal(&out->z[i], &dem->z[i], sizeof(float));
+                assert_near(sd->z[i], 0.0, 0.0);
+            } else {
+                sd_pos += sd->z[i] > 0.0f;
+                if (dem->mask && !dem->mask[i])
+                    continue;
+                assert_true(out->z[i] > zmin - 0.5 * (zmax - zmin) && out->z[i] < zmax + 0.5 * (zmax - zmin));
+                err += pow((double)out->z[i] - (double)dem->z[i], 2);
+            }
+        }
+        print_message("%s: D %.3f (estimated %d), RMSE in the holes %.1f m (relief %.0f m)\n",
+                      ft_recon_method_name(o.method), info.dim, info.dim_estimated, sqrt(err / (double)holes),
+                      zmax - zmin);
+        if (m == 0)
+            assert_int_equal(sd_pos, voids);
+        ft_grid_free(out);
+        ft_grid_free(sd);
+    }
+    ft_grid *full = fbm(40, 2.5, 15), *out = NULL;
+    ft_recon_info info;
+    assert_int_equal(ft_reconstruct_voids(full, NULL, &out, NULL, &info), 0);
+    assert_int_equal(info.filled, 0);
+    assert_memory_equal(out->z, full->z, full->nx * full->ny * sizeof *full->z);
+    ft_grid_free(out);
+    ft_grid_free(full);
+    ft_grid_free(holed);
+    ft_grid_free(dem);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_names),          cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_reproducible),   cmocka_unit_test(test_smooth_plane),
+        cmocka_unit_test(test_smooth_paraboloid), cmocka_unit_test(test_fidelity),
+        cmocka_unit_test(test_realizations),   cmocka_unit_test(test_dim_auto),
+        cmocka_unit_test(test_cancel),         cmocka_unit_test(test_voids_dem),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
