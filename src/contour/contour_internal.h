@@ -55,6 +55,11 @@ int ft_geos_append_to_set(ft_geos *g, const GEOSGeometry *geom, double min_area,
 
 /* ---- checks shared by the contour functions (polygon_set.c) ----------------------------------- */
 
+/* A copy of layer part p as a ring (closing vertex dropped, closed = 1). FT_E_FORMAT naming the feature
+ * and part for an open line, no vertex or a non-finite coordinate; a ring of fewer than 3 vertices is
+ * FT_E_FORMAT too unless degenerate_ok, which then gives FT_OK with *out = NULL (also for zero area). */
+int ft_contour_ring_of_part(const ft_layer *l, size_t p, int degenerate_ok, ft_chain **out);
+
 /** FT_OK if the ring has finite coordinates, at least 3 distinct vertices and a non-zero area (relative
  *  to its extent); FT_E_INVALID naming `what` (e.g. "polygon 2 hole 1") and the fault otherwise. */
 int ft_contour_check_ring(const ft_chain *ring, const char *what);

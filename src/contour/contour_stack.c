@@ -146,35 +146,6 @@ static int ring_list_push(ring_list *r, ft_chain *c)
     return FT_OK;
 }
 
-/* A copy of part p as a ring (closing vertex dropped); FT_E_FORMAT naming the feature otherwise. */
-static int part_ring(const ft_layer *l, size_t p, ft_chain **out)
-{
-    const ft_part *part = &l->parts[p];
-    const ft_chain *c = part->chain;
-    int64_t fid = l->features[part->feature].fid;
-    size_t index = p - l->features[part->feature].first;
-    *out = NULL;
-    if (c == NULL || c->n == 0)
-        return ft_error(FT_E_FORMAT, "feature %" PRId64 " part %zu has no vertex", fid, index);
-    int closed = c->closed || (c->n >= 2 && c->x[0] == c->x[c->n - 1] && c->y[0] == c->y[c->n - 1]);
-    if (!closed)
-        return ft_error(FT_E_FORMAT, "feature %" PRId64 " part %zu is an open line, not a contour ring", fid, index);
-    if (ft_chain_check_finite(c) != FT_OK)
-        return ft_error(FT_E_FORMAT, "feature %" PRId64 " part %zu has a non-finite coordinate", fid, index);
-    ft_chain *r = ft_chain_copy(c);
-    if (r == NULL)
-        return FT_E_NOMEM;
-    r->closed = 1;
-    if (r->n >= 2 && r->x[0] == r->x[r->n - 1] && r->y[0] == r->y[r->n - 1])
-        r->n--;
-    if (r->n < 3 || ft_chain_signed_area(r) == 0.0) {
-        ft_chain_free(r); /* a degenerate ring encloses nothing */
-        r = NULL;
-    }
-    *out = r;
-    return FT_OK;
-}
-
 /* Crossing-number test: 1 if (x, y) is inside the ring. */
 static int inside_ring(const ft_chain *r, double x, double y)
 {
@@ -210,7 +181,7 @@ static int feature_rings(const ft_layer *l, size_t f, ring_list *polys, ring_lis
     const ft_feature *ft = &l->features[f];
     for (size_t p = ft->first; p < ft->first + ft->count; p++) {
         ft_chain *r = NULL;
-        int rc = part_ring(l, p, &r);
+        int rc = ft_contour_ring_of_part(l, p, 1, &r);
         if (rc != FT_OK)
             return rc;
         if (r == NULL)

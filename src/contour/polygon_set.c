@@ -187,9 +187,8 @@ int ft_contour_check_ring(const ft_chain *ring, const char *what)
 
 /* ---- from a layer ------------------------------------------------------------------------------ */
 
-/* A copy of a part as a ring; FT_E_FORMAT naming the feature for an open line, too few vertices or a
- * non-finite coordinate. */
-static int ring_of_part(const ft_layer *l, size_t p, ft_chain **out)
+/* A copy of a part as a ring (contour_internal.h). */
+int ft_contour_ring_of_part(const ft_layer *l, size_t p, int degenerate_ok, ft_chain **out)
 {
     const ft_part *part = &l->parts[p];
     const ft_chain *c = part->chain;
@@ -213,6 +212,10 @@ static int ring_of_part(const ft_layer *l, size_t p, ft_chain **out)
     r->closed = 1;
     if (r->n >= 2 && r->x[0] == r->x[r->n - 1] && r->y[0] == r->y[r->n - 1])
         r->n--;
+    if (degenerate_ok && (r->n < 3 || ft_chain_signed_area(r) == 0.0)) {
+        ft_chain_free(r); /* a degenerate ring encloses nothing */
+        return FT_OK;
+    }
     if (r->n < 3) {
         ft_chain_free(r);
         return ft_error(FT_E_FORMAT, "feature %" PRId64 " part %zu: a ring of %zu vertices, at least 3 needed",
@@ -228,11 +231,11 @@ static int add_polygon_parts(const ft_layer *l, size_t first, size_t end, ft_pol
     ft_chain *outer = NULL;
     ft_chain **holes = NULL;
     size_t nholes = 0;
-    int rc = ring_of_part(l, first, &outer);
+    int rc = ft_contour_ring_of_part(l, first, 0, &outer);
     if (rc == FT_OK && end - first > 1 && (holes = ft_calloc(end - first - 1, sizeof *holes)) == NULL)
         rc = FT_E_NOMEM;
     for (size_t p = first + 1; rc == FT_OK && p < end; p++) {
-        rc = ring_of_part(l, p, &holes[nholes]);
+        rc = ft_contour_ring_of_part(l, p, 0, &holes[nholes]);
         if (rc == FT_OK)
             nholes++;
     }
