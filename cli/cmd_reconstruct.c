@@ -299,12 +299,7 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
     json_object_object_add(o, "nx", json_object_new_int64((int64_t)g->nx));
     json_object_object_add(o, "ny", json_object_new_int64((int64_t)g->ny));
     json_object_object_add(o, "cell", cell_json(g));
-    json_object *gt = json_object_new_array();
-    for (int i = 0; i < 6; i++)
-        json_object_array_add(gt, cli_json_double(g->gt[i]));
-    json_object_object_add(o, "geotransform", gt);
-    json_object_object_add(o, "crs", g->crs_wkt ? json_object_new_string(g->crs_wkt) : NULL);
-    json_object_object_add(o, "grid", terrain_grid_figures(g));
+    terrain_add_grid_json(o, g);
     return cli_print_json(cmd, o);
 }
 

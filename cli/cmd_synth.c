@@ -96,12 +96,7 @@ static int report(const cli_command *cmd, const synth_args *a, const char *out, 
     json_object_object_add(o, "sigma", cli_json_double(a->so.sigma));
     json_object_object_add(o, "cell", cli_json_double(a->so.cell));
     json_object_object_add(o, "periodic", json_object_new_boolean(a->so.periodic));
-    json_object *gt = json_object_new_array();
-    for (int i = 0; i < 6; i++)
-        json_object_array_add(gt, cli_json_double(g->gt[i]));
-    json_object_object_add(o, "geotransform", gt);
-    json_object_object_add(o, "crs", g->crs_wkt ? json_object_new_string(g->crs_wkt) : NULL);
-    json_object_object_add(o, "grid", terrain_grid_figures(g));
+    terrain_add_grid_json(o, g);
     return cli_print_json(cmd, o);
 }
 

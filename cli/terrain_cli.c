@@ -66,3 +66,13 @@ json_object *terrain_grid_figures(const ft_grid *g)
     json_object_object_add(o, "max", cli_json_double(zmax));
     return o;
 }
+
+void terrain_add_grid_json(json_object *o, const ft_grid *g)
+{
+    json_object *gt = json_object_new_array();
+    for (int i = 0; i < 6; i++)
+        json_object_array_add(gt, cli_json_double(g->gt[i]));
+    json_object_object_add(o, "geotransform", gt);
+    json_object_object_add(o, "crs", g->crs_wkt ? json_object_new_string(g->crs_wkt) : NULL);
+    json_object_object_add(o, "grid", terrain_grid_figures(g));
+}

@@ -21,5 +21,7 @@ int terrain_read_dem(const cli_command *cmd, const char *path, ft_grid **out);
 json_object *terrain_report_start(int json, const char *in, const char *out);
 /** {"size": [nx, ny], "mean", "sd", "min", "max"} of the valid cells. */
 json_object *terrain_grid_figures(const ft_grid *g);
+/** Adds "geotransform" (6 numbers), "crs" (WKT or null) and "grid" (terrain_grid_figures) to o. */
+void terrain_add_grid_json(json_object *o, const ft_grid *g);
 
 #endif /* FRACTERRA_CLI_TERRAIN_H */
