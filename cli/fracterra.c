@@ -43,7 +43,7 @@ static void print_usage(FILE *f)
                "and uses it to enhance, simulate and synthesize map features.\n\n"
                "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++)
-        fprintf(f, "  %-10s %s\n", commands[i]->name, commands[i]->summary);
+        fprintf(f, "  %-12s %s\n", commands[i]->name, commands[i]->summary);
     fprintf(f, "\nRun 'fracterra COMMAND --help' for a command's options and an example.\n"
                "Exit status: 0 success, 1 failure while running, 2 bad usage.\n"
                "Example:\n  fracterra info tests/data/dem_volcano_maunga_whau_10m.tif\n");
