@@ -93,7 +93,10 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
                    : cli_usage_error(cmd, "--join must be dprime, mitre, bevel or round, got '%s'", arg);
     case OPT_DPRIME: return cli_parse_double(cmd, "--dprime", arg, 1.0, INFINITY, CLI_CLOSED, &m->shrink.dprime);
     case OPT_DSECOND: return cli_parse_double(cmd, "--dsecond", arg, 0.0, INFINITY, CLI_CLOSED, &m->dsecond);
-    case OPT_THETA: a->have_theta = 1; return parse_theta(cmd, arg, &m->theta_min, &m->theta_max);
+    case OPT_THETA: /* an explicit range is used as is: no matching of the seed's dimension */
+        a->have_theta = 1;
+        m->match_dim = 0;
+        return parse_theta(cmd, arg, &m->theta_min, &m->theta_max);
     case OPT_F0: a->have_f0 = 1; return cli_parse_int(cmd, "--f0", arg, 1, 1 << 20, &m->fourier.f0);
     case OPT_N: a->have_n = 1; return cli_parse_int(cmd, "--n", arg, 8, 1 << 21, &m->fourier.n);
     case OPT_SEED: return terrain_parse_seed(cmd, arg, &m->seed);
@@ -419,6 +422,8 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
         json_object_array_add(th, cli_json_double(m->theta_min));
         json_object_array_add(th, cli_json_double(m->theta_max));
         json_object_object_add(o, "theta", th);
+        json_object_object_add(o, "match_dim",
+                               json_object_new_boolean(m->method == FT_MOUNTAIN_IMPROVED && m->match_dim));
     }
     if (m->method == FT_MOUNTAIN_FOURIER || m->method == FT_MOUNTAIN_IMPROVED) {
         json_object_object_add(o, "f0", json_object_new_int(m->fourier.f0));
@@ -568,7 +573,9 @@ const cli_command cli_cmd_mountain = {
     "      --dprime K         d' = K d, >= 1 (default 3 for improved, 1.4 for midpoint and fourier, 1.2 for\n"
     "                         simple: the paper's settings)\n"
     "      --dsecond K        d'' = K d: the largest midpoint displacement, >= 0 (default 0.5)\n"
-    "      --theta MIN,MAX    midpoint displacement angles, degrees, 0 <= MIN <= MAX < 90 (default 20,40)\n"
+    "      --theta MIN,MAX    midpoint displacement angles, degrees, 0 <= MIN <= MAX < 90 (default 20,40;\n"
+    "                         improved scales the range per contour so that its divider D matches the\n"
+    "                         seed's; an explicit --theta is used as is, the paper's fixed range)\n"
     "      --f0 F             randomize the phases of the components |k| >= F, 1 <= F <= N/2 (default 256)\n"
     "      --n N              resample each contour to N segments for the descriptor, >= 8 (default 1024)\n"
     "      --seed N           random seed (default 1; printed in the JSON)\n"

@@ -156,13 +156,18 @@ typedef struct {
     double theta_min, theta_max;/**< degrees; default 20, 40 */
     ft_fourier_opts fourier;    /**< default n = 1024, f0 = 256 */
     double collinear_deg;       /**< collinear removal threshold, degrees; default as documented */
+    int match_dim;              /**< improved method: 1 (default) scales the angle range [theta_min,
+                                     theta_max] ring by ring so that each displaced ring has the seed's
+                                     divider dimension over rulers d0 .. 4 d0 (§5: theta from the fractal
+                                     dimension; docs/contour-mountain.md); 0 uses the range as given (the
+                                     paper's fixed angles) */
     uint64_t seed;              /**< default 1 */
     ft_progress_fn progress;
     void *progress_arg;
 } ft_mountain_opts;
 #define FT_MOUNTAIN_OPTS_DEFAULT                                                                             \
     {FT_MOUNTAIN_IMPROVED, 10.0, 0.0, 0.0, -1, 0, {FT_JOIN_DPRIME, 0.0, 8, 0.5}, 0.5, 20.0, 40.0,           \
-     FT_FOURIER_OPTS_DEFAULT, 0.0, 1, NULL, NULL}
+     FT_FOURIER_OPTS_DEFAULT, 0.0, 1, 1, NULL, NULL}
 
 const char *ft_mountain_method_name(ft_mountain_method m);
 /** "simple", "midpoint", "fourier", "improved"; FT_E_INVALID naming the text otherwise. */
