@@ -293,6 +293,7 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
     json_object_object_add(o, "data_outside", json_object_new_int64((int64_t)info->data_outside));
     json_object_object_add(o, "filled", json_object_new_int64((int64_t)info->filled));
     json_object_object_add(o, "data_rms", cli_json_double(info->data_rms));
+    json_object_object_add(o, "lambda", cli_json_double(info->lambda));
     json_object_object_add(o, "realizations", json_object_new_int(a->ro.realizations));
     json_object_object_add(o, "seed", json_object_new_uint64(a->ro.seed));
     json_object_object_add(o, "bands", json_object_new_string(a->ro.realizations > 1 ? "1: mean, 2: sd" : "1: z"));
@@ -442,10 +443,12 @@ const cli_command cli_cmd_reconstruct = {
     "  -d, --dim D|auto     fractal dimension in (2,3); auto (default): estimated from the data (points:\n"
     "                       Yokoya's estimator; a DEM: its valid cells)\n"
     "  -g, --sigma S        standard deviation of a datum without a weight, elevation units (default 0:\n"
-    "                       interpolate)\n"
+    "                       interpolate); the data are then fitted to within their sigmas\n"
     "      --weight FIELD   column or field holding each point's confidence 1/sigma\n"
     "      --tension T      prior: 0 thin plate .. 1 membrane (default 0.1)\n"
-    "      --lambda L       weight of the prior against the data, > 0 (default 1)\n"
+    "      --lambda L       weight of the prior against the data, > 0 (default 1). With sigmas: the\n"
+    "                       largest weight; lowered until the RMS of (z - datum)/sigma at the data is\n"
+    "                       about 1 (Morozov's discrepancy principle) if it misses them by more\n"
     "      --temperature T0 fractal: the finest level's temperature, instead of k g(D) sigma0^2\n"
     "      --k K            fractal: the calibration constant of T0 = k g(D) sigma0^2 (default: the\n"
     "                       library's, calibrated by the paper's eq. 11)\n"

@@ -161,10 +161,18 @@ typedef struct {
                                    cells) */
     double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1];
                                    default 0.1 (Terzopoulos' splines under tension) */
-    double lambda;            /**< weight of the prior against the data term, > 0; default 1 */
+    double lambda;            /**< weight of the prior against the data term, > 0; default 1. No effect
+                                   when the data are interpolated (sigma 0, no weights). With sigmas
+                                   (sigma > 0 or per-point weights) it is an upper bound: if the fit
+                                   at lambda misses the data by more than their sigmas (chi² = sum
+                                   (u - d_i)² / sigma_i² > N, the number of data), lambda is lowered
+                                   until (1 - 0.06) N <= chi² <= N (Morozov's discrepancy principle:
+                                   the RMS of (u - d_i) / sigma_i is 0.97 .. 1); a lambda that fits
+                                   already is kept (docs/terrain-reconstruct.md) */
     double sigma;             /**< standard deviation of a datum without its own weight (elevation
-                                   units, >= 0); 0 (default) = interpolate (the data are honoured to
-                                   the solver's tolerance) */
+                                   units, >= 0): the data are fitted to within it (see lambda);
+                                   0 (default) = interpolate (the data are honoured to the solver's
+                                   tolerance) */
     double temperature;       /**< fractal: T_0 override, > 0; 0 (default) = k g(D) sigma0² */
     double k;                 /**< fractal: calibration constant of T_0 = k g(D) sigma0², > 0;
                                    0 (default) = FT_RECON_K_DEFAULT */
@@ -193,6 +201,8 @@ typedef struct {
     size_t filled;            /**< cells without data (voids: the filled cells) */
     double data_rms;          /**< RMS of (output - datum) over the data used, on the output grid
                                    interpolated bilinearly at the data positions */
+    double lambda;            /**< the prior weight used: opts->lambda, or with soft data the discrepancy
+                                   principle's value (at most opts->lambda) */
 } ft_recon_info;
 
 /** Fixed by the eq. 11 calibration (docs/terrain-reconstruct.md says how it was measured). */

@@ -5,7 +5,9 @@
  * (the nearest centre); a point outside the grid is counted and ignored. Several points on one node
  * become their confidence-weighted mean d = sum c d / sum c with confidence sum c. With sigma = 0 and no
  * per-point weights the data nodes are fixed (Dirichlet): the data are honoured exactly. Otherwise
- * c = w² with w = 1/sigma or the point's own weight (its confidence 1/sigma_i).
+ * c = w² with w = 1/sigma or the point's own weight (its confidence 1/sigma_i); the problem then also
+ * records the number of points bound and their weighted scatter about their node's datum (the part of
+ * chi² that no surface can remove), for the discrepancy principle (recon_discrepancy.c).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -66,7 +68,7 @@ static int inverse_gt(const double *gt, double *inv)
 {
     double det = gt[1] * gt[5] - gt[2] * gt[4];
     if (!(fabs(det) > 0.0) || !isfinite(det))
-        return ft_error(FT_E_INVALID, "reconstruct: the target grid's geotransform is degenerate "
+        return ft_error(FT_E_INVALID, "the target grid's geotransform is degenerate "
                         "(pixel size %g x %g)", gt[1], gt[5]);
     inv[0] = gt[5] / det;
     inv[1] = -gt[2] / det;
@@ -107,13 +109,13 @@ int ft_recon_bind_points(const ft_points *p, const ft_grid *target, double sigma
     *out = NULL;
     *outside = 0;
     if (p == NULL || p->n == 0 || p->x == NULL || p->y == NULL || p->z == NULL)
-        return ft_error(FT_E_EMPTY, "reconstruct: no points");
+        return ft_error(FT_E_EMPTY, "no points");
     for (size_t i = 0; i < p->n; i++) {
         if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->z[i]))
-            return ft_error(FT_E_NUMERIC, "reconstruct: point %zu is not finite (x %g, y %g, z %g)", i, p->x[i],
+            return ft_error(FT_E_NUMERIC, "point %zu is not finite (x %g, y %g, z %g)", i, p->x[i],
                             p->y[i], p->z[i]);
         if (p->w && !(p->w[i] > 0.0 && isfinite(p->w[i])))
-            return ft_error(FT_E_INVALID, "reconstruct: point %zu has weight (confidence 1/sigma) %g; it must "
+            return ft_error(FT_E_INVALID, "point %zu has weight (confidence 1/sigma) %g; it must "
                             "be > 0 and finite", i, p->w[i]);
     }
     double inv[4] = {0.0, 0.0, 0.0, 0.0};
@@ -149,9 +151,9 @@ int ft_recon_bind_points(const ft_points *p, const ft_grid *target, double sigma
         free(wsum);
         free(zsum);
         if (used < 3)
-            return ft_error(FT_E_EMPTY, "reconstruct: %zu grid node(s) hold data (%zu of %zu points inside the "
+            return ft_error(FT_E_EMPTY, "%zu grid node(s) hold data (%zu of %zu points inside the "
                             "grid); at least 3 not on a line are needed", used, p->n - *outside, p->n);
-        return ft_error(FT_E_INVALID, "reconstruct: the %zu data nodes are all on one line; at least 3 not on a "
+        return ft_error(FT_E_INVALID, "the %zu data nodes are all on one line; at least 3 not on a "
                         "line are needed", used);
     }
     ft_recon_level *L = &pr->lev[0];
@@ -163,6 +165,19 @@ int ft_recon_bind_points(const ft_points *p, const ft_grid *target, double sigma
             L->fixed[k] = 1;
         else
             L->c[k] = (float)wsum[k];
+    }
+    if (!dirichlet) {
+        /* what the discrepancy principle needs: N and the misfit of the points about their node's datum */
+        for (size_t i = 0; i < p->n; i++) {
+            double dx = p->x[i] - target->gt[0], dy = p->y[i] - target->gt[3];
+            double col = inv[0] * dx + inv[1] * dy, row = inv[2] * dx + inv[3] * dy;
+            if (!(col >= 0.0 && row >= 0.0 && col < (double)nx && row < (double)ny))
+                continue;
+            size_t k = (size_t)row * nx + (size_t)col;
+            double c = p->w ? p->w[i] * p->w[i] : c0, e = p->z[i] - (double)pr->d[k];
+            pr->ndata++;
+            pr->scatter += c * e * e;
+        }
     }
     free(wsum);
     free(zsum);

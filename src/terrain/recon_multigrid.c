@@ -200,6 +200,7 @@ int ft_recon_hierarchy(ft_recon_problem *p, double lambda, double tension)
     lev[0].tp = lambda * (1.0 - tension);
     lev[0].mem = lambda * tension;
     p->nlev = nlev;
+    p->lambda = lambda;
     for (int l = 1; l < nlev; l++) {
         int rc = coarsen(p, l);
         if (rc != FT_OK)
@@ -291,8 +292,9 @@ static double dot(const float *a, const float *b, size_t nx, size_t ny, double *
     return s;
 }
 
-int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, const ft_recon_progress *prog,
-                       int *iterations)
+/* Conjugate gradients from u until sum r² <= rr_stop, or (rr_stop < 0) <= FT_RECON_TOL² x the initial one. */
+static int solve_cg(const ft_recon_problem *p, const float *rhs, float *u, double rr_stop,
+                    const ft_recon_progress *prog, int *iterations)
 {
     const ft_recon_level *L = &p->lev[0];
     size_t nx = L->nx, ny = L->ny, n = nx * ny;
@@ -307,11 +309,13 @@ int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, co
     }
     double rr = ft_recon_residual(L, u, rhs, r, nt), rr0 = rr;
     if (!isfinite(rr)) {
-        rc = ft_error(FT_E_NUMERIC, "reconstruct: the initial residual is not finite");
+        rc = ft_error(FT_E_NUMERIC, "the initial residual is not finite");
         goto done;
     }
-    if (rr0 == 0.0)
+    double stop = rr_stop >= 0.0 ? rr_stop : FT_RECON_TOL * FT_RECON_TOL * rr0;
+    if (rr0 == 0.0 || rr0 <= stop)
         goto done;
+    double span = rr_stop >= 0.0 ? log(rr0 / fmax(stop, 1e-300)) : log(1.0 / (FT_RECON_TOL * FT_RECON_TOL));
     rc = vcycle(p, 0, z, r, q);
     if (rc != FT_OK)
         goto done;
@@ -337,16 +341,16 @@ int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, co
         }
         rr = dot(r, r, nx, ny, rows, nt);
         if (prog) {
-            double f = log(rr0 / fmax(rr, 1e-300)) / log(1.0 / (FT_RECON_TOL * FT_RECON_TOL));
+            double f = log(rr0 / fmax(rr, 1e-300)) / span;
             rc = ft_recon_report(prog, fmin(1.0, fmax(0.0, f)), "reconstruct: smooth solution");
             if (rc != FT_OK)
                 goto done;
         }
         if (!isfinite(rr)) {
-            rc = ft_error(FT_E_NUMERIC, "reconstruct: the solver diverged (residual not finite)");
+            rc = ft_error(FT_E_NUMERIC, "the solver diverged (residual not finite)");
             goto done;
         }
-        if (rr <= FT_RECON_TOL * FT_RECON_TOL * rr0)
+        if (rr <= stop)
             break;
         rc = vcycle(p, 0, z, r, q);
         if (rc != FT_OK)
@@ -366,6 +370,18 @@ done:
     free(q);
     free(rows);
     return rc;
+}
+
+int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, const ft_recon_progress *prog,
+                       int *iterations)
+{
+    return solve_cg(p, rhs, u, -1.0, prog, iterations);
+}
+
+int ft_recon_solve_to(const ft_recon_problem *p, const float *rhs, float *u, double rr_stop,
+                      const ft_recon_progress *prog, int *iterations)
+{
+    return solve_cg(p, rhs, u, fmax(rr_stop, 0.0), prog, iterations);
 }
 
 int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress *prog, int *iterations)

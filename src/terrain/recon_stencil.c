@@ -148,7 +148,7 @@ int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int revers
             free(dev);
         }
         if (failed)
-            return ft_error(FT_E_NOMEM, "reconstruct: out of memory in a Gibbs sweep");
+            return ft_error(FT_E_NOMEM, "out of memory in a Gibbs sweep");
     }
     return FT_OK;
 }

@@ -36,7 +36,7 @@ static int fit_failed(int rc, const char *what)
 {
     char msg[400];
     snprintf(msg, sizeof msg, "%s", ft_last_error());
-    return ft_error(rc, "reconstruct: cannot estimate %s from the data: %s", what, msg);
+    return ft_error(rc, "cannot estimate %s from the data: %s", what, msg);
 }
 
 static void line_from(const ft_dim_result *r, ft_recon_line *out)

@@ -146,7 +146,7 @@ static int component_problem(const ft_grid *g, const uint32_t *label, size_t k, 
         }
     if (!spread) {
         ft_recon_problem_free(p);
-        return ft_error(FT_E_EMPTY, "reconstruct: the void at cells (%zu..%zu, %zu..%zu) has %zu valid cell(s) "
+        return ft_error(FT_E_EMPTY, "the void at cells (%zu..%zu, %zu..%zu) has %zu valid cell(s) "
                         "around it, not 3 off a line", c->x0, c->x1, c->y0, c->y1, fixed);
     }
     *out = p;
@@ -162,12 +162,12 @@ int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid 
     if (rc != FT_OK)
         return rc;
     if (dem == NULL || dem->z == NULL || dem->nx == 0 || dem->ny == 0)
-        return ft_error(FT_E_INVALID, "reconstruct: the DEM is NULL or empty");
+        return ft_error(FT_E_INVALID, "the DEM is NULL or empty");
     size_t nx = dem->nx, ny = dem->ny, n = nx * ny, nvoid = 0;
     for (size_t i = 0; i < n; i++)
         nvoid += (size_t)is_void(dem, i);
     if (nvoid == n)
-        return ft_error(FT_E_EMPTY, "reconstruct: the DEM (%zu x %zu) has no valid cell", nx, ny);
+        return ft_error(FT_E_EMPTY, "the DEM (%zu x %zu) has no valid cell", nx, ny);
     rc = ft_recon_outputs(dem, sd_out != NULL, out, sd_out);
     if (rc != FT_OK)
         return rc;
@@ -175,6 +175,7 @@ int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid 
         (*out)->z[i] = is_void(dem, i) ? 0.0f : dem->z[i];
     inf.data_used = n - nvoid;
     inf.filled = nvoid;
+    inf.lambda = o.lambda; /* known cells are fixed: no discrepancy search */
     inf.dim = o.dim;
     uint32_t *label = NULL;
     component *comps = NULL;

@@ -28,13 +28,13 @@ const char *ft_recon_method_name(ft_recon_method m)
 int ft_recon_method_parse(const char *name, ft_recon_method *m)
 {
     if (name == NULL || m == NULL)
-        return ft_error(FT_E_INVALID, "reconstruct: method name is NULL");
+        return ft_error(FT_E_INVALID, "method name is NULL");
     for (size_t i = 0; i < N_METHODS; i++)
         if (strcasecmp(name, method_names[i]) == 0) {
             *m = (ft_recon_method)i;
             return FT_OK;
         }
-    return ft_error(FT_E_INVALID, "reconstruct: unknown method '%s' (expected fractal, conditional or smooth)",
+    return ft_error(FT_E_INVALID, "unknown method '%s' (expected fractal, conditional or smooth)",
                     name);
 }
 
@@ -56,28 +56,28 @@ static ft_recon_progress sub_progress(const ft_recon_progress *p, double from, d
 static int check_opts(const ft_recon_opts *o)
 {
     if ((unsigned)o->method >= N_METHODS)
-        return ft_error(FT_E_INVALID, "reconstruct: unknown method %d", (int)o->method);
+        return ft_error(FT_E_INVALID, "unknown method %d", (int)o->method);
     if (!(o->dim == 0.0 || (o->dim > 2.0 && o->dim < 3.0)))
-        return ft_error(FT_E_INVALID, "reconstruct: dim must be 0 (estimate from the data) or in (2, 3), got %g",
+        return ft_error(FT_E_INVALID, "dim must be 0 (estimate from the data) or in (2, 3), got %g",
                         o->dim);
     if (!(o->tension >= 0.0 && o->tension <= 1.0))
-        return ft_error(FT_E_INVALID, "reconstruct: tension must be in [0, 1], got %g", o->tension);
+        return ft_error(FT_E_INVALID, "tension must be in [0, 1], got %g", o->tension);
     if (!(o->lambda > 0.0) || !isfinite(o->lambda))
-        return ft_error(FT_E_INVALID, "reconstruct: lambda must be > 0 and finite, got %g", o->lambda);
+        return ft_error(FT_E_INVALID, "lambda must be > 0 and finite, got %g", o->lambda);
     if (!(o->sigma >= 0.0) || !isfinite(o->sigma))
-        return ft_error(FT_E_INVALID, "reconstruct: sigma must be >= 0 and finite, got %g", o->sigma);
+        return ft_error(FT_E_INVALID, "sigma must be >= 0 and finite, got %g", o->sigma);
     if (!(o->temperature >= 0.0) || !isfinite(o->temperature))
-        return ft_error(FT_E_INVALID, "reconstruct: temperature must be > 0 (or 0 for k sigma0²), got %g",
+        return ft_error(FT_E_INVALID, "temperature must be > 0 (or 0 for k sigma0²), got %g",
                         o->temperature);
     if (!(o->k >= 0.0) || !isfinite(o->k))
-        return ft_error(FT_E_INVALID, "reconstruct: k must be > 0 (or 0 for the calibrated default), got %g", o->k);
+        return ft_error(FT_E_INVALID, "k must be > 0 (or 0 for the calibrated default), got %g", o->k);
     if (o->sweeps < 0 || o->sweeps > 1000)
-        return ft_error(FT_E_INVALID, "reconstruct: sweeps must be in [1, 1000] (or 0 for the default %d), got %d",
+        return ft_error(FT_E_INVALID, "sweeps must be in [1, 1000] (or 0 for the default %d), got %d",
                         FT_RECON_SWEEPS_DEFAULT, o->sweeps);
     if (o->realizations < 1 || o->realizations > 1000000)
-        return ft_error(FT_E_INVALID, "reconstruct: realizations must be >= 1, got %d", o->realizations);
+        return ft_error(FT_E_INVALID, "realizations must be >= 1, got %d", o->realizations);
     if (o->threads < 0)
-        return ft_error(FT_E_INVALID, "reconstruct: threads must be >= 0, got %d", o->threads);
+        return ft_error(FT_E_INVALID, "threads must be >= 0, got %d", o->threads);
     return FT_OK;
 }
 
@@ -123,8 +123,13 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
         rc = FT_E_NOMEM;
         goto done;
     }
+    /* soft data: the solution at opts.lambda or, if it misses the data by more than their sigmas, at the
+     * discrepancy principle's lambda (recon_discrepancy.c) */
     ft_recon_progress sp = sub_progress(prog, 0.0, t_smooth);
-    rc = ft_recon_solve(p, ustar, &sp, NULL);
+    if (p->ndata > 0)
+        rc = ft_recon_discrepancy(p, tension, &lambda, ustar, &sp, NULL);
+    else
+        rc = ft_recon_solve(p, ustar, &sp, NULL);
     if (rc == FT_OK && stochastic)
         rc = fix_soft_data(p, ustar, lambda, tension);
     for (int r = 0; rc == FT_OK && r < nr; r++) {
@@ -272,7 +277,7 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
         D = yk.D;
         info->dim_estimated = 1;
         if (!(D > 2.0 && D < 3.0))
-            return ft_error(FT_E_NUMERIC, "reconstruct: the dimension estimated from the data, D = %.3f, is "
+            return ft_error(FT_E_NUMERIC, "the dimension estimated from the data, D = %.3f, is "
                             "outside (2, 3); give the dimension (opts->dim, --dim)", D);
     }
     info->dim = D;
@@ -299,7 +304,7 @@ int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *i
                    ft_grid **sd_out)
 {
     if (out == NULL)
-        return ft_error(FT_E_INVALID, "reconstruct: output pointer is NULL");
+        return ft_error(FT_E_INVALID, "output pointer is NULL");
     *out = NULL;
     if (sd_out)
         *sd_out = NULL;
@@ -320,9 +325,9 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
     if (rc != FT_OK)
         return rc;
     if (target == NULL || target->nx == 0 || target->ny == 0)
-        return ft_error(FT_E_INVALID, "reconstruct: the target grid is NULL or empty");
+        return ft_error(FT_E_INVALID, "the target grid is NULL or empty");
     if (target->nx > ((size_t)1 << 20) || target->ny > ((size_t)1 << 20))
-        return ft_error(FT_E_INVALID, "reconstruct: target grid %zu x %zu is too large", target->nx, target->ny);
+        return ft_error(FT_E_INVALID, "target grid %zu x %zu is too large", target->nx, target->ny);
     ft_recon_progress prog = {o.progress, o.progress_arg, 0.0, 1.0};
     ft_recon_problem *pr = NULL;
     size_t outside = 0;
@@ -347,6 +352,7 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
     }
     if (rc == FT_OK) {
         inf.levels = pr->nlev;
+        inf.lambda = pr->lambda;
         size_t n = pr->nx * pr->ny, used = 0;
         for (size_t i = 0; i < n; i++)
             used += pr->lev[0].fixed[i] || pr->lev[0].c[i] > 0.0f;

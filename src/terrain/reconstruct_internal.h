@@ -6,6 +6,7 @@
  *    membrane], h = 1 node of the level) applied at a node, and 5-colour Gauss-Seidel / Gibbs sweeps;
  *  - recon_multigrid.c: the level hierarchy (spacing 2^l), restriction and prolongation, and the T = 0
  *    solver (conjugate gradients preconditioned by a symmetric multigrid V-cycle);
+ *  - recon_discrepancy.c: with soft data, the prior weight by Morozov's discrepancy principle;
  *  - recon_temperature.c: D from the data, Pentland's sigma0, T_0 = k sigma0² and T_l (eqs. 12-13), k;
  *  - recon_gibbs.c: the fractal method (stochastic relaxation per level, eq. 10);
  *  - recon_conditional.c: conditional simulation (fBm + smooth interpolation of the residuals);
@@ -62,6 +63,10 @@ typedef struct {
     ft_recon_level *lev; /**< lev[0] is the grid itself; lev[0].c and lev[0].fixed describe the data */
     int nlev;
     int nthreads;      /**< > 0 */
+    double lambda;     /**< the prior weight of the hierarchy (set by ft_recon_hierarchy) */
+    size_t ndata;      /**< soft data: the points bound to nodes (N of the discrepancy principle) */
+    double scatter;    /**< soft data: sum over points of c_i (d_i - d_node)², the misfit that no surface
+                            on these nodes can remove (several points on one node) */
 } ft_recon_problem;
 
 /** Progress over a whole job: fraction base + span * f. */
@@ -114,6 +119,20 @@ int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress 
 /** Same with any right-hand side: A u = rhs on free nodes, u = fixed_values on fixed ones. */
 int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, const ft_recon_progress *prog,
                        int *iterations);
+/** Same from u until the squared residual norm (free nodes) is <= rr_stop (an absolute threshold). */
+int ft_recon_solve_to(const ft_recon_problem *p, const float *rhs, float *u, double rr_stop,
+                      const ft_recon_progress *prog, int *iterations);
+
+/* ---- recon_discrepancy.c ---- */
+/** The T = 0 solution for soft data (p->ndata > 0) with Morozov's discrepancy principle: given p's
+ *  hierarchy at *lambda, solves A u = c d there; if that misses the data by more than their sigmas
+ *  (chi² = sum_points c_i (u - d_i)² > N = p->ndata), lowers *lambda to the largest value found with
+ *  (1 - FT_RECON_CHI2_TOL) N <= chi² <= N. u receives the solution at the returned *lambda (to
+ *  FT_RECON_TOL), p's hierarchy is left at that lambda, *chi2 (may be NULL) receives its chi². */
+int ft_recon_discrepancy(ft_recon_problem *p, double tension, double *lambda, float *u,
+                         const ft_recon_progress *prog, double *chi2);
+/** The acceptance band of ft_recon_discrepancy: chi² in [(1 - tol) N, N]. */
+#define FT_RECON_CHI2_TOL 0.06
 
 /* ---- recon_temperature.c ---- */
 /** A fitted log-log line: log10 value = a + b log10 scale, scale in ground units, fitted over [lo, hi]. */
@@ -162,7 +181,8 @@ typedef struct {
     int realizations;
     uint64_t seed;      /**< realization r uses seed + r */
 } ft_recon_params;
-/** Builds p's hierarchy, solves u*, then runs the realizations: mean (nx x ny, row stride `stride`,
+/** Builds p's hierarchy, solves u* (soft data: at the discrepancy principle's lambda, at most `lambda`),
+ *  then runs the realizations: mean (nx x ny, row stride `stride`,
  *  written at mean[y * stride + x]) and, if sd is not NULL, the per-cell standard deviation (Welford,
  *  double accumulators; 0 with one realization). */
 int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_recon_params *par, float *mean,

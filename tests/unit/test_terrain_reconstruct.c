@@ -1,7 +1,8 @@
 /* fracterra — unit tests of terrain/reconstruct.c and recon_*.c: bad options and data named in the error,
  * method names, reproducibility (same seed, other seed, 1 and 2 threads), the smooth method on a plane
  * (the thin plate's null space: exact) and a paraboloid (close), data fidelity (within sigma with soft
- * data, exact with sigma = 0, for the conditional method and for voids), realizations (mean and sd),
+ * data by the discrepancy principle, per-point sigmas, several points per node; exact with sigma = 0, for
+ * the conditional method and for voids), realizations (mean and sd),
  * info, cancellation, and void filling of a real DEM (known cells bit-identical).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -259,10 +260,9 @@ static void test_smooth_paraboloid(void **state)
     ft_grid_free(g);
 }
 
-/* Data fidelity: exact with sigma = 0 (smooth, fractal, conditional), within sigma with soft data. With
- * soft data lambda sets the balance: the prior's squared second differences per node against (u - d)² /
- * sigma² per datum; this rough surface (sd 100 over 80 cells) needs lambda = 0.001 for residuals below 5.
- * The stochastic methods keep the data nodes at the smooth solution's values. */
+/* Data fidelity: exact with sigma = 0 (smooth, fractal, conditional), within sigma with soft data (the
+ * discrepancy principle lowers the default lambda = 1 until chi² = sum (u - d)² / sigma² is within
+ * [(1 - 0.06) N, N]). The stochastic methods keep the data nodes at the smooth solution's values. */
 static void test_fidelity(void **state)
 {
     (void)state;
@@ -278,26 +278,147 @@ static void test_fidelity(void **state)
         assert_true(info.data_rms <= 1e-4 * 100.0);
         ft_grid_free(out);
         o.sigma = 5.0;
-        o.lambda = 0.001;
         out = recon(p, g, &o, &info);
         print_message("%s, sigma 5: data RMS %.3g\n", ft_recon_method_name(o.method), info.data_rms);
-        assert_true(info.data_rms > 0.0 && info.data_rms <= 5.0);
+        assert_true(info.data_rms >= sqrt(0.94) * 5.0 - 1e-3 && info.data_rms <= 5.0 + 1e-3);
         ft_grid_free(out);
     }
-    /* per-point weights (1/sigma) are soft data too */
-    assert_int_equal(ft_points_ensure_weights(p), 0);
-    for (size_t i = 0; i < p->n; i++)
-        p->w[i] = 0.5;
-    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
-    o.method = FT_RECON_SMOOTH;
-    o.lambda = 0.001;
-    ft_recon_info info;
-    ft_grid *out = recon(p, g, &o, &info);
-    print_message("smooth, weights 0.5: data RMS %.3g\n", info.data_rms);
-    assert_true(info.data_rms > 0.0 && info.data_rms <= 2.0);
-    ft_grid_free(out);
     ft_points_free(p);
     ft_grid_free(g);
+}
+
+/* RMS over the points of (u - z_i) / sigma_i (sigma_i = 1 / w_i, or `sigma`) with u the output's cell under
+ * each point (the points below are cell centres, where the output's bilinear value is the cell's). */
+static double chi_rms(const ft_grid *out, const ft_points *p, double sigma)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        size_t col = (size_t)floor((p->x[i] - out->gt[0]) / out->gt[1]);
+        size_t row = (size_t)floor((p->y[i] - out->gt[3]) / out->gt[5]);
+        assert_true(col < out->nx && row < out->ny);
+        double e = ((double)out->z[row * out->nx + col] - p->z[i]) * (p->w ? p->w[i] : 1.0 / sigma);
+        s += e * e;
+    }
+    return sqrt(s / (double)p->n);
+}
+
+/* The discrepancy principle (Morozov; recon_discrepancy.c) on real and synthetic elevations: with the
+ * default lambda the RMS of (u - d) / sigma at the data is in [sqrt(1 - 0.06), 1] (its acceptance band),
+ * for sigma = 1 and 5, for every method (the stochastic ones keep the data nodes at the smooth values);
+ * per-point sigmas (weights) are fitted in the same sense; several points on one node count with their
+ * scatter about the node's mean (and when it alone exceeds N, the node means are interpolated); a lambda that already fits within sigma is kept (the data are then
+ * fitted much more closely). On noisy samples of a smooth surface the fit is closer to the truth than the
+ * data are. */
+static void test_discrepancy(void **state)
+{
+    (void)state;
+    const double lo = sqrt(1.0 - 0.06) - 1e-4, hi = 1.0 + 1e-4;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ft_grid *volcano = NULL;
+    assert_int_equal(ft_io_read_grid(FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif", &ro, &volcano), 0);
+    ft_grid *syn = fbm(128, 2.3, 21);
+    const ft_grid *surf[2] = {volcano, syn};
+    for (int k = 0; k < 2; k++) {
+        ft_points *p = sample(surf[k], 0.08, 31);
+        for (int si = 0; si < 2; si++) {
+            double sigma = si == 0 ? 1.0 : 5.0;
+            for (int m = 0; m < 3; m++) {
+                ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+                o.method = (ft_recon_method)m;
+                o.dim = 2.3;
+                o.sigma = sigma;
+                ft_recon_info info;
+                ft_grid *out = recon(p, surf[k], &o, &info);
+                double r = chi_rms(out, p, sigma);
+                print_message("%s, %s, sigma %g: data RMS %.3f (RMS/sigma %.4f)\n", k ? "fBm" : "volcano",
+                              ft_recon_method_name(o.method), sigma, info.data_rms, r);
+                assert_true(r >= lo && r <= hi);
+                assert_near(info.data_rms, r * sigma, 1e-3 * sigma);
+                ft_grid_free(out);
+            }
+        }
+        /* a lambda that fits already is kept: far inside sigma */
+        ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+        o.method = FT_RECON_SMOOTH;
+        o.sigma = 1.0;
+        o.lambda = 1e-4;
+        ft_recon_info info;
+        ft_grid *out = recon(p, surf[k], &o, &info);
+        print_message("%s, smooth, sigma 1, lambda 1e-4: RMS/sigma %.4f\n", k ? "fBm" : "volcano",
+                      chi_rms(out, p, 1.0));
+        assert_true(chi_rms(out, p, 1.0) < 0.5);
+        ft_grid_free(out);
+        /* per-point sigmas 1 and 4 alternately */
+        assert_int_equal(ft_points_ensure_weights(p), 0);
+        for (size_t i = 0; i < p->n; i++)
+            p->w[i] = i % 2 ? 0.25 : 1.0;
+        out = recon(p, surf[k], &o, &info);
+        print_message("%s, smooth, sigma 1 or 4: RMS/sigma %.4f\n", k ? "fBm" : "volcano", chi_rms(out, p, 1.0));
+        ft_grid_free(out);
+        o.lambda = 1.0;
+        out = recon(p, surf[k], &o, &info);
+        double r = chi_rms(out, p, 1.0);
+        print_message("%s, smooth, sigma 1 or 4, default lambda: RMS/sigma %.4f\n", k ? "fBm" : "volcano", r);
+        assert_true(r >= lo && r <= hi);
+        ft_grid_free(out);
+        ft_points_free(p);
+    }
+    /* two points on every data node, z +- 0.5 sigma: their scatter alone is chi² = N / 4 */
+    ft_points *p = sample(syn, 0.08, 32), *q = ft_points_create(0);
+    for (size_t i = 0; i < p->n; i++) {
+        assert_int_equal(ft_points_push(q, p->x[i], p->y[i], p->z[i] + 2.5), 0);
+        assert_int_equal(ft_points_push(q, p->x[i] + 1.0, p->y[i] - 1.0, p->z[i] - 2.5), 0);
+    }
+    ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+    o.method = FT_RECON_SMOOTH;
+    o.sigma = 5.0;
+    ft_recon_info info;
+    ft_grid *out = recon(q, syn, &o, &info);
+    double r = chi_rms(out, q, 5.0);
+    print_message("fBm, pairs z +- 2.5 on one node, sigma 5: RMS/sigma %.4f\n", r);
+    assert_true(r >= lo && r <= hi);
+    ft_grid_free(out);
+    ft_points_free(q);
+    /* z +- 1.5 sigma: the scatter alone is 2.25 N, no lambda satisfies the principle; the node means are
+     * interpolated, so RMS / sigma = 1.5 */
+    q = ft_points_create(0);
+    for (size_t i = 0; i < p->n; i++) {
+        assert_int_equal(ft_points_push(q, p->x[i], p->y[i], p->z[i] + 7.5), 0);
+        assert_int_equal(ft_points_push(q, p->x[i] + 1.0, p->y[i] - 1.0, p->z[i] - 7.5), 0);
+    }
+    out = recon(q, syn, &o, &info);
+    r = chi_rms(out, q, 5.0);
+    print_message("fBm, pairs z +- 7.5 on one node, sigma 5: RMS/sigma %.5f\n", r);
+    assert_near(r, 1.5, 1e-3);
+    ft_grid_free(out);
+    ft_points_free(q);
+    ft_points_free(p);
+    /* noisy samples (sd 5) of a smooth surface: the fit is nearer the truth than the data */
+    ft_grid *smooth = fbm(128, 2.1, 22);
+    ft_grid_sample_opts so = FT_GRID_SAMPLE_OPTS_DEFAULT;
+    so.fraction = 0.08;
+    so.seed = 33;
+    so.noise_z = 5.0;
+    p = NULL;
+    assert_int_equal(ft_surface_points_from_grid(smooth, &so, &p), 0);
+    out = recon(p, smooth, &o, &info);
+    double et = 0.0, ed = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        size_t col = (size_t)floor((p->x[i] - out->gt[0]) / out->gt[1]);
+        size_t row = (size_t)floor((p->y[i] - out->gt[3]) / out->gt[5]), c = row * out->nx + col;
+        et += pow((double)out->z[c] - (double)smooth->z[c], 2);
+        ed += pow(p->z[i] - (double)smooth->z[c], 2);
+    }
+    et = sqrt(et / (double)p->n);
+    ed = sqrt(ed / (double)p->n);
+    print_message("D 2.1 + noise 5: RMS data - truth %.3f, fit - truth %.3f, data RMS %.3f\n", ed, et,
+                  info.data_rms);
+    assert_true(et < ed);
+    ft_grid_free(out);
+    ft_points_free(p);
+    ft_grid_free(smooth);
+    ft_grid_free(syn);
+    ft_grid_free(volcano);
 }
 
 /* Realizations: the mean and the sd; sd is 0 at the data nodes and positive elsewhere; smooth has sd 0. */
@@ -490,6 +611,7 @@ int main(void)
         cmocka_unit_test(test_names),          cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_reproducible),   cmocka_unit_test(test_smooth_plane),
         cmocka_unit_test(test_smooth_paraboloid), cmocka_unit_test(test_fidelity),
+        cmocka_unit_test(test_discrepancy),
         cmocka_unit_test(test_realizations),   cmocka_unit_test(test_dim_auto),
         cmocka_unit_test(test_cancel),         cmocka_unit_test(test_voids_dem),
     };
