@@ -3,8 +3,11 @@
  *  - surface.<method>.<n>: ft_surface_dim with the method's defaults on an n x n fft surface of D = 2.5
  *    (prepared untimed in the child), n = 2048 and 4096, every method; the lag methods exhaustive (every
  *    pair of every cell along rows and columns, lags 1 .. n/8);
+ *  - surface.spectrum.holes.4096: the spectrum of the 4096² surface with 10 % of its cells in nodata
+ *    blobs of radius 5-25 cells (the differences touching them left out: the same work as without);
  *  - surface.map.4096.t1 / .t2: ft_surface_dim_map of the 4096² surface, variogram, 64-cell windows, step
- *    16 (63,001 windows), whole-range fits, on 1 and 2 threads.
+ *    16 (64,009 windows; block sums of the pair counters, src/surface/dim_map_lags.c), whole-range fits,
+ *    on 1 and 2 threads.
  * (Variogram with 32,000 random points: surface.variogram.32k in workloads_terrain.c.)
  *
  * Peers: Gwyddion's four estimators in process, when the bench was built with libgwyddion
@@ -17,6 +20,7 @@
  */
 #include "bench.h"
 
+#include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +58,42 @@ static int prepare_4096(ft_bench_case *c)
 {
     (void)c;
     return surface_of(4096);
+}
+
+/* The 4096² surface with 10 % of its cells in nodata discs of random centres and radii 5-25 cells. */
+static int prepare_holes_4096(ft_bench_case *c)
+{
+    (void)c;
+    int rc = surface_of(4096);
+    if (rc != FT_OK || (rc = ft_grid_ensure_mask(held)) != FT_OK)
+        return rc;
+    ft_rng *rng = ft_rng_create(SURF_SEED, 1);
+    if (rng == NULL)
+        return FT_E_NOMEM;
+    size_t n = held->nx, holes = 0;
+    while ((double)holes < 0.10 * (double)(n * n)) {
+        double cx = ft_rng_uniform(rng) * (double)n, cy = ft_rng_uniform(rng) * (double)n;
+        double rad = 5.0 + 20.0 * ft_rng_uniform(rng);
+        for (long i = (long)(cy - rad); i <= (long)(cy + rad) + 1; i++)
+            for (long j = (long)(cx - rad); j <= (long)(cx + rad) + 1; j++) {
+                if (i < 0 || j < 0 || i >= (long)n || j >= (long)n)
+                    continue;
+                size_t k = (size_t)i * n + (size_t)j;
+                if (held->mask[k] && hypot((double)j - cx, (double)i - cy) < rad) {
+                    held->mask[k] = 0;
+                    holes++;
+                }
+            }
+    }
+    ft_rng_free(rng);
+    return FT_OK;
+}
+
+static int setup_holes(ft_bench_case *c)
+{
+    c->work = 4096.0 * 4096.0;
+    c->peer_none = "none: Gwyddion's fractal PSDF takes no mask";
+    return FT_OK;
 }
 
 static int measure(ft_surface_method m)
@@ -234,6 +274,8 @@ static const ft_bench_workload surface_workloads[] = {
     METHOD_WL(spectrum, 4096, "power-spectrum D"),
     METHOD_WL(prism, 4096, "triangular prism D"),
     METHOD_WL(cubes, 4096, "cube-counting D"),
+    {"surface.spectrum.holes.4096", "power-spectrum D of a 4096x4096 fft surface (D = 2.5) with 10% of its cells in "
+     "nodata blobs", FT_BENCH_CELLS, setup_holes, prepare_holes_4096, run_spectrum, NULL},
     {"surface.map.4096.t1", "dim map of a 4096x4096 surface, variogram, 64-cell windows, step 16, 1 thread",
      FT_BENCH_CELLS, map_setup, map_prepare_t1, map_run, NULL},
     {"surface.map.4096.t2", "dim map of a 4096x4096 surface, variogram, 64-cell windows, step 16, 2 threads",

@@ -52,18 +52,26 @@ typedef struct {
                                 the lowest frequencies are bent by the taper and the plane removed */
     int nbins;             /**< radial frequency bins, log-spaced between them (2..1000); 0 = 4 per octave */
     size_t tile;           /**< side of the square tiles (Welch), cells, >= 8; 0 = automatic: min(nx, ny),
-                                halved while no tile is free of nodata (down to 16) */
-    int window;            /**< 1 (default): 2-D Hann taper on each tile; 0: none (boxcar) */
+                                halved while no tile is usable (see elevations; down to 16) */
+    int window;            /**< elevations = 1 only: 1 (default) a 2-D Hann taper on each tile, 0 none */
     ft_loglog_opts fit;
     int fit_whole_range;   /**< 1: least squares over every bin, no segmentation */
     ft_progress_fn progress;
     void *progress_arg;
+    int elevations;        /**< 0 (default): the periodogram of the first differences along rows and
+                                columns (prewhitening), untapered (window is ignored), the differencing
+                                gain divided out; differences touching nodata are left out and the power
+                                normalised by the valid ones, so tiles may hold nodata (a tile is used
+                                when half of its differences are valid; the automatic tile is halved
+                                while none is). 1: the periodogram of the detrended elevations, tapered
+                                as window says, on tiles free of nodata (as described above). */
 } ft_spectrum_opts;
-#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, 0}
 
-/** Power-spectrum dimension: square tiles overlapping by half (Welch), each free of nodata, a plane
- *  removed and a Hann taper applied, their periodograms averaged and radially averaged in log-spaced
- *  frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
+/** Power-spectrum dimension: square tiles overlapping by half (Welch); by default the periodograms of
+ *  the first differences along rows and columns (nodata-aware, the differencing gain divided out), or
+ *  with opts->elevations those of the detrended, tapered elevations of nodata-free tiles; averaged and
+ *  radially averaged in log-spaced frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
  *  the frequency in cycles per ground unit. A plane (nothing left after detrending) or a surface smoother
  *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". "spectrum". */
 int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);

@@ -10,7 +10,10 @@
  * options (a scale range the window cannot hold) fails the whole map with the estimator's message.
  * Windows run in parallel (OpenMP, each thread measuring a copy of its window with the nested estimator
  * single-threaded); each window's result depends only on its cells and the options (random pairs use the
- * same seed in every window), so the maps are the same on every thread count. docs/surface-grid.md.
+ * same seed in every window), so the maps are the same on every thread count. The exhaustive lag methods
+ * (variogram, yokoya, pentland with pairs = 0) do not run per window: src/surface/dim_map_lags.c sums
+ * their pair counters over blocks of step x step cells shared by the overlapping windows and fits each
+ * window's table as the estimator does (the same D within rounding, tested). docs/surface-grid.md.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -188,8 +191,14 @@ int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_
     size_t nox = (g->nx - window) / step + 1, noy = (g->ny - window) / step + 1;
     ft_grid *D = lattice_grid(g, window, step, nox, noy), *r2 = lattice_grid(g, window, step, nox, noy);
     rc = D && r2 ? ft_progress(o.progress, o.progress_arg, 0.0, NAME) : FT_E_NOMEM;
-    if (rc == FT_OK)
+    int lag_method = m == FT_SURFACE_VARIOGRAM || m == FT_SURFACE_YOKOYA || m == FT_SURFACE_PENTLAND;
+    if (rc == FT_OK && lag_method && o.pairs == 0) {
+        rc = ft_surface_dim_map_lags(g, window, step, m, &o, D, r2);
+        if (rc == FT_OK)
+            rc = ft_progress(o.progress, o.progress_arg, 1.0, NAME);
+    } else if (rc == FT_OK) {
         rc = run_windows(g, window, step, m, &o, nox, noy, D, r2);
+    }
     if (rc != FT_OK) {
         ft_grid_free(D);
         ft_grid_free(r2);

@@ -29,6 +29,27 @@ typedef enum {
 int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_stat stat, const char *name,
                        const ft_dim_map *map, ft_dim_result **out);
 
+/* Counters of one lag (Arakawa & Krotkov §2.4): A = Σ|Δz|, B = Σ(Δz)², C = pairs, and the sum of the
+ * pairs' ground distances. */
+typedef struct {
+    double a, b, c, dist;
+} ft_lag_acc;
+/* The steps of ft_surface_lag_dim, for callers that count the pairs themselves (dim_map_lags.c):
+ * the options checked against an nx x ny grid and the integer lags (malloc'd, increasing; FT_E_INVALID
+ * naming the value otherwise), and the table of the statistic and its fit from the counters. */
+int ft_surface_lag_plan(size_t nx, size_t ny, const ft_variogram_opts *o, const char *name, size_t **lags,
+                        size_t *nl);
+int ft_surface_lag_fit(const size_t *lags, const ft_lag_acc *tot, size_t nl, const ft_variogram_opts *o,
+                       ft_lag_stat stat, const char *name, const ft_dim_map *map, ft_dim_result **out);
+/* The options ft_surface_dim gives the lag methods for a grid of cells cx x cy (scales converted from
+ * ground units to cells); FT_E_INVALID naming the value if o is out of range. */
+int ft_surface_lag_opts(const ft_surface_dim_opts *o, double cx, double cy, ft_variogram_opts *v);
+/* A local D map of the exhaustive lag methods by block sums (dim_map_lags.c): D and r2 (the output
+ * lattice, all nodata on entry) filled as ft_surface_dim_map does, within rounding of its per-window
+ * estimates. */
+int ft_surface_dim_map_lags(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+                            const ft_surface_dim_opts *o, ft_grid *D, ft_grid *r2);
+
 /* 1 if cell i is valid: not masked and finite. */
 static inline int ft_surface_cell_ok(const ft_grid *g, size_t i)
 {

@@ -26,12 +26,7 @@
 #define RANDOM_BLOCK 256
 #define STREAM_VARIOGRAM UINT64_C(0x5600000000)
 
-/* Counters of one lag: A = Σ|Δz|, B = Σ(Δz)², C = pairs, and the sum of the pairs' ground distances. */
-typedef struct {
-    double a, b, c, dist;
-} lag_acc;
-
-static void acc_add(lag_acc *acc, double d, double dist)
+static void acc_add(ft_lag_acc *acc, double d, double dist)
 {
     acc->a += fabs(d);
     acc->b += d * d;
@@ -79,7 +74,7 @@ static int sanitize_grid(const ft_grid *g, float **z, float **w)
 
 /* Σ over j < n of the pairs (zp[j], zq[j]) weighted by wp[j] wq[j], branch-free with four interleaved
  * sets of sums (added in a fixed order, so the result depends on the input only). */
-static void pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, lag_acc *acc)
+static void pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc)
 {
     double a[4] = {0.0, 0.0, 0.0, 0.0}, b[4] = {0.0, 0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
     size_t j = 0;
@@ -107,24 +102,24 @@ static void pair_sums(const float *zp, const float *wp, const float *zq, const f
  * alike at every lag (without it, long lags see only the middle of a paraboloid, flatter than its edges,
  * and D drifts above 2). In doubled coordinates the midpoint 2j + h must lie in [hmax, 2(n - 1) - hmax]. */
 static void exhaustive_row(const ft_grid *g, const float *z, const float *w, size_t i, const size_t *lags,
-                           size_t nl, double cx, double cy, lag_acc *acc)
+                           size_t nl, double cx, double cy, ft_lag_acc *acc)
 {
     size_t nx = g->nx, ny = g->ny, hmax = lags[nl - 1];
     const float *zi = z + i * nx, *wi = w + i * nx;
     for (size_t k = 0; k < nl; k++) {
         size_t h = lags[k], j0 = (hmax - h + 1) / 2;
-        lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
+        ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
         if (h + hmax <= 2 * (nx - 1)) /* j from j0 while 2j + h + hmax <= 2(nx - 1) */
             pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
         if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1))
             pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);
-        acc[k] = (lag_acc){r.a + c.a, r.b + c.b, r.c + c.c, (double)h * (r.c * cx + c.c * cy)};
+        acc[k] = (ft_lag_acc){r.a + c.a, r.b + c.b, r.c + c.c, (double)h * (r.c * cx + c.c * cy)};
     }
 }
 
 /* One block of random points: each point in the inscribed circle, paired at every lag. */
 static int random_block(const ft_grid *g, size_t block, size_t npts, uint64_t seed, const size_t *lags,
-                        size_t nl, double cx, double cy, lag_acc *acc)
+                        size_t nl, double cx, double cy, ft_lag_acc *acc)
 {
     ft_rng *r = ft_rng_create(seed, STREAM_VARIOGRAM + block);
     if (r == NULL)
@@ -132,7 +127,7 @@ static int random_block(const ft_grid *g, size_t block, size_t npts, uint64_t se
     double xc = 0.5 * (double)(g->nx - 1), yc = 0.5 * (double)(g->ny - 1);
     double rad = 0.5 * (double)((g->nx < g->ny ? g->nx : g->ny) - 1), rad2 = (rad + 0.5) * (rad + 0.5);
     for (size_t k = 0; k < nl; k++)
-        acc[k] = (lag_acc){0.0, 0.0, 0.0, 0.0};
+        acc[k] = (ft_lag_acc){0.0, 0.0, 0.0, 0.0};
     for (size_t p = 0; p < npts; p++) {
         double u, v;
         do {
@@ -161,10 +156,10 @@ static int random_block(const ft_grid *g, size_t block, size_t npts, uint64_t se
 
 /* Per-row or per-block partials (nparts x nl), computed in parallel, summed in order into tot. */
 static int accumulate(const ft_grid *g, const ft_variogram_opts *o, const char *name, const size_t *lags,
-                      size_t nl, double cx, double cy, lag_acc *tot)
+                      size_t nl, double cx, double cy, ft_lag_acc *tot)
 {
     size_t nparts = o->pairs ? (o->pairs + RANDOM_BLOCK - 1) / RANDOM_BLOCK : g->ny;
-    lag_acc *part = ft_calloc(nparts * nl, sizeof *part);
+    ft_lag_acc *part = ft_calloc(nparts * nl, sizeof *part);
     if (part == NULL)
         return FT_E_NOMEM;
     float *z = NULL, *w = NULL;
@@ -185,27 +180,26 @@ static int accumulate(const ft_grid *g, const ft_variogram_opts *o, const char *
     free(z);
     free(w);
     for (size_t k = 0; k < nl; k++)
-        tot[k] = (lag_acc){0.0, 0.0, 0.0, 0.0};
+        tot[k] = (ft_lag_acc){0.0, 0.0, 0.0, 0.0};
     for (size_t p = 0; p < nparts; p++)
         for (size_t k = 0; k < nl; k++) {
-            const lag_acc *q = &part[p * nl + k];
-            tot[k] = (lag_acc){tot[k].a + q->a, tot[k].b + q->b, tot[k].c + q->c, tot[k].dist + q->dist};
+            const ft_lag_acc *q = &part[p * nl + k];
+            tot[k] = (ft_lag_acc){tot[k].a + q->a, tot[k].b + q->b, tot[k].c + q->c, tot[k].dist + q->dist};
         }
     free(part);
     return failed ? ft_error(FT_E_NOMEM, "%s: out of memory", name) : FT_OK;
 }
 
-static int check_opts(const ft_grid *g, const ft_variogram_opts *o, const char *name, double *lo, double *hi)
+/* The options against an nx x ny grid, and the lag range in cells. */
+static int check_opts(size_t nx, size_t ny, const ft_variogram_opts *o, const char *name, double *lo, double *hi)
 {
-    if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
-        return ft_error(FT_E_INVALID, "%s: the grid is NULL or empty", name);
     if (!(o->min_lag >= 0.0) || !isfinite(o->min_lag))
         return ft_error(FT_E_INVALID, "%s: min_lag must be >= 0 cells, got %g", name, o->min_lag);
     if (!(o->max_lag >= 0.0) || !isfinite(o->max_lag))
         return ft_error(FT_E_INVALID, "%s: max_lag must be >= 0 cells, got %g", name, o->max_lag);
     if (o->nlags < 0 || o->nlags > 10000)
         return ft_error(FT_E_INVALID, "%s: nlags must be in [0, 10000], got %d", name, o->nlags);
-    size_t small = g->nx < g->ny ? g->nx : g->ny, big = g->nx > g->ny ? g->nx : g->ny;
+    size_t small = nx < ny ? nx : ny, big = nx > ny ? nx : ny;
     double limit = o->pairs ? (double)(small - 1) : (double)(big - 1);
     *lo = o->min_lag > 0.0 ? o->min_lag : 1.0;
     *hi = o->max_lag > 0.0 ? o->max_lag : floor((double)small / 8.0);
@@ -216,12 +210,12 @@ static int check_opts(const ft_grid *g, const ft_variogram_opts *o, const char *
                         o->pairs ? "inscribed circle's diameter" : "grid", limit);
     if (llround(*hi) <= llround(*lo))
         return ft_error(FT_E_INVALID, "%s: needs at least two lags, got min_lag %g and max_lag %g cells "
-                        "on a %zux%zu grid", name, *lo, *hi, g->nx, g->ny);
+                        "on a %zux%zu grid", name, *lo, *hi, nx, ny);
     return FT_OK;
 }
 
 /* The statistic of one lag's counters; 0 when it cannot be formed. */
-static double lag_value(const lag_acc *a, ft_lag_stat stat)
+static double lag_value(const ft_lag_acc *a, ft_lag_stat stat)
 {
     if (a->c <= 0.0)
         return 0.0;
@@ -235,7 +229,7 @@ static double lag_value(const lag_acc *a, ft_lag_stat stat)
     return ss > 0.0 ? sqrt(ss / (a->c - 1.0)) : 0.0;
 }
 
-static int build_table(const size_t *lags, const lag_acc *tot, size_t nl, ft_lag_stat stat, const char *name,
+static int build_table(const size_t *lags, const ft_lag_acc *tot, size_t nl, ft_lag_stat stat, const char *name,
                        ft_loglog **out)
 {
     ft_loglog *t = ft_loglog_create(nl);
@@ -260,37 +254,60 @@ static int build_table(const size_t *lags, const lag_acc *tot, size_t nl, ft_lag
     return FT_OK;
 }
 
+int ft_surface_lag_plan(size_t nx, size_t ny, const ft_variogram_opts *o, const char *name, size_t **lags,
+                        size_t *nl)
+{
+    *lags = NULL;
+    *nl = 0;
+    double lo = 1.0, hi = 0.0;
+    int rc = check_opts(nx, ny, o, name, &lo, &hi);
+    if (rc != FT_OK)
+        return rc;
+    int cap = o->nlags > 0 ? o->nlags : 4 * (int)ceil(log2(hi / lo)) + 1;
+    if ((*lags = ft_malloc((size_t)cap * sizeof **lags)) == NULL)
+        return FT_E_NOMEM;
+    *nl = make_lags(lo, hi, o->nlags, *lags);
+    return FT_OK;
+}
+
+int ft_surface_lag_fit(const size_t *lags, const ft_lag_acc *tot, size_t nl, const ft_variogram_opts *o,
+                       ft_lag_stat stat, const char *name, const ft_dim_map *map, ft_dim_result **out)
+{
+    ft_loglog *t = NULL;
+    int rc = build_table(lags, tot, nl, stat, name, &t);
+    if (rc == FT_OK)
+        rc = ft_surface_fit_table(t, o->fit_whole_range, &o->fit, map, name, out);
+    ft_loglog_free(t);
+    return rc;
+}
+
 int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_stat stat, const char *name,
                        const ft_dim_map *map, ft_dim_result **out)
 {
     if (out == NULL)
         return ft_error(FT_E_INVALID, "%s: output pointer is NULL", name);
     *out = NULL;
+    if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
+        return ft_error(FT_E_INVALID, "%s: the grid is NULL or empty", name);
     ft_variogram_opts o = FT_VARIOGRAM_OPTS_DEFAULT;
     if (opts != NULL)
         o = *opts;
-    double lo = 1.0, hi = 0.0;
-    int rc = check_opts(g, &o, name, &lo, &hi);
+    size_t *lags = NULL, nl = 0;
+    int rc = ft_surface_lag_plan(g->nx, g->ny, &o, name, &lags, &nl);
     if (rc != FT_OK)
         return rc;
-    int cap = o.nlags > 0 ? o.nlags : 4 * (int)ceil(log2(hi / lo)) + 1;
-    size_t *lags = ft_malloc((size_t)cap * sizeof *lags);
-    lag_acc *tot = ft_malloc((size_t)cap * sizeof *tot);
-    ft_loglog *t = NULL;
-    if (lags == NULL || tot == NULL) {
-        rc = FT_E_NOMEM;
-        goto done;
+    ft_lag_acc *tot = ft_malloc(nl * sizeof *tot);
+    if (tot == NULL) {
+        free(lags);
+        return FT_E_NOMEM;
     }
-    size_t nl = make_lags(lo, hi, o.nlags, lags);
     double cx, cy;
     ft_surface_cell_size(g, &cx, &cy);
     rc = ft_progress(o.progress, o.progress_arg, 0.0, name);
     if (rc == FT_OK)
         rc = accumulate(g, &o, name, lags, nl, cx, cy, tot);
     if (rc == FT_OK)
-        rc = build_table(lags, tot, nl, stat, name, &t);
-    if (rc == FT_OK)
-        rc = ft_surface_fit_table(t, o.fit_whole_range, &o.fit, map, name, out);
+        rc = ft_surface_lag_fit(lags, tot, nl, &o, stat, name, map, out);
     if (rc == FT_OK) {
         rc = ft_progress(o.progress, o.progress_arg, 1.0, name);
         if (rc != FT_OK) {
@@ -298,8 +315,6 @@ int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_s
             *out = NULL;
         }
     }
-done:
-    ft_loglog_free(t);
     free(lags);
     free(tot);
     return rc;

@@ -1,28 +1,45 @@
 /* fracterra — spectrum.c: the power-spectrum dimension of an elevation grid (Clarke 1987, "Scale-based
- * simulation of topography", eqs. vi-viii, seeds 004; Voss 1985; Welch 1967 for the averaged tapered
- * periodograms).
+ * simulation of topography", eqs. vi-viii, seeds 004; Voss 1985; Welch 1967 for averaged periodograms;
+ * prewhitening by first differences: Blackman & Tukey 1958, Percival & Walden 1993 ch. 6).
  *
  * For an isotropic fractional Brownian surface the radially averaged power falls as P(f) ~ f^-beta with
  * beta = 2H + 2, so D = 3 - H = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE, the table's scale being the
  * frequency). Clarke's eq. viii, f = 3 - beta/2, is the variogram relation and is not used (seeds/README).
  *
- * Steps:
- *  1. Tiles: squares of `tile` cells, overlapping by about half (Welch), spread evenly from edge to edge;
- *     a tile holding a nodata or non-finite cell is skipped (never filled). Automatic tile: min(nx, ny)
- *     (one tile on a square grid), halved while no tile is free of nodata; sizes are 2·3·5·7-smooth.
- *  2. Each tile: the least-squares plane removed (Clarke's trend T, eq. xii), then the 2-D Hann taper
- *     w(i) w(j), w(i) = sin²(pi (i + 1/2) / tile), against the leakage of the tile's edges; its periodogram
- *     |F(kx, ky)|² / Σw² through src/fft/fft.h.
- *  3. Radial average: frequencies f = |(kx / (tile cx), ky / (tile cy))| (cycles per ground unit) in
- *     log-spaced bins between 1 / max_wavelength and 1 / min_wavelength (defaults 8 cells, below which
- *     aliasing flattens the spectrum, and tile / 8, above which the taper and the plane bend it); each
- *     bin's value is the mean power of its frequencies over every tile (both halves of the spectrum
- *     counted), its scale their mean f.
- *  4. log P against log f, fitted as every estimator (ft_loglog_fit_auto or the whole range).
- * Degenerate surfaces fail plainly: a plane (the detrended tiles hold only float rounding) and a surface
- * smoother than any fBm (D < 1.9, beta > 4.2: a smooth bowl's tapered spectrum falls as f^-6).
- * Tiles run in parallel (OpenMP) with per-tile bin sums added in order: the same bits on any thread count.
- * docs/surface-grid.md.
+ * Two estimators of P, on square tiles of `tile` cells overlapping by about half (Welch), spread evenly
+ * from edge to edge (automatic tile: min(nx, ny), one tile on a square grid; sizes 2·3·5·7-smooth):
+ *
+ *  - differences (default): the first differences along rows and columns, in elevation per ground unit,
+ *    gx = (z(i, j+1) - z(i, j)) / cx and gy = (z(i+1, j) - z(i, j)) / cy, each kept only where both of
+ *    its cells are valid (nodata never read, never filled), minus their mean over the tile (the plane);
+ *    the periodogram of each, |Gx(k)|² / Nx with Nx its number of valid differences (the power of the
+ *    0/1 mask that multiplies it), and P(k) = (|Gx|² / Nx + |Gy|² / Ny) / (4 sin²(pi kx / T) / cx² +
+ *    4 sin²(pi ky / T) / cy²), the differencing gain divided out (white noise of variance s² gives P = s²
+ *    at every frequency). Differencing flattens the steep fBm spectrum (f^-beta becomes f^(2 - beta)), so
+ *    the tile's edges and the nodata holes, which multiply the field by a sharp 0/1 mask, leak almost no
+ *    power from the strong low frequencies into the fitted band: no taper is needed, and without one
+ *    every cell counts fully (a Hann taper keeps about a quarter of the degrees of freedom of a 2-D
+ *    periodogram, which doubled the scatter of D). A tile is measured if at least half of its
+ *    differences are valid; the automatic tile is halved while none is.
+ *  - elevations (opts->elevations = 1): the periodogram of the tile's elevations after removing the
+ *    least-squares plane (Clarke's trend T, eq. xii), with the 2-D Hann taper w(i) w(j),
+ *    w(i) = sin²(pi (i + 1/2) / T) (window = 1), |F(k)|² / Σw²; only tiles free of nodata, the automatic
+ *    tile halved while none is.
+ *
+ * Radial average: frequencies f = |(kx / (T cx), ky / (T cy))| (cycles per ground unit) in log-spaced bins
+ * between 1 / max_wavelength and 1 / min_wavelength (defaults 8 cells, below which aliasing flattens the
+ * spectrum, and T / 8); each bin's value is the mean power of its frequencies (every frequency of the
+ * plane once) over every tile, each tile weighted by its number of valid differences, its scale their
+ * mean f. log P against log f is fitted as every estimator (ft_loglog_fit_auto or the whole range).
+ *
+ * The transforms are pruned to what the band needs: every row of a tile is transformed (src/fft/fft.h,
+ * 1-D complex: gx + i gy, or the elevations), only the columns |kx| <= T / min_wavelength are kept and
+ * transformed, and only their rows |ky| <= T / min_wavelength are binned; the two real fields are
+ * separated from the one complex transform by Hermitian symmetry. Rows and columns run in parallel
+ * (OpenMP) within a tile, or whole tiles in parallel when there are many; partial bin sums are added in
+ * a fixed order, so the result has the same bits on any thread count.
+ * Degenerate surfaces fail plainly: a plane (after removing it only float rounding is left) and a
+ * surface smoother than any fBm (D < 1.9, beta > 4.2). docs/surface-grid.md.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -30,6 +47,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "fft/fft.h"
 #include "internal.h"
@@ -41,10 +59,13 @@
 #define DEFAULT_MIN_WAVELENGTH 8.0
 #define DEFAULT_MAX_WAVELENGTH_DIV 8.0
 #define DEGENERATE_D 1.9
+#define MIN_VALID_DIFFERENCES 0.5 /* differences mode: the fraction of a tile's differences that must be valid */
+#define COL_BLOCK 8               /* columns gathered and transformed together (64-byte runs of a row) */
 
 typedef struct {
     size_t tile;
-    size_t *x0, *y0; /* upper-left cells of the valid tiles */
+    size_t *x0, *y0; /* upper-left cells of the measured tiles */
+    double *valid;   /* their valid differences (differences mode) or cells */
     size_t ntiles;
 } tiling;
 
@@ -69,20 +90,92 @@ static size_t origins(size_t len, size_t tile, size_t *out)
     return m;
 }
 
-static int tile_valid(const ft_grid *g, size_t x0, size_t y0, size_t t)
+/* The validity of every cell (not masked, finite) and the range of the valid elevations; FT_E_EMPTY if
+ * no cell is valid. */
+static int valid_cells(const ft_grid *g, uint8_t **valid, double *zmin, double *zmax)
 {
-    for (size_t i = y0; i < y0 + t; i++)
-        for (size_t j = x0; j < x0 + t; j++)
-            if (!ft_surface_cell_ok(g, i * g->nx + j))
-                return 0;
-    return 1;
+    size_t nx = g->nx, ny = g->ny;
+    uint8_t *v = ft_malloc(nx * ny);
+    double *lo = ft_malloc(ny * sizeof *lo), *hi = ft_malloc(ny * sizeof *hi);
+    if (v == NULL || lo == NULL || hi == NULL) {
+        free(v);
+        free(lo);
+        free(hi);
+        return FT_E_NOMEM;
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < ny; i++) {
+        double a = INFINITY, b = -INFINITY;
+        for (size_t j = 0; j < nx; j++) {
+            size_t k = i * nx + j;
+            int ok = ft_surface_cell_ok(g, k);
+            v[k] = (uint8_t)ok;
+            if (ok) {
+                a = fmin(a, (double)g->z[k]);
+                b = fmax(b, (double)g->z[k]);
+            }
+        }
+        lo[i] = a;
+        hi[i] = b;
+    }
+    *zmin = INFINITY;
+    *zmax = -INFINITY;
+    for (size_t i = 0; i < ny; i++) {
+        *zmin = fmin(*zmin, lo[i]);
+        *zmax = fmax(*zmax, hi[i]);
+    }
+    free(lo);
+    free(hi);
+    if (!(*zmin <= *zmax)) {
+        free(v);
+        return ft_error(FT_E_EMPTY, NAME ": the %zux%zu grid has no valid cell (all nodata)", nx, ny);
+    }
+    *valid = v;
+    return FT_OK;
 }
 
-/* The valid tiles of side t; FT_OK with ntiles possibly 0. */
-static int find_tiles(const ft_grid *g, size_t t, tiling *tl)
+/* The t x t tile at (x0, y0) of a grid nx cells wide: its number of valid differences (differences
+ * mode) or cells (elevations mode), or -1 if it cannot be measured: not free of nodata (elevations), or
+ * with fewer than MIN_VALID_DIFFERENCES of its 2 t (t - 1) differences valid (differences). */
+static double tile_valid(const uint8_t *valid, size_t nx, size_t x0, size_t y0, size_t t, int elevations)
 {
-    size_t *ox = ft_malloc((g->nx / (t / 2 > 0 ? t / 2 : 1) + 2) * sizeof *ox);
-    size_t *oy = ft_malloc((g->ny / (t / 2 > 0 ? t / 2 : 1) + 2) * sizeof *oy);
+    size_t count = 0;
+    for (size_t i = y0; i < y0 + t; i++) {
+        const uint8_t *v = valid + i * nx + x0, *vb = v + nx;
+        unsigned row = 0;
+        if (elevations) {
+            for (size_t j = 0; j < t; j++)
+                row += v[j];
+            if (row < t)
+                return -1.0;
+        } else {
+            for (size_t j = 0; j + 1 < t; j++)
+                row += (unsigned)(v[j] & v[j + 1]);
+            if (i + 1 < y0 + t)
+                for (size_t j = 0; j < t; j++)
+                    row += (unsigned)(v[j] & vb[j]);
+        }
+        count += row;
+    }
+    if (!elevations && (double)count < MIN_VALID_DIFFERENCES * 2.0 * (double)t * (double)(t - 1))
+        return -1.0;
+    return (double)count;
+}
+
+static void tiling_free(tiling *tl)
+{
+    free(tl->x0);
+    free(tl->y0);
+    free(tl->valid);
+    tl->x0 = tl->y0 = NULL;
+    tl->valid = NULL;
+}
+
+/* The usable tiles of side t; FT_OK with ntiles possibly 0. */
+static int find_tiles(const ft_grid *g, const uint8_t *vcell, size_t t, int elevations, tiling *tl)
+{
+    size_t half = t / 2 > 0 ? t / 2 : 1;
+    size_t *ox = ft_malloc((g->nx / half + 2) * sizeof *ox), *oy = ft_malloc((g->ny / half + 2) * sizeof *oy);
     if (ox == NULL || oy == NULL) {
         free(ox);
         free(oy);
@@ -93,223 +186,442 @@ static int find_tiles(const ft_grid *g, size_t t, tiling *tl)
     tl->ntiles = 0;
     tl->x0 = ft_malloc(mx * my * sizeof *tl->x0);
     tl->y0 = ft_malloc(mx * my * sizeof *tl->y0);
-    int rc = tl->x0 && tl->y0 ? FT_OK : FT_E_NOMEM;
-    for (size_t b = 0; rc == FT_OK && b < my; b++)
-        for (size_t a = 0; a < mx; a++)
-            if (tile_valid(g, ox[a], oy[b], t)) {
-                tl->x0[tl->ntiles] = ox[a];
-                tl->y0[tl->ntiles++] = oy[b];
+    tl->valid = ft_malloc(mx * my * sizeof *tl->valid);
+    double *valid = ft_malloc(mx * my * sizeof *valid);
+    int rc = tl->x0 && tl->y0 && tl->valid && valid ? FT_OK : FT_E_NOMEM;
+    if (rc == FT_OK) {
+#pragma omp parallel for schedule(dynamic, 1)
+        for (size_t k = 0; k < mx * my; k++)
+            valid[k] = tile_valid(vcell, g->nx, ox[k % mx], oy[k / mx], t, elevations);
+        for (size_t k = 0; k < mx * my; k++)
+            if (valid[k] >= 0.0) {
+                tl->x0[tl->ntiles] = ox[k % mx];
+                tl->y0[tl->ntiles] = oy[k / mx];
+                tl->valid[tl->ntiles++] = valid[k];
             }
+    }
+    free(valid);
     free(ox);
     free(oy);
     return rc;
 }
 
-static void tiling_free(tiling *tl)
-{
-    free(tl->x0);
-    free(tl->y0);
-    tl->x0 = tl->y0 = NULL;
-}
-
-/* Step 1: the tile size asked for, or the automatic one, and its valid tiles. */
-static int choose_tiles(const ft_grid *g, size_t asked, tiling *tl)
+/* The tile size asked for, or the automatic one, and its usable tiles. */
+static int choose_tiles(const ft_grid *g, const uint8_t *valid, size_t asked, int elevations, tiling *tl)
 {
     size_t small = g->nx < g->ny ? g->nx : g->ny;
     size_t t = asked ? asked : smooth_floor(small);
     for (;;) {
-        int rc = find_tiles(g, t, tl);
+        int rc = find_tiles(g, valid, t, elevations, tl);
         if (rc != FT_OK || tl->ntiles > 0)
             return rc;
         tiling_free(tl);
-        if (asked || t / 2 < AUTO_MIN_TILE)
-            return ft_error(FT_E_EMPTY, NAME ": no tile of %zux%zu cells is free of nodata on the %zux%zu grid%s", t,
-                            t, g->nx, g->ny, asked ? "; try a smaller tile" : "");
+        if (asked || t / 2 < AUTO_MIN_TILE) {
+            if (elevations)
+                return ft_error(FT_E_EMPTY, NAME ": no tile of %zux%zu cells is free of nodata on the %zux%zu grid%s",
+                                t, t, g->nx, g->ny, asked ? "; try a smaller tile" : "");
+            return ft_error(FT_E_EMPTY, NAME ": no tile of %zux%zu cells has half of its differences valid on the "
+                            "%zux%zu grid%s", t, t, g->nx, g->ny, asked ? "; try a smaller tile" : "");
+        }
         t = smooth_floor(t / 2);
     }
 }
 
-/* Radial bins of the half spectrum of a t x t tile: bin index (or -1) and weight of every (ky, kx). */
-typedef struct {
-    int *bin;
-    double *f;       /* frequency, cycles per ground unit */
-    size_t nh;       /* t / 2 + 1 */
-    size_t nbins;
-    double *edges;   /* nbins + 1 */
-} radial;
-
-static int make_radial(size_t t, double cx, double cy, double flo, double fhi, int nbins, radial *r)
-{
-    if (nbins <= 0)
-        nbins = (int)ceil(4.0 * log2(fhi / flo));
-    if (nbins < 2)
-        nbins = 2;
-    r->nh = t / 2 + 1;
-    r->nbins = (size_t)nbins;
-    r->bin = ft_malloc(t * r->nh * sizeof *r->bin);
-    r->f = ft_malloc(t * r->nh * sizeof *r->f);
-    r->edges = ft_malloc((r->nbins + 1) * sizeof *r->edges);
-    if (r->bin == NULL || r->f == NULL || r->edges == NULL)
-        return FT_E_NOMEM;
-    for (size_t b = 0; b <= r->nbins; b++)
-        r->edges[b] = flo * pow(fhi / flo, (double)b / (double)r->nbins);
-    double lo = flo * (1.0 - 1e-9), hi = fhi * (1.0 + 1e-9);
-    for (size_t ky = 0; ky < t; ky++) {
-        double fy = (double)(ky <= t / 2 ? (long)ky : (long)ky - (long)t) / ((double)t * cy);
-        for (size_t kx = 0; kx < r->nh; kx++) {
-            double f = hypot((double)kx / ((double)t * cx), fy);
-            size_t i = ky * r->nh + kx;
-            r->f[i] = f;
-            r->bin[i] = -1;
-            if (f < lo || f > hi)
-                continue;
-            size_t b = (size_t)floor((double)r->nbins * log(f / flo) / log(fhi / flo));
-            r->bin[i] = (int)(b >= r->nbins ? r->nbins - 1 : b);
-        }
-    }
-    return FT_OK;
-}
-
-static void radial_free(radial *r)
-{
-    free(r->bin);
-    free(r->f);
-    free(r->edges);
-}
-
-/* Per-tile sums of one bin: power, frequency, count (weights 2 for the columns standing for both halves). */
+/* Per-tile sums of one bin: power, frequency, count. */
 typedef struct {
     double p, f, n;
 } bin_acc;
 
-/* Least-squares plane of a t x t tile (centred coordinates make the normal equations diagonal). */
-static void detrend(double *a, size_t t, double *ss_before, double *ss_after)
+/* What every tile shares: the tile side, the mode, the kept frequencies and the radial bins. */
+typedef struct {
+    const ft_grid *g;
+    const uint8_t *valid; /* the grid's cells: 1 valid */
+    size_t t;
+    int elevations;
+    const double *w;     /* elevations mode: the 1-D taper, or NULL */
+    double w2;           /* elevations mode: Σ of the 2-D taper squared */
+    double cx, cy;
+    size_t kpos, kneg;   /* kept transform indices 0 .. kpos and t - kneg .. t - 1 */
+    size_t nk;           /* kpos + 1 + kneg */
+    long *freq;          /* nk signed frequency indices */
+    size_t *mirror;      /* nk: the kept index of -k */
+    double *gain_x, *gain_y; /* nk: 4 sin²(pi k / t) / c² (differences mode) */
+    double flo, fhi;     /* the band, cycles per ground unit */
+    size_t nbins;
+} spec_plan;
+
+static void plan_free(spec_plan *p)
 {
-    double n = (double)t * (double)t, c = 0.5 * (double)(t - 1), sxx = 0.0;
-    double mean = 0.0, sx = 0.0, sy = 0.0;
-    for (size_t i = 0; i < t; i++)
-        sxx += ((double)i - c) * ((double)i - c);
-    for (size_t i = 0; i < t; i++)
-        for (size_t j = 0; j < t; j++) {
-            double v = a[i * t + j];
-            mean += v;
-            sx += ((double)j - c) * v;
-            sy += ((double)i - c) * v;
-        }
-    mean /= n;
-    double bx = sx / (sxx * (double)t), by = sy / (sxx * (double)t), before = 0.0, after = 0.0;
-    for (size_t i = 0; i < t; i++)
-        for (size_t j = 0; j < t; j++) {
-            double *v = &a[i * t + j];
-            before += (*v - mean) * (*v - mean);
-            *v -= mean + bx * ((double)j - c) + by * ((double)i - c);
-            after += *v * *v;
-        }
-    *ss_before = before;
-    *ss_after = after;
+    free(p->freq);
+    free(p->mirror);
+    free(p->gain_x);
+    free(p->gain_y);
 }
 
-/* Steps 2-3 for one tile of side t at (x0, y0): detrend, taper, transform, bin into acc (nbins).
- * buf holds t x t reals, spec t x (t/2+1) complex; ss receives the sums of squares before and after the
- * plane was removed. */
-static int one_tile(const ft_grid *g, size_t t, size_t x0, size_t y0, const radial *r, const double *w,
-                    double w2, double *buf, fftw_complex *spec, bin_acc *acc, double ss[2])
+/* The kept indices: |k| <= kmax, each frequency once (for an even t and kmax = t / 2 the Nyquist index
+ * t / 2 is kept once, as +t / 2). */
+static int make_plan(spec_plan *p, size_t kmax, int nbins)
 {
-    for (size_t i = 0; i < t; i++)
-        for (size_t j = 0; j < t; j++)
-            buf[i * t + j] = (double)g->z[(y0 + i) * g->nx + x0 + j];
-    detrend(buf, t, &ss[0], &ss[1]);
-    if (w != NULL)
-        for (size_t i = 0; i < t; i++)
-            for (size_t j = 0; j < t; j++)
-                buf[i * t + j] *= w[i] * w[j];
-    int rc = ft_fft_r2c_2d(t, t, buf, spec);
-    if (rc != FT_OK)
-        return rc;
-    for (size_t b = 0; b < r->nbins; b++)
-        acc[b] = (bin_acc){0.0, 0.0, 0.0};
-    for (size_t ky = 0; ky < t; ky++)
-        for (size_t kx = 0; kx < r->nh; kx++) {
-            size_t i = ky * r->nh + kx;
-            if (r->bin[i] < 0)
-                continue;
-            /* columns 1 .. ceil(t/2)-1 stand for their conjugates in the other half too */
-            double wt = kx == 0 || 2 * kx == t ? 1.0 : 2.0;
-            double p = (spec[i][0] * spec[i][0] + spec[i][1] * spec[i][1]) / w2;
-            bin_acc *a = &acc[r->bin[i]];
-            a->p += wt * p;
-            a->f += wt * r->f[i];
-            a->n += wt;
-        }
+    size_t t = p->t;
+    p->kpos = kmax;
+    p->kneg = kmax < t - 1 - kmax ? kmax : t - 1 - kmax;
+    p->nk = p->kpos + 1 + p->kneg;
+    p->freq = ft_malloc(p->nk * sizeof *p->freq);
+    p->mirror = ft_malloc(p->nk * sizeof *p->mirror);
+    p->gain_x = ft_malloc(p->nk * sizeof *p->gain_x);
+    p->gain_y = ft_malloc(p->nk * sizeof *p->gain_y);
+    if (p->freq == NULL || p->mirror == NULL || p->gain_x == NULL || p->gain_y == NULL)
+        return FT_E_NOMEM;
+    for (size_t q = 0; q < p->nk; q++) {
+        size_t m = q <= p->kpos ? q : t - p->kneg + (q - p->kpos - 1); /* transform index */
+        p->freq[q] = m <= t / 2 ? (long)m : (long)m - (long)t;
+        size_t mm = (t - m) % t; /* index of -k */
+        p->mirror[q] = mm <= p->kpos ? mm : p->kpos + 1 + (mm - (t - p->kneg));
+        double s = sin(M_PI * (double)p->freq[q] / (double)t);
+        p->gain_x[q] = 4.0 * s * s / (p->cx * p->cx);
+        p->gain_y[q] = 4.0 * s * s / (p->cy * p->cy);
+    }
+    if (nbins <= 0)
+        nbins = (int)ceil(4.0 * log2(p->fhi / p->flo));
+    p->nbins = (size_t)(nbins < 2 ? 2 : nbins);
     return FT_OK;
 }
 
-/* The 1-D taper and Σw² of the 2-D one (1 without a taper). */
-static double *make_taper(size_t t, int window, double *w2)
+/* The sums a tile needs before its transform: elevations mode: mean and the plane's slopes; differences
+ * mode: the mean of each difference field and the number of valid ones. */
+typedef struct {
+    double mean, bx, by;   /* elevations: z ~ mean + bx (j - c) + by (i - c), c = (t - 1) / 2 */
+    double mx, my, nx, ny; /* differences: means and counts of gx and gy */
+} tile_stats;
+
+/* Row i of the tile at (x0, y0): its sums (elevations: Σz, Σ(j - c) z, Σz (i - c) is formed by the
+ * caller; differences: Σgx, count, Σgy, count), into s[0..3]. */
+static void row_sums(const spec_plan *p, size_t x0, size_t y0, size_t i, double s[4])
 {
-    *w2 = (double)t * (double)t;
-    if (!window)
-        return NULL;
-    double *w = ft_malloc(t * sizeof *w), s = 0.0;
-    if (w == NULL)
-        return NULL;
-    for (size_t i = 0; i < t; i++) {
-        double v = sin(M_PI * ((double)i + 0.5) / (double)t);
-        w[i] = v * v;
-        s += w[i] * w[i];
+    size_t t = p->t, nx = p->g->nx;
+    const float *z = p->g->z + (y0 + i) * nx + x0, *zb = z + nx;
+    const uint8_t *v = p->valid + (y0 + i) * nx + x0, *vb = v + nx;
+    double c = 0.5 * (double)(t - 1), a = 0.0, b = 0.0, na = 0.0, nb = 0.0;
+    if (p->elevations) {
+        for (size_t j = 0; j < t; j++) {
+            a += (double)z[j];
+            b += ((double)j - c) * (double)z[j];
+        }
+        s[0] = a;
+        s[1] = b;
+        s[2] = s[3] = 0.0;
+        return;
     }
-    *w2 = s * s;
-    return w;
+    for (size_t j = 0; j + 1 < t; j++) {
+        int ok = v[j] & v[j + 1];
+        a += ok ? (double)z[j + 1] - (double)z[j] : 0.0;
+        na += (double)ok;
+    }
+    if (i + 1 < t)
+        for (size_t j = 0; j < t; j++) {
+            int ok = v[j] & vb[j];
+            b += ok ? (double)zb[j] - (double)z[j] : 0.0;
+            nb += (double)ok;
+        }
+    s[0] = a / p->cx;
+    s[1] = na;
+    s[2] = b / p->cy;
+    s[3] = nb;
 }
 
-/* Every tile in parallel; per-tile sums reduced in order into tot (nbins) and ss (before, after). */
-static int all_tiles(const ft_grid *g, const tiling *tl, const radial *r, const double *w, double w2,
-                     const ft_spectrum_opts *o, bin_acc *tot, double ss[2])
+static void tile_sums(const spec_plan *p, size_t x0, size_t y0, int inner, double *rows, tile_stats *st)
 {
-    size_t t = tl->tile, nb = r->nbins;
-    bin_acc *part = ft_calloc(tl->ntiles * nb, sizeof *part);
-    double *pss = ft_calloc(tl->ntiles * 2, sizeof *pss);
-    if (part == NULL || pss == NULL) {
-        free(part);
+    size_t t = p->t;
+#pragma omp parallel for if (inner) schedule(static)
+    for (size_t i = 0; i < t; i++)
+        row_sums(p, x0, y0, i, rows + 4 * i);
+    double s[4] = {0.0, 0.0, 0.0, 0.0}, sy = 0.0, c = 0.5 * (double)(t - 1), sxx = 0.0;
+    for (size_t i = 0; i < t; i++) {
+        for (int k = 0; k < 4; k++)
+            s[k] += rows[4 * i + k];
+        sy += ((double)i - c) * rows[4 * i];
+        sxx += ((double)i - c) * ((double)i - c);
+    }
+    memset(st, 0, sizeof *st);
+    if (p->elevations) {
+        /* least-squares plane on centred coordinates: the normal equations are diagonal */
+        double n = (double)t * (double)t;
+        st->mean = s[0] / n;
+        st->bx = s[1] / (sxx * (double)t);
+        st->by = sy / (sxx * (double)t);
+    } else {
+        st->nx = s[1];
+        st->ny = s[3];
+        st->mx = s[1] > 0.0 ? s[0] / s[1] : 0.0;
+        st->my = s[3] > 0.0 ? s[2] / s[3] : 0.0;
+    }
+}
+
+/* Row i of the tile as a complex sequence (differences: gx - mx + i (gy - my), zero where invalid;
+ * elevations: the detrended, tapered elevations), its sums of squares before and after the plane was
+ * removed into ss[0..1]. */
+static void fill_row(const spec_plan *p, size_t x0, size_t y0, size_t i, const tile_stats *st, fftw_complex *row,
+                     double ss[2])
+{
+    size_t t = p->t, nx = p->g->nx;
+    const float *z = p->g->z + (y0 + i) * nx + x0, *zb = z + nx;
+    const uint8_t *v = p->valid + (y0 + i) * nx + x0, *vb = v + nx;
+    double c = 0.5 * (double)(t - 1), before = 0.0, after = 0.0;
+    if (p->elevations) {
+        for (size_t j = 0; j < t; j++) {
+            double e = (double)z[j];
+            double r = e - (st->mean + st->bx * ((double)j - c) + st->by * ((double)i - c));
+            before += (e - st->mean) * (e - st->mean);
+            after += r * r;
+            row[j][0] = p->w != NULL ? r * p->w[i] * p->w[j] : r;
+            row[j][1] = 0.0;
+        }
+        ss[0] = before;
+        ss[1] = after;
+        return;
+    }
+    double ix = 1.0 / p->cx, iy = 1.0 / p->cy;
+    for (size_t j = 0; j < t; j++) {
+        int okx = j + 1 < t && (v[j] & v[j + 1]), oky = i + 1 < t && (v[j] & vb[j]);
+        double dx = okx ? ((double)z[j + 1] - (double)z[j]) * ix : 0.0;
+        double dy = oky ? ((double)zb[j] - (double)z[j]) * iy : 0.0;
+        double gx = okx ? dx - st->mx : 0.0, gy = oky ? dy - st->my : 0.0;
+        before += dx * dx + dy * dy;
+        after += gx * gx + gy * gy;
+        row[j][0] = gx;
+        row[j][1] = gy;
+    }
+    ss[0] = before;
+    ss[1] = after;
+}
+
+/* Scratch of one tile: the kept columns of every row transform (t x nk), the kept spectrum (nk x nk,
+ * column q at q * nk), per-row sums. */
+typedef struct {
+    fftw_complex *rows, *cols;
+    double *sums; /* 4 per row */
+} tile_work;
+
+static void work_free(tile_work *w)
+{
+    ft_fft_free(w->rows);
+    ft_fft_free(w->cols);
+    free(w->sums);
+    memset(w, 0, sizeof *w);
+}
+
+static int work_alloc(const spec_plan *p, tile_work *w)
+{
+    w->rows = ft_fft_alloc_complex(p->t * p->nk);
+    w->cols = ft_fft_alloc_complex(p->nk * p->nk);
+    w->sums = ft_malloc(4 * p->t * sizeof *w->sums);
+    if (w->rows == NULL || w->cols == NULL || w->sums == NULL) {
+        work_free(w);
+        return FT_E_NOMEM;
+    }
+    return FT_OK;
+}
+
+/* Index in the full transform of kept index q. */
+static size_t full_index(const spec_plan *p, size_t q)
+{
+    return q <= p->kpos ? q : p->t - p->kneg + (q - p->kpos - 1);
+}
+
+/* The kept 2-D spectrum of one tile: row transforms, then the kept columns in blocks. */
+static int transform_tile(const spec_plan *p, size_t x0, size_t y0, const tile_stats *st, int inner,
+                          tile_work *w)
+{
+    size_t t = p->t, nk = p->nk;
+    int failed = 0;
+#pragma omp parallel if (inner) reduction(| : failed)
+    {
+        fftw_complex *buf = ft_fft_alloc_complex(COL_BLOCK * t);
+        failed |= buf == NULL;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < t; i++) {
+            if (failed)
+                continue;
+            fill_row(p, x0, y0, i, st, buf, w->sums + 4 * i);
+            failed |= ft_fft_c2c_1d(t, buf, buf, FT_FFT_FORWARD) != FT_OK;
+            for (size_t q = 0; q < nk; q++) {
+                size_t m = full_index(p, q);
+                w->rows[i * nk + q][0] = buf[m][0];
+                w->rows[i * nk + q][1] = buf[m][1];
+            }
+        }
+#pragma omp for schedule(static)
+        for (size_t q0 = 0; q0 < nk; q0 += COL_BLOCK) {
+            if (failed)
+                continue;
+            size_t nb = nk - q0 < COL_BLOCK ? nk - q0 : COL_BLOCK;
+            for (size_t i = 0; i < t; i++)
+                for (size_t b = 0; b < nb; b++) {
+                    buf[b * t + i][0] = w->rows[i * nk + q0 + b][0];
+                    buf[b * t + i][1] = w->rows[i * nk + q0 + b][1];
+                }
+            for (size_t b = 0; b < nb && !failed; b++) {
+                fftw_complex *col = buf + b * t;
+                failed |= ft_fft_c2c_1d(t, col, col, FT_FFT_FORWARD) != FT_OK;
+                for (size_t r = 0; r < nk; r++) {
+                    size_t m = full_index(p, r);
+                    w->cols[(q0 + b) * nk + r][0] = col[m][0];
+                    w->cols[(q0 + b) * nk + r][1] = col[m][1];
+                }
+            }
+        }
+        ft_fft_free(buf);
+    }
+    return failed ? (ft_last_error_code() ? ft_last_error_code() : ft_error(FT_E_NOMEM, NAME ": out of memory"))
+                  : FT_OK;
+}
+
+/* Bins column q of the kept spectrum into acc (nbins), each power times the tile's weight. */
+static void bin_column(const spec_plan *p, const tile_work *w, size_t q, const tile_stats *st, double weight,
+                       bin_acc *acc)
+{
+    size_t nk = p->nk;
+    double t = (double)p->t, fx = (double)p->freq[q] / (t * p->cx);
+    double lo = p->flo * (1.0 - 1e-9), hi = p->fhi * (1.0 + 1e-9), span = log(p->fhi / p->flo);
+    const fftw_complex *col = w->cols + q * nk, *mcol = w->cols + p->mirror[q] * nk;
+    for (size_t r = 0; r < nk; r++) {
+        double fy = (double)p->freq[r] / (t * p->cy), f = sqrt(fx * fx + fy * fy);
+        if (f < lo || f > hi)
+            continue;
+        size_t b = (size_t)floor((double)p->nbins * log(f / p->flo) / span);
+        if (b >= p->nbins)
+            b = p->nbins - 1;
+        double a = col[r][0], bi = col[r][1], power;
+        if (p->elevations) {
+            power = (a * a + bi * bi) / p->w2;
+        } else {
+            /* Gx = (C(k) + conj C(-k)) / 2, Gy = (C(k) - conj C(-k)) / 2i */
+            double c = mcol[p->mirror[r]][0], d = mcol[p->mirror[r]][1];
+            double gx2 = 0.25 * ((a + c) * (a + c) + (bi - d) * (bi - d));
+            double gy2 = 0.25 * ((bi + d) * (bi + d) + (a - c) * (a - c));
+            double px = st->nx > 0.0 ? gx2 / st->nx : 0.0, py = st->ny > 0.0 ? gy2 / st->ny : 0.0;
+            power = (px + py) / (p->gain_x[q] + p->gain_y[r]);
+        }
+        acc[b].p += weight * power;
+        acc[b].f += f;
+        acc[b].n += 1.0;
+    }
+}
+
+/* One tile: its spectrum binned into acc (nbins, zeroed here), its sums of squares into ss (before,
+ * after, number of values). part is scratch of nk x nbins. */
+static int one_tile(const spec_plan *p, size_t x0, size_t y0, double mean_count, int inner, tile_work *w,
+                    bin_acc *part, bin_acc *acc, double ss[3])
+{
+    tile_stats st;
+    tile_sums(p, x0, y0, inner, w->sums, &st);
+    int rc = transform_tile(p, x0, y0, &st, inner, w);
+    if (rc != FT_OK)
+        return rc;
+    size_t nk = p->nk, nb = p->nbins;
+    double weight = p->elevations ? 1.0 : (st.nx + st.ny) / mean_count;
+#pragma omp parallel for if (inner) schedule(static)
+    for (size_t q = 0; q < nk; q++) {
+        bin_acc *a = part + q * nb;
+        for (size_t b = 0; b < nb; b++)
+            a[b] = (bin_acc){0.0, 0.0, 0.0};
+        bin_column(p, w, q, &st, weight, a);
+    }
+    for (size_t b = 0; b < nb; b++)
+        acc[b] = (bin_acc){0.0, 0.0, 0.0};
+    for (size_t q = 0; q < nk; q++)
+        for (size_t b = 0; b < nb; b++) {
+            const bin_acc *s = &part[q * nb + b];
+            acc[b] = (bin_acc){acc[b].p + s->p, acc[b].f + s->f, acc[b].n + s->n};
+        }
+    ss[0] = ss[1] = 0.0;
+    for (size_t i = 0; i < p->t; i++) {
+        ss[0] += w->sums[4 * i];
+        ss[1] += w->sums[4 * i + 1];
+    }
+    ss[2] = p->elevations ? (double)p->t * (double)p->t : st.nx + st.ny;
+    return FT_OK;
+}
+
+/* The mean number of valid values per tile, the unit of the tiles' weights. */
+static double mean_tile_count(const tiling *tl)
+{
+    double sum = 0.0;
+    for (size_t k = 0; k < tl->ntiles; k++)
+        sum += tl->valid[k];
+    return sum / (double)tl->ntiles;
+}
+
+/* Every tile: in turn with rows and columns in parallel when tiles are few, or whole tiles in parallel
+ * when there are at least two per thread; per-tile sums reduced in tile order into tot and ss. */
+static int all_tiles(const spec_plan *p, const tiling *tl, const ft_spectrum_opts *o, bin_acc *tot, double ss[3])
+{
+    size_t nb = p->nbins, nt = tl->ntiles;
+    bin_acc *acc = ft_calloc(nt * nb, sizeof *acc);
+    double *pss = ft_calloc(nt * 3, sizeof *pss);
+    if (acc == NULL || pss == NULL) {
+        free(acc);
         free(pss);
         return FT_E_NOMEM;
     }
-    int failed = 0;
+    double mean_count = mean_tile_count(tl);
+    int outer = nt >= 2 * (size_t)omp_get_max_threads() && omp_get_max_threads() > 1, failed = 0;
     volatile int cancelled = 0;
-#pragma omp parallel reduction(| : failed)
+#pragma omp parallel if (outer) reduction(| : failed)
     {
-        double *buf = ft_fft_alloc_real(t * t);
-        fftw_complex *spec = ft_fft_alloc_complex(t * r->nh);
-        failed |= buf == NULL || spec == NULL;
+        tile_work w = {NULL, NULL, NULL};
+        bin_acc *part = ft_malloc(p->nk * nb * sizeof *part);
+        failed |= part == NULL || work_alloc(p, &w) != FT_OK;
 #pragma omp for schedule(dynamic, 1)
-        for (size_t k = 0; k < tl->ntiles; k++) {
+        for (size_t k = 0; k < nt; k++) {
             if (failed || cancelled)
                 continue;
-            failed |= one_tile(g, t, tl->x0[k], tl->y0[k], r, w, w2, buf, spec, part + k * nb, pss + 2 * k) != FT_OK;
+            failed |= one_tile(p, tl->x0[k], tl->y0[k], mean_count, !outer, &w, part, acc + k * nb, pss + 3 * k) !=
+                      FT_OK;
             if (omp_get_thread_num() == 0 &&
-                ft_progress(o->progress, o->progress_arg, 0.95 * (double)(k + 1) / (double)tl->ntiles, NAME) != FT_OK)
+                ft_progress(o->progress, o->progress_arg, 0.95 * (double)(k + 1) / (double)nt, NAME) != FT_OK)
                 cancelled = 1;
         }
-        ft_fft_free(buf);
-        ft_fft_free(spec);
+        free(part);
+        work_free(&w);
     }
     for (size_t b = 0; b < nb; b++)
         tot[b] = (bin_acc){0.0, 0.0, 0.0};
-    ss[0] = ss[1] = 0.0;
-    for (size_t k = 0; k < tl->ntiles; k++) {
+    ss[0] = ss[1] = ss[2] = 0.0;
+    for (size_t k = 0; k < nt; k++) {
         for (size_t b = 0; b < nb; b++) {
-            const bin_acc *q = &part[k * nb + b];
+            const bin_acc *q = &acc[k * nb + b];
             tot[b] = (bin_acc){tot[b].p + q->p, tot[b].f + q->f, tot[b].n + q->n};
         }
-        ss[0] += pss[2 * k];
-        ss[1] += pss[2 * k + 1];
+        for (int j = 0; j < 3; j++)
+            ss[j] += pss[3 * k + j];
     }
-    free(part);
+    free(acc);
     free(pss);
     if (cancelled)
         return ft_error(FT_E_CANCELLED, NAME ": cancelled");
     return failed ? (ft_last_error_code() ? ft_last_error_code() : ft_error(FT_E_NOMEM, NAME ": out of memory"))
                   : FT_OK;
+}
+
+/* The 1-D Hann taper and Σw² of the 2-D one; without a taper NULL and Σw² = t². */
+static int make_taper(size_t t, int window, double **w, double *w2)
+{
+    *w = NULL;
+    *w2 = (double)t * (double)t;
+    if (!window)
+        return FT_OK;
+    double *v = ft_malloc(t * sizeof *v), s = 0.0;
+    if (v == NULL)
+        return FT_E_NOMEM;
+    for (size_t i = 0; i < t; i++) {
+        double x = sin(M_PI * ((double)i + 0.5) / (double)t);
+        v[i] = x * x;
+        s += v[i] * v[i];
+    }
+    *w = v;
+    *w2 = s * s;
+    return FT_OK;
 }
 
 static int check_opts(const ft_grid *g, const ft_spectrum_opts *o)
@@ -330,6 +642,9 @@ static int check_opts(const ft_grid *g, const ft_spectrum_opts *o)
         return ft_error(FT_E_INVALID, NAME ": nbins must be 0 (automatic) or in [2, 1000], got %d", o->nbins);
     if (o->window != 0 && o->window != 1)
         return ft_error(FT_E_INVALID, NAME ": window must be 0 (none) or 1 (Hann), got %d", o->window);
+    if (o->elevations != 0 && o->elevations != 1)
+        return ft_error(FT_E_INVALID, NAME ": elevations must be 0 (differences) or 1 (elevations), got %d",
+                        o->elevations);
     return FT_OK;
 }
 
@@ -368,6 +683,15 @@ static int build_table(const bin_acc *tot, size_t nb, ft_loglog **out)
     return FT_OK;
 }
 
+/* A plane leaves only float rounding once removed: rms below a few ulps of the elevations (per cell for
+ * the differences), or a billionth of what was there. */
+static int is_plane(const spec_plan *p, const double ss[3], double zmin, double zmax)
+{
+    double big = fmax(fabs(zmin), fabs(zmax)), unit = p->elevations ? 1.0 : fmin(p->cx, p->cy);
+    double rms = ss[2] > 0.0 ? sqrt(ss[1] / ss[2]) : 0.0, before = ss[2] > 0.0 ? sqrt(ss[0] / ss[2]) : 0.0;
+    return !(rms > 16.0 * FLT_EPSILON * big / unit) || !(rms > 1e-9 * before);
+}
+
 int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out)
 {
     if (out == NULL)
@@ -379,41 +703,50 @@ int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_d
     int rc = check_opts(g, &o);
     if (rc != FT_OK)
         return rc;
-    double zmin, zmax, cx, cy, lo, hi, w2 = 1.0, ss[2] = {0.0, 0.0};
-    if ((rc = ft_surface_valid_range(g, NAME, &zmin, &zmax)) != FT_OK)
+    double zmin, zmax, lo, hi, ss[3] = {0.0, 0.0, 0.0};
+    uint8_t *valid = NULL;
+    if ((rc = valid_cells(g, &valid, &zmin, &zmax)) != FT_OK)
         return rc;
-    ft_surface_cell_size(g, &cx, &cy);
-    tiling tl = {0, NULL, NULL, 0};
-    radial r = {NULL, NULL, 0, 0, NULL};
+    spec_plan p;
+    memset(&p, 0, sizeof p);
+    p.g = g;
+    p.valid = valid;
+    p.elevations = o.elevations;
+    ft_surface_cell_size(g, &p.cx, &p.cy);
+    tiling tl = {0, NULL, NULL, NULL, 0};
     double *w = NULL;
     bin_acc *tot = NULL;
     ft_loglog *t = NULL;
     if ((rc = ft_progress(o.progress, o.progress_arg, 0.0, NAME)) != FT_OK ||
-        (rc = choose_tiles(g, o.tile, &tl)) != FT_OK)
+        (rc = choose_tiles(g, valid, o.tile, o.elevations, &tl)) != FT_OK ||
+        (rc = wavelengths(&o, tl.tile, &lo, &hi)) != FT_OK)
         goto done;
-    if ((rc = wavelengths(&o, tl.tile, &lo, &hi)) != FT_OK)
+    p.t = tl.tile;
+    double c = sqrt(p.cx * p.cy);
+    p.flo = 1.0 / (hi * c);
+    p.fhi = 1.0 / (lo * c);
+    /* every index the band reaches along either axis: kx / (t cx) <= fhi = 1 / (lo c) */
+    size_t kmax = (size_t)floor((double)p.t / lo * fmax(p.cx / c, p.cy / c) * (1.0 + 1e-9));
+    if (kmax > p.t / 2)
+        kmax = p.t / 2;
+    if ((rc = make_plan(&p, kmax, o.nbins)) != FT_OK ||
+        (o.elevations && (rc = make_taper(p.t, o.window, &w, &p.w2)) != FT_OK))
         goto done;
-    double c = sqrt(cx * cy);
-    if ((rc = make_radial(tl.tile, cx, cy, 1.0 / (hi * c), 1.0 / (lo * c), o.nbins, &r)) != FT_OK)
-        goto done;
-    w = make_taper(tl.tile, o.window, &w2);
-    tot = ft_malloc(r.nbins * sizeof *tot);
-    if ((o.window && w == NULL) || tot == NULL) {
+    p.w = w;
+    tot = ft_malloc(p.nbins * sizeof *tot);
+    if (tot == NULL) {
         rc = FT_E_NOMEM;
         goto done;
     }
-    if ((rc = all_tiles(g, &tl, &r, w, w2, &o, tot, ss)) != FT_OK)
+    if ((rc = all_tiles(&p, &tl, &o, tot, ss)) != FT_OK)
         goto done;
-    /* a plane leaves only float rounding: rms below a few ulps of the elevations */
-    double n = (double)tl.ntiles * (double)tl.tile * (double)tl.tile, big = fmax(fabs(zmin), fabs(zmax));
-    double rms = sqrt(ss[1] / n);
-    if (!(rms > 16.0 * FLT_EPSILON * big) || !(rms > 1e-9 * sqrt(ss[0] / n))) {
+    if (is_plane(&p, ss, zmin, zmax)) {
         rc = ft_error(FT_E_NUMERIC, NAME ": the surface is a plane (rms %g after removing it): degenerate for the "
-                      "spectrum, whose D needs relief at every scale", rms);
+                      "spectrum, whose D needs relief at every scale", ss[2] > 0.0 ? sqrt(ss[1] / ss[2]) : 0.0);
         goto done;
     }
     ft_dim_map map = FT_DIM_MAP_SPECTRUM_SURFACE;
-    if ((rc = build_table(tot, r.nbins, &t)) != FT_OK ||
+    if ((rc = build_table(tot, p.nbins, &t)) != FT_OK ||
         (rc = ft_surface_fit_table(t, o.fit_whole_range, &o.fit, &map, NAME, out)) != FT_OK)
         goto done;
     if ((*out)->D < DEGENERATE_D) {
@@ -430,7 +763,8 @@ done:
     ft_loglog_free(t);
     free(tot);
     free(w);
-    radial_free(&r);
+    plan_free(&p);
     tiling_free(&tl);
+    free(valid);
     return rc;
 }

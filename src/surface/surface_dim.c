@@ -41,6 +41,26 @@ static int check_opts(const ft_surface_dim_opts *o)
     return FT_OK;
 }
 
+/* Ground-unit scales of o in cells of mean size sqrt(cx cy) (0 stays 0: the method's default). */
+static void scales_in_cells(const ft_surface_dim_opts *o, double cx, double cy, double *lo, double *hi)
+{
+    double c = sqrt(cx * cy);
+    *lo = o->min_scale > 0.0 && c > 0.0 ? o->min_scale / c : 0.0;
+    *hi = o->max_scale > 0.0 && c > 0.0 ? o->max_scale / c : 0.0;
+}
+
+int ft_surface_lag_opts(const ft_surface_dim_opts *o, double cx, double cy, ft_variogram_opts *v)
+{
+    int rc = check_opts(o);
+    if (rc != FT_OK)
+        return rc;
+    double lo, hi;
+    scales_in_cells(o, cx, cy, &lo, &hi);
+    *v = (ft_variogram_opts){lo, hi, o->nscales, o->pairs, o->seed, o->fit, o->fit_whole_range, o->progress,
+                             o->progress_arg};
+    return FT_OK;
+}
+
 int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_opts *opts, ft_dim_result **out)
 {
     if (out == NULL)
@@ -56,22 +76,21 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
         return ft_error(FT_E_INVALID, "unknown surface method %d", (int)m);
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
         return ft_error(FT_E_INVALID, "%s: the grid is NULL or empty", method_names[m]);
-    double cx, cy;
+    double cx, cy, lo, hi;
     ft_surface_cell_size(g, &cx, &cy);
-    double c = sqrt(cx * cy), lo = o.min_scale > 0.0 && c > 0.0 ? o.min_scale / c : 0.0;
-    double hi = o.max_scale > 0.0 && c > 0.0 ? o.max_scale / c : 0.0;
+    scales_in_cells(&o, cx, cy, &lo, &hi);
     switch (m) {
     case FT_SURFACE_VARIOGRAM:
     case FT_SURFACE_YOKOYA:
     case FT_SURFACE_PENTLAND: {
-        ft_variogram_opts v = {lo,    hi,    o.nscales,          o.pairs,    o.seed,
-                               o.fit, o.fit_whole_range, o.progress, o.progress_arg};
+        ft_variogram_opts v;
+        ft_surface_lag_opts(&o, cx, cy, &v); /* o was checked above */
         return m == FT_SURFACE_VARIOGRAM ? ft_surface_dim_variogram(g, &v, out)
                : m == FT_SURFACE_YOKOYA  ? ft_surface_dim_yokoya(g, &v, out)
                                          : ft_surface_dim_pentland(g, &v, out);
     }
     case FT_SURFACE_SPECTRUM: {
-        ft_spectrum_opts s = {lo, hi, o.nscales, o.tile, 1, o.fit, o.fit_whole_range, o.progress, o.progress_arg};
+        ft_spectrum_opts s = {lo, hi, o.nscales, o.tile, 1, o.fit, o.fit_whole_range, o.progress, o.progress_arg, 0};
         return ft_surface_dim_spectrum(g, &s, out);
     }
     default: {

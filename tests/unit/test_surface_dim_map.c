@@ -1,7 +1,8 @@
 /* fracterra — unit tests of surface/dim_map.c: a surface made of two halves of different D shows the
  * difference, the output lies on the window-centre lattice of the input (geotransform, CRS), holes make
- * nodata windows, the same map on 1 and 2 threads, and bad input (all nodata, window larger than the
- * grid, step 0, unknown method, a scale range the window cannot hold) named in the error.
+ * nodata windows, the same map on 1 and 2 threads, the lag methods' block-sum map equal to the estimator
+ * run on every window, and bad input (all nodata, window larger than the grid, step 0, unknown method, a
+ * scale range the window cannot hold) named in the error.
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include <stdarg.h>
@@ -16,6 +17,7 @@
 
 #include "fracterra/surface.h"
 #include "fracterra/terrain.h"
+#include "ft_test_assert.h"
 
 /* 512 x 256 cells: columns 0-255 of a D = 2.2 surface, columns 256-511 of a D = 2.8 one. */
 static ft_grid *two_halves(void)
@@ -132,6 +134,92 @@ static void test_holes_and_methods(void **state)
     ft_grid_free(g);
 }
 
+/* The lag methods' map sums pair counters over blocks shared by the windows (dim_map_lags.c) instead of
+ * measuring each window: it must equal ft_surface_dim on a copy of every window (the same windows
+ * measured, D and r² within 1e-6), whatever the window, the step (dividing the window or not, larger than
+ * it, 1), the holes, the fit and the scale options. */
+static void check_against_windows(const ft_grid *g, size_t w, size_t s, ft_surface_method m,
+                                  const ft_surface_dim_opts *o)
+{
+    ft_grid *D = NULL, *r2 = NULL, *win = ft_grid_create(w, w);
+    assert_int_equal(ft_surface_dim_map(g, w, s, m, o, &D, &r2), 0);
+    assert_int_equal(ft_grid_ensure_mask(win), 0);
+    size_t measured = 0;
+    for (size_t i = 0; i < D->ny; i++)
+        for (size_t j = 0; j < D->nx; j++) {
+            size_t valid = 0, k = i * D->nx + j;
+            for (size_t a = 0; a < w; a++)
+                for (size_t b = 0; b < w; b++) {
+                    size_t src = (i * s + a) * g->nx + j * s + b;
+                    int ok = (g->mask == NULL || g->mask[src]) && isfinite(g->z[src]);
+                    win->z[a * w + b] = ok ? g->z[src] : 0.0f;
+                    win->mask[a * w + b] = (uint8_t)ok;
+                    valid += (size_t)ok;
+                }
+            memcpy(win->gt, g->gt, sizeof win->gt);
+            ft_dim_result *r = NULL;
+            int ok = (double)valid >= o->min_valid * (double)(w * w) && valid > 0 &&
+                     ft_surface_dim(win, m, o, &r) == FT_OK;
+            assert_int_equal(D->mask[k], ok);
+            assert_int_equal(r2->mask[k], ok);
+            if (ok) {
+                assert_near(D->z[k], r->D, 1e-6);
+                assert_near(r2->z[k], r->r2, 1e-6);
+                measured++;
+            }
+            ft_dim_result_free(r);
+        }
+    assert_true(measured > 0);
+    ft_grid_free(win);
+    ft_grid_free(D);
+    ft_grid_free(r2);
+}
+
+static void test_lag_maps_equal_windows(void **state)
+{
+    (void)state;
+    ft_synth_opts so = FT_SYNTH_OPTS_DEFAULT;
+    so.method = FT_SYNTH_EXACT;
+    so.dim = 2.4;
+    so.seed = 11;
+    ft_grid *g = NULL;
+    assert_int_equal(ft_terrain_synth(150, 110, &so, &g), 0);
+    g->gt[1] = 10.0;
+    g->gt[5] = -7.0; /* oblong cells */
+    assert_int_equal(ft_grid_ensure_mask(g), 0);
+    for (size_t i = 0; i < 110; i++)
+        for (size_t j = 0; j < 150; j++)
+            if (hypot((double)j - 40.0, (double)i - 30.0) < 14.0 || hypot((double)j - 110.0, (double)i - 80.0) < 9.0 ||
+                (i * 150 + j) % 97 == 0) {
+                g->mask[i * 150 + j] = 0;
+                g->z[i * 150 + j] = 1e30f;
+            }
+    /* step 1 on a 50 x 40 corner holding the first hole (24-cell windows: lags 1 .. 3) */
+    ft_grid *small = ft_grid_create(50, 40);
+    assert_int_equal(ft_grid_ensure_mask(small), 0);
+    for (size_t i = 0; i < 40; i++)
+        for (size_t j = 0; j < 50; j++) {
+            small->z[i * 50 + j] = g->z[i * 150 + j];
+            small->mask[i * 50 + j] = g->mask[i * 150 + j];
+        }
+    memcpy(small->gt, g->gt, sizeof small->gt);
+    static const size_t ws[][2] = {{32, 8}, {33, 7}, {24, 40}, {16, 6}, {24, 1}};
+    for (int m = FT_SURFACE_VARIOGRAM; m <= FT_SURFACE_PENTLAND; m++)
+        for (size_t c = 0; c < sizeof ws / sizeof ws[0]; c++) {
+            ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+            o.fit_whole_range = (int)(c % 2) || ws[c][1] == 1;
+            o.min_valid = 0.8;
+            if (c == 1) {
+                o.min_scale = 20.0; /* 2 .. 8 cells of sqrt(70) ground units */
+                o.max_scale = 70.0;
+                o.nscales = 5;
+            }
+            check_against_windows(ws[c][1] == 1 ? small : g, ws[c][0], ws[c][1], (ft_surface_method)m, &o);
+        }
+    ft_grid_free(small);
+    ft_grid_free(g);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -170,6 +258,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_two_halves),
         cmocka_unit_test(test_holes_and_methods),
+        cmocka_unit_test(test_lag_maps_equal_windows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

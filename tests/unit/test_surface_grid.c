@@ -1,9 +1,9 @@
 /* fracterra — unit tests of the grid estimators through the dispatcher (surface/surface_dim.c and every
  * method): the accuracy of the default method on 512² Stein-exact surfaces of D = 2.1 ... 2.8 (median
  * error <= 0.05 with the default range; the other methods held to their documented bias), smooth
- * surfaces (a tilted plane, a paraboloid: D within 0.02 of 2, or "degenerate" said plainly), nodata blobs
- * of 10 % of the cells moving D by less than 0.02, Yokoya and Pentland statistics by hand, names, and bad
- * input naming the value. docs/surface-grid.md holds the full tables (more seeds).
+ * surfaces (a tilted plane, a paraboloid: D within 0.02 of 2, or "degenerate" said plainly), Yokoya and
+ * Pentland statistics by hand, names, and bad input naming the value (nodata blobs: test_surface_nodata.c).
+ * docs/surface-grid.md holds the full tables (more seeds).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include <stdarg.h>
@@ -117,54 +117,6 @@ static void test_smooth_surfaces(void **state)
     ft_grid_free(bowl);
 }
 
-/* Masks round blobs of random centres and radii until `frac` of the cells are nodata. */
-static void add_blobs(ft_grid *g, double frac, uint64_t seed)
-{
-    assert_int_equal(ft_grid_ensure_mask(g), 0);
-    ft_rng *rng = ft_rng_create(seed, 0);
-    size_t n = g->nx * g->ny, holes = 0;
-    while ((double)holes < frac * (double)n) {
-        double cx = ft_rng_uniform(rng) * (double)g->nx, cy = ft_rng_uniform(rng) * (double)g->ny;
-        double rad = 6.0 + 14.0 * ft_rng_uniform(rng);
-        for (size_t i = 0; i < g->ny; i++)
-            for (size_t j = 0; j < g->nx; j++)
-                if (g->mask[i * g->nx + j] && hypot((double)j - cx, (double)i - cy) < rad) {
-                    g->mask[i * g->nx + j] = 0;
-                    g->z[i * g->nx + j] = -9999.0f; /* never read as an elevation */
-                    holes++;
-                }
-    }
-    ft_rng_free(rng);
-}
-
-static void test_nodata_blobs(void **state)
-{
-    (void)state;
-    ft_grid *g = exact_surface(512, 2.4, 5), *h = ft_grid_copy(g);
-    add_blobs(h, 0.10, 9);
-    for (int m = 0; m < FT_SURFACE_NMETHODS; m++) {
-        ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
-        o.fit_whole_range = 1;
-        ft_dim_result *a = NULL, *b = NULL;
-        const char *name = ft_surface_method_name((ft_surface_method)m);
-        assert_int_equal(ft_surface_dim(g, (ft_surface_method)m, &o, &a), 0);
-        int rc = ft_surface_dim(h, (ft_surface_method)m, &o, &b);
-        if (rc != 0)
-            print_error("%s with holes: %s\n", name, ft_last_error());
-        assert_int_equal(rc, 0);
-        /* the spectrum needs whole tiles free of nodata: blobs leave only small tiles, so its range
-         * shrinks and its D moves (docs/surface-grid.md); it must still measure */
-        if (m != FT_SURFACE_SPECTRUM)
-            assert_near(b->D, a->D, 0.02, name);
-        else
-            print_message("spectrum: D %.3f without holes, %.3f with 10%% in blobs\n", a->D, b->D);
-        ft_dim_result_free(a);
-        ft_dim_result_free(b);
-    }
-    ft_grid_free(g);
-    ft_grid_free(h);
-}
-
 /* Yokoya's and Pentland's statistics by hand: rows alternating 0, 1, 0, 1, ... along x, constant along y.
  * Lag 1: row pairs |Δz| = 1 (nx - 1 per row), column pairs 0 (nx per row pair). */
 static void test_increment_statistics(void **state)
@@ -262,7 +214,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_increment_statistics), cmocka_unit_test(test_names_and_dispatch),
         cmocka_unit_test(test_bad_input),            cmocka_unit_test(test_smooth_surfaces),
-        cmocka_unit_test(test_nodata_blobs),         cmocka_unit_test(test_accuracy_dense),
+        cmocka_unit_test(test_accuracy_dense),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
