@@ -61,6 +61,8 @@ static int grow(demo_ctx *ctx, mountain_demo *m)
     mo.seed_elevation = 130.0;
     mo.levels_down = MOUNTAIN_DOWN;
     mo.seed = MOUNTAIN_SEED;
+    mo.match_dim = 0; /* the paper's fixed 20-40 degrees (as --theta 20,40): the bundled seed is smooth, and
+                         matching its dimension would give smooth contours, not the paper's Fig. 16 */
     if (rc == FT_OK)
         rc = ft_mountain_generate(m->seed, &mo, &m->stack);
     if (rc == FT_OK)
@@ -78,9 +80,10 @@ static int draw_map(demo_ctx *ctx, const mountain_demo *m)
     snprintf(map_caption, sizeof map_caption,
              "Every contour of a mountain grown from one seed contour (red) by the improved contour generation "
              "method of Misawa, Chiba &amp; Saito (shrinking with the d&prime; join, Fourier descriptor phase "
-             "randomization, collinear removal, random midpoint displacement): %zu levels from %g m to %g m every "
-             "%g m, %d grown outward below the seed, spacing d = %.1f m, %zu vertices, seed %d: "
-             "<code>fracterra mountain %s mountain_contours.gpkg --interval %g --levels-down %d --seed %d</code>.",
+             "randomization, collinear removal, random midpoint displacement at the paper's fixed 20&ndash;40&deg;): "
+             "%zu levels from %g m to %g m every %g m, %d grown outward below the seed, spacing d = %.1f m, %zu "
+             "vertices, seed %d: <code>fracterra mountain %s mountain_contours.gpkg --interval %g --levels-down %d "
+             "--theta 20,40 --seed %d</code>.",
              s->n, s->levels[0].elev, s->levels[s->n - 1].elev, s->interval, MOUNTAIN_DOWN, s->spacing,
              stack_vertices(s), MOUNTAIN_SEED, SEED_FILE, MOUNTAIN_INTERVAL, MOUNTAIN_DOWN, MOUNTAIN_SEED);
     ft_map_layer layers[2] = {
