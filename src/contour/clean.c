@@ -8,7 +8,8 @@
  *  - depth (the usual one): GEOS's buffer engine at distance 0 nodes the curves robustly (snap-rounding when
  *    floating noding fails) and gives every face its depth, +1 inside each polygon shell and -1 inside each
  *    hole, a ring's sides taken from its orientation; handing it every counter-clockwise curve as a shell
- *    and every clockwise one as a hole makes the depth the winding number, and it returns depth >= 1;
+ *    and every clockwise one as a hole makes the depth the winding number, and it returns depth >= 1 (when
+ *    every curve is clockwise, a frame given as shell and hole, of net depth 0, holds them);
  *  - faces (when a curve's orientation is too close to zero area to tell, or the buffer engine fails): the
  *    curves are noded by a unary union snap-rounded to a fine grid (ft_contour_grid: 1e-9 of the caller's
  *    scale, or 1e-12 of the extent; floating noding can leave near-coincident nodes the polygonizer cannot
@@ -322,6 +323,26 @@ static int buffer_orients_by_area(ft_geos *g)
     return r;
 }
 
+/* A rectangle about the rings' extent with a margin, counter-clockwise (sign +1) or clockwise (sign -1). */
+static GEOSGeometry *frame_ring(ft_geos *g, ft_chain *const *rings, size_t nrings, int sign)
+{
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (size_t r = 0; r < nrings; r++) {
+        for (size_t i = 0; rings[r] != NULL && i < rings[r]->n; i++) {
+            x0 = fmin(x0, rings[r]->x[i]), x1 = fmax(x1, rings[r]->x[i]);
+            y0 = fmin(y0, rings[r]->y[i]), y1 = fmax(y1, rings[r]->y[i]);
+        }
+    }
+    double ext = fmax(x1 - x0, y1 - y0), m = ext > 0.0 ? 0.01 * ext : 1.0;
+    x0 -= m, y0 -= m, x1 += m, y1 += m;
+    double fx[4] = {x0, x1, x1, x0}, fy[4] = {y0, y0, y1, y1};
+    if (sign < 0) {
+        fx[1] = x0, fy[1] = y1, fx[3] = x1, fy[3] = y0;
+    }
+    ft_chain c = {fx, fy, 4, 4, 1};
+    return ft_geos_ring(g, &c);
+}
+
 /* The depth path: GEOS's buffer engine with distance 0 nodes all rings together and labels every face with
  * its depth, the sum over the rings of +1 inside a polygon shell and -1 inside a hole, each ring's sides
  * chosen by its orientation (GEOS >= 3.10 decides it by the signed area, older versions by the highest
@@ -334,7 +355,7 @@ static GEOSGeometry *depth_region(ft_geos *g, ft_chain *const *rings, size_t nri
     *unsure = 0;
     int by_area = buffer_orients_by_area(g);
     GEOSGeometry **shells = ft_calloc(nrings > 0 ? nrings : 1, sizeof *shells);
-    GEOSGeometry **holes = ft_calloc(nrings > 0 ? nrings : 1, sizeof *holes);
+    GEOSGeometry **holes = ft_calloc(nrings + 1, sizeof *holes); /* + 1 for a frame */
     size_t ns = 0, nh = 0;
     GEOSGeometry *result = NULL;
     if (shells == NULL || holes == NULL)
@@ -371,11 +392,23 @@ static GEOSGeometry *depth_region(ft_geos *g, ft_chain *const *rings, size_t nri
         else
             holes[nh++] = ring;
     }
-    if (ns == 0) { /* no ring winds positively anywhere */
+    if (ns == 0 && nh == 0) { /* no ring at all */
         result = GEOSGeom_createEmptyCollection_r(g->h, GEOS_MULTIPOLYGON);
         if (result == NULL)
             ft_geos_fail(g, "an empty region");
         goto done;
+    }
+    if (ns == 0) {
+        /* Every ring is clockwise by area, yet w may still be positive somewhere: a hugely self-overlapping
+         * offset curve whose inverted loops (w <= -1) outweigh its region (w >= 1) has a negative signed
+         * area. The holes need a shell to belong to: a frame about them, given both as a shell and as a
+         * hole, whose coincident edges the buffer engine merges with depth deltas +1 and -1 summing to 0. */
+        if ((shells[0] = frame_ring(g, rings, nrings, 1)) == NULL)
+            goto done;
+        ns = 1;
+        if ((holes[nh] = frame_ring(g, rings, nrings, -1)) == NULL)
+            goto done;
+        nh++;
     }
     /* every shell its own polygon; the holes go to the first (the buffer engine labels each ring on its own) */
     GEOSGeometry **polys = ft_calloc(ns, sizeof *polys);

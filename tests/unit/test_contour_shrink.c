@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "fracterra/contour.h"
+#include "fracterra/io.h"
 #include "ft_test_assert.h"
 
 /* ---- helpers ------------------------------------------------------------------------------------ */
@@ -634,6 +635,85 @@ static void test_repeated_shrinking_stays_valid_and_nested(void **state)
     ft_polygon_set_free(cur);
 }
 
+/* ---- offset curves of negative signed area ----------------------------------------------------------- */
+
+/* The square [0,100]^2 with 4 spikes of width 1 and length 300 on its top edge, shrunk by d = 10 with the
+ * d' join (d' = 1.2 d). Each spike, narrower than 2 d, turns inside out in the raw offset curve and adds
+ * about -(2 d - 1) 300 = -5700 to its signed area, so the curve's signed area is negative (< 6400 -
+ * 4 x 5700) although it winds +1 around most of the square. The mitre region is [10,90]^2 (the spikes,
+ * 20 apart and 20 from the corners, meet the top edge's moved line at y = 90 and vanish); the d' join adds
+ * at most the quadrilateral M A P B of area d t, t = d - d'/sqrt(2), at each of the 8 spike base corners
+ * (see the L-shape test). So 80^2 <= area <= 80^2 + 8 d t. */
+static void test_dprime_curve_of_negative_area_keeps_region(void **state)
+{
+    (void)state;
+    double xy[2 * 20];
+    size_t n = 0;
+    xy[n++] = 0, xy[n++] = 0, xy[n++] = 100, xy[n++] = 0, xy[n++] = 100, xy[n++] = 100;
+    for (int k = 3; k >= 0; k--) { /* right to left along the top edge */
+        double xs = 20.0 + 20.0 * k;
+        xy[n++] = xs + 1, xy[n++] = 100, xy[n++] = xs + 1, xy[n++] = 400;
+        xy[n++] = xs, xy[n++] = 400, xy[n++] = xs, xy[n++] = 100;
+    }
+    xy[n++] = 0, xy[n++] = 100;
+    ft_polygon_set *in = set_of(xy, n / 2);
+    const double d = 10.0, t = d - 1.2 * d / sqrt(2.0);
+    ft_polygon_set *out = shrink_join(in, d, FT_JOIN_DPRIME, 1.2);
+    double a = ft_polygon_set_area(out);
+    assert_int_equal(out->n, 1);
+    assert_true(a >= 6400.0 * (1.0 - AREA_RTOL));
+    assert_true(a <= (6400.0 + 8.0 * d * t) * (1.0 + AREA_RTOL));
+    ft_polygon_set_free(out);
+    ft_polygon_set_free(in);
+}
+
+/* The Newfoundland coastline (GSHHG, UTM 21N metres, 64,193 vertices), every 16th vertex kept (4,013,
+ * for speed; the same fjords and peninsulas at 8-20 km), shrunk by 5-20 km: the d' curves of 12 and
+ * 20 km have a negative signed area (their inverted fjord loops outweigh the island) and came out empty.
+ * The d' polyline b P a of a gap corner lies in the triangle of the bevel chord b a and the mitre point
+ * (P is on the bisector between the chord and the mitre point), so mitre <= d' <= bevel; GEOS moves the
+ * mitre and bevel results by up to 1% of d (its input simplification), and the mitre limit squares the
+ * sharpest spikes off: 5% margins. The d' result is also within 5% above the round one (the arc of radius
+ * d against P at 1.2 d). */
+static void test_dprime_newfoundland_between_mitre_and_bevel(void **state)
+{
+    (void)state;
+    ft_read_layer_opts lo = FT_READ_LAYER_OPTS_DEFAULT;
+    ft_layer *l = NULL;
+    assert_int_equal(ft_io_read_layer(FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson", &lo, &l), FT_OK);
+    ft_polygon_set *in = NULL;
+    assert_int_equal(ft_polygon_set_from_layer(l, &in), FT_OK);
+    ft_layer_free(l);
+    assert_int_equal(in->n, 1);
+    ft_chain *c = in->polys[0].outer;
+    assert_int_equal(c->n, 64193);
+    size_t m = 0;
+    for (size_t i = 0; i < c->n; i += 16, m++)
+        c->x[m] = c->x[i], c->y[m] = c->y[i];
+    c->n = m;
+    const double ds[] = {5000, 8000, 12000, 20000};
+    for (size_t k = 0; k < sizeof ds / sizeof ds[0]; k++) {
+        ft_polygon_set *dp = shrink_join(in, ds[k], FT_JOIN_DPRIME, 1.2);
+        ft_polygon_set *mi = shrink_join(in, ds[k], FT_JOIN_MITRE, 1.2);
+        ft_polygon_set *be = shrink_join(in, ds[k], FT_JOIN_BEVEL, 1.2);
+        ft_polygon_set *ro = shrink_join(in, ds[k], FT_JOIN_ROUND, 1.2);
+        double a = ft_polygon_set_area(dp), am = ft_polygon_set_area(mi), ab = ft_polygon_set_area(be);
+        double ar = ft_polygon_set_area(ro);
+        if (!(dp->n > 0 && a >= 0.95 * am && a <= 1.05 * ab && a <= 1.05 * ar))
+            print_error("d = %g: d' area %g, mitre %g, bevel %g, round %g\n", ds[k], a, am, ab, ar);
+        assert_true(dp->n > 0);
+        assert_true(a >= 0.95 * am);
+        assert_true(a <= 1.05 * ab);
+        assert_true(a <= 1.05 * ar);
+        assert_true(ft_polygon_set_within(dp, in));
+        ft_polygon_set_free(dp);
+        ft_polygon_set_free(mi);
+        ft_polygon_set_free(be);
+        ft_polygon_set_free(ro);
+    }
+    ft_polygon_set_free(in);
+}
+
 /* ---- determinism, errors ----------------------------------------------------------------------- */
 
 static void test_same_input_same_output(void **state)
@@ -756,6 +836,8 @@ int main(void)
         cmocka_unit_test(test_clean_removes_small_twisted_loop),
         cmocka_unit_test(test_clean_merges_overlaps),
         cmocka_unit_test(test_repeated_shrinking_stays_valid_and_nested),
+        cmocka_unit_test(test_dprime_curve_of_negative_area_keeps_region),
+        cmocka_unit_test(test_dprime_newfoundland_between_mitre_and_bevel),
         cmocka_unit_test(test_same_input_same_output),
         cmocka_unit_test(test_bad_input_is_named),
         cmocka_unit_test(test_join_names),
