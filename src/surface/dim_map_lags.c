@@ -74,25 +74,11 @@ static void add_run(const field *f, size_t i, size_t j0, size_t n, double s[NSTA
     }
     size_t off = f->kind == FIELD_ROW_PAIRS ? f->h : f->h * f->nx;
     const float *zq = zp + off, *wq = wp + off;
-    /* four interleaved sets of sums, added in a fixed order (as lag_pairs.c's pair_sums) */
-    double a[4] = {0.0, 0.0, 0.0, 0.0}, b[4] = {0.0, 0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
-    size_t j = 0;
-    for (; j + 3 < n; j += 4)
-        for (int l = 0; l < 4; l++) {
-            double d = (double)zq[j + l] - (double)zp[j + l], w = (double)(wp[j + l] * wq[j + l]);
-            a[l] += w * fabs(d);
-            b[l] += w * d * d;
-            c[l] += w;
-        }
-    for (; j < n; j++) {
-        double d = (double)zq[j] - (double)zp[j], w = (double)(wp[j] * wq[j]);
-        a[0] += w * fabs(d);
-        b[0] += w * d * d;
-        c[0] += w;
-    }
-    s[0] += (a[0] + a[1]) + (a[2] + a[3]);
-    s[1] += (b[0] + b[1]) + (b[2] + b[3]);
-    s[2] += (c[0] + c[1]) + (c[2] + c[3]);
+    ft_lag_acc acc = {0.0, 0.0, 0.0, 0.0};
+    ft_lag_pair_sums(zp, wp, zq, wq, n, &acc);
+    s[0] += acc.a;
+    s[1] += acc.b;
+    s[2] += acc.c;
 }
 
 /* Block sums of one band: block rows q0 .. q0 + nq - 1, every block column; blk[((qi nbc + b) NVAR + v)

@@ -34,6 +34,10 @@ int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_s
 typedef struct {
     double a, b, c, dist;
 } ft_lag_acc;
+
+/** Adds to acc the sums over j < n of |zq[j] - zp[j]|, (zq[j] - zp[j])² and the pair weight, each pair
+ *  weighted by wp[j] wq[j] (0 or 1: nodata), in a fixed order (lag_pairs.c). */
+void ft_lag_pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc);
 /* The steps of ft_surface_lag_dim, for callers that count the pairs themselves (dim_map_lags.c):
  * the options checked against an nx x ny grid and the integer lags (malloc'd, increasing; FT_E_INVALID
  * naming the value otherwise), and the table of the statistic and its fit from the counters. */

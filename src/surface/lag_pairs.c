@@ -72,9 +72,9 @@ static int sanitize_grid(const ft_grid *g, float **z, float **w)
     return FT_OK;
 }
 
-/* Σ over j < n of the pairs (zp[j], zq[j]) weighted by wp[j] wq[j], branch-free with four interleaved
- * sets of sums (added in a fixed order, so the result depends on the input only). */
-static void pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc)
+/* Σ over j < n of the pairs (zp[j], zq[j]) weighted by wp[j] wq[j] (grid_internal.h), branch-free with four
+ * interleaved sets of sums (added in a fixed order, so the result depends on the input only). */
+void ft_lag_pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc)
 {
     double a[4] = {0.0, 0.0, 0.0, 0.0}, b[4] = {0.0, 0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
     size_t j = 0;
@@ -110,9 +110,9 @@ static void exhaustive_row(const ft_grid *g, const float *z, const float *w, siz
         size_t h = lags[k], j0 = (hmax - h + 1) / 2;
         ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
         if (h + hmax <= 2 * (nx - 1)) /* j from j0 while 2j + h + hmax <= 2(nx - 1) */
-            pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
+            ft_lag_pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
         if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1))
-            pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);
+            ft_lag_pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);
         acc[k] = (ft_lag_acc){r.a + c.a, r.b + c.b, r.c + c.c, (double)h * (r.c * cx + c.c * cy)};
     }
 }
