@@ -25,6 +25,8 @@
 
 #include "fracterra/fracterra.h"
 
+#include "accuracy_util.h"
+
 #define MAX_DIMS 32
 #define MAX_LIST 8
 
@@ -49,16 +51,6 @@ typedef struct {
     double snr[MAX_LIST];
     int nsnr;
 } args;
-
-static int parse_list(const char *s, double *v, int max)
-{
-    int n = 0;
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", s);
-    for (char *save = NULL, *t = strtok_r(buf, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save))
-        v[n++] = atof(t);
-    return n;
-}
 
 static int parse_args(int argc, char **argv, args *a)
 {
@@ -98,9 +90,9 @@ static int parse_args(int argc, char **argv, args *a)
         } else if (strcmp(o, "--seed") == 0) {
             a->seed = strtoull(v, NULL, 10);
         } else if (strcmp(o, "--dims") == 0) {
-            a->ndims = parse_list(v, a->dims, MAX_DIMS);
+            a->ndims = accuracy_parse_list(v, a->dims, MAX_DIMS);
         } else if (strcmp(o, "--snr") == 0) {
-            a->nsnr = parse_list(v, a->snr, MAX_LIST);
+            a->nsnr = accuracy_parse_list(v, a->snr, MAX_LIST);
         } else if (strcmp(o, "--method") == 0) {
             if (ft_points_method_parse(v, &a->method) != FT_OK) {
                 fprintf(stderr, "fracterra_accuracy: %s\n", ft_last_error());
@@ -193,8 +185,7 @@ static double one(const args *a, ft_synth_method m, double D, int s, double snr)
 
 static int paper_row(double D)
 {
-    long k = lround((D - 2.1) * 10.0);
-    return fabs(D - (2.1 + 0.1 * (double)k)) < 1e-9 && k >= 0 && k < 8 ? (int)k : -1;
+    return accuracy_paper_row(D, 2.1, 8);
 }
 
 /* All rows of one synthesizer and noise level; returns the number of rows beating the paper. */

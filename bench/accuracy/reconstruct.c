@@ -42,6 +42,8 @@
 
 #include "fracterra/fracterra.h"
 
+#include "accuracy_util.h"
+
 #define MAX_DIMS 16
 #define MAX_SIZES 4
 #define NMETHODS 3
@@ -71,16 +73,6 @@ typedef struct {
     ft_recon_method methods[NMETHODS];
     uint64_t seed;
 } args;
-
-static int parse_list(const char *s, double *v, int max)
-{
-    int n = 0;
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", s);
-    for (char *save = NULL, *t = strtok_r(buf, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save))
-        v[n++] = atof(t);
-    return n;
-}
 
 static int usage(const char *msg, const char *what)
 {
@@ -112,11 +104,11 @@ static int parse_args(int argc, char **argv, args *a)
             a->surfaces = atoi(v);
         } else if (strcmp(o, "--sizes") == 0) {
             double s[MAX_SIZES];
-            a->nsizes = parse_list(v, s, MAX_SIZES);
+            a->nsizes = accuracy_parse_list(v, s, MAX_SIZES);
             for (int k = 0; k < a->nsizes; k++)
                 a->sizes[k] = (int)s[k];
         } else if (strcmp(o, "--dims") == 0) {
-            a->ndims = parse_list(v, a->dims, MAX_DIMS);
+            a->ndims = accuracy_parse_list(v, a->dims, MAX_DIMS);
         } else if (strcmp(o, "--methods") == 0) {
             char buf[128];
             snprintf(buf, sizeof buf, "%s", v);
@@ -273,8 +265,7 @@ static void table4_one(const args *a, int size, double D, int s, t4_cell *out)
 
 static int paper_row(double D)
 {
-    long k = lround((D - 2.2) * 10.0);
-    return k >= 0 && k < TABLE4_ROWS && fabs(D - (2.2 + 0.1 * (double)k)) < 1e-9 ? (int)k : -1;
+    return accuracy_paper_row(D, 2.2, TABLE4_ROWS);
 }
 
 /* One size: every D over the surfaces. Returns the number of rows missing the goal or the smooth effect. */
