@@ -323,8 +323,12 @@ static void add_result(json_object *o, const dim_item *it, int segments)
     json_object_object_add(o, "range", json_range(r->range[0], r->range[1]));
     json_object_object_add(o, "segmentation", json_object_new_string(r->segmentation ? r->segmentation : ""));
     json_object_object_add(o, "max_err", cli_json_double(r->max_err));
-    if (r->warning)
-        json_object_object_add(o, "warning", json_object_new_string(r->warning));
+    if (r->units[0] != '\0')
+        json_object_object_add(o, "units", json_object_new_string(r->units));
+    json_object *w = json_object_new_array();
+    for (size_t i = 0; i < r->nwarnings; i++)
+        json_object_array_add(w, json_object_new_string(r->warnings[i]));
+    json_object_object_add(o, "warnings", w);
     json_object_object_add(o, "table", json_table(r->table));
     if (segments)
         json_object_object_add(o, "segments", json_segments(r));
@@ -463,9 +467,9 @@ static void warn_fits(const cli_command *cmd, const cli_dim_report *rep)
         const dim_group *gr = &rep->groups[g];
         for (size_t i = 0; gr->error == NULL && i < gr->n; i++) {
             const ft_dim_result *r = gr->items[i].r;
-            if (r->warning)
+            for (size_t w = 0; w < r->nwarnings; w++)
                 cli_warn(cmd, "%s%s%s: %s", gr->label ? gr->label : "", gr->label ? " " : "",
-                         r->method ? r->method : "", r->warning);
+                         r->method ? r->method : "", r->warnings[w]);
         }
     }
 }

@@ -452,12 +452,26 @@ typedef struct {
     ft_loglog_segment *segments; /**< owned; minimax segments by increasing scale (NULL if none) */
     size_t nsegments;
     size_t best;              /**< index in segments of the one that gave D, or FT_LOGLOG_NONE */
-    char *warning;            /**< owned; NULL, or one sentence for the user (the CLI prints it on
-                                   stderr): why D is the whole window's fit, or that D lies outside the
-                                   map's bounds */
+    char **warnings;          /**< owned; nwarnings sentences for the user (the CLI prints each on
+                                   stderr and in the JSON "warnings" array): why D is the whole window's
+                                   fit, that D lies outside the map's bounds, ... Add with
+                                   ft_dim_result_warn */
+    size_t nwarnings;
+    char units[32];           /**< unit of the scales ("m", "ft", "cell", "1/m" ...); "" = not known.
+                                   Set by the estimator or its caller (ft_dim_result_set_units) */
 } ft_dim_result;
 
 void ft_dim_result_free(ft_dim_result *r);
+/** Appends one printf-formatted warning to r->warnings; FT_E_NOMEM on allocation failure. */
+int ft_dim_result_warn(ft_dim_result *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/** The first warning of r containing substr, or NULL (substr NULL: the first warning). */
+const char *ft_dim_result_find_warning(const ft_dim_result *r, const char *substr);
+/** Sets r->units (truncated to fit); units NULL clears it. */
+void ft_dim_result_set_units(ft_dim_result *r, const char *units);
 void ft_loglog_segments_free(ft_loglog_segment *s);
 
 /** Least squares over the rows with lo <= scale <= hi (0 = no limit on that side; limits are inclusive

@@ -10,7 +10,10 @@
 #include "loglog_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
 {
@@ -71,8 +74,52 @@ void ft_dim_result_free(ft_dim_result *r)
         return;
     ft_loglog_free(r->table);
     free(r->segments);
-    free(r->warning);
+    for (size_t i = 0; i < r->nwarnings; i++)
+        free(r->warnings[i]);
+    free(r->warnings);
     free(r);
+}
+
+/* Takes ownership of msg (NULL: allocation failed) and appends it to r's warnings. */
+static int add_warning(ft_dim_result *r, char *msg)
+{
+    if (msg == NULL)
+        return ft_error(FT_E_NOMEM, "log-log fit: out of memory for a warning");
+    char **w = realloc(r->warnings, (r->nwarnings + 1) * sizeof *w);
+    if (w == NULL) {
+        free(msg);
+        return ft_error(FT_E_NOMEM, "log-log fit: out of memory for a warning");
+    }
+    w[r->nwarnings++] = msg;
+    r->warnings = w;
+    return FT_OK;
+}
+
+int ft_dim_result_warn(ft_dim_result *r, const char *fmt, ...)
+{
+    if (r == NULL || fmt == NULL)
+        return ft_error(FT_E_INVALID, "ft_dim_result_warn: NULL result or format");
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return add_warning(r, ft_strdup(msg));
+}
+
+const char *ft_dim_result_find_warning(const ft_dim_result *r, const char *substr)
+{
+    for (size_t i = 0; r != NULL && i < r->nwarnings; i++)
+        if (substr == NULL || strstr(r->warnings[i], substr) != NULL)
+            return r->warnings[i];
+    return NULL;
+}
+
+void ft_dim_result_set_units(ft_dim_result *r, const char *units)
+{
+    if (r == NULL)
+        return;
+    snprintf(r->units, sizeof r->units, "%s", units != NULL ? units : "");
 }
 
 /* A new result holding a copy of the table with no row used. */
@@ -143,8 +190,7 @@ static int warn_bounds(ft_dim_result *r, double tol)
 {
     if (ft_ll_in_bounds(&r->map, r->D, tol))
         return FT_OK;
-    r->warning = ft_ll_bounds_warning(&r->map, r->D, tol);
-    return r->warning != NULL ? FT_OK : FT_E_NOMEM;
+    return add_warning(r, ft_ll_bounds_warning(&r->map, r->D, tol));
 }
 
 int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map, ft_dim_result **out)
@@ -172,8 +218,7 @@ static int fit_whole(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts
     if (rc != FT_OK)
         return rc;
     r->segmentation = FT_LOGLOG_WHOLE_RANGE;
-    r->warning = ft_ll_whole_range_warning(d, o, r->D);
-    return r->warning != NULL ? FT_OK : FT_E_NOMEM;
+    return add_warning(r, ft_ll_whole_range_warning(d, o, r->D));
 }
 
 /* The longest qualifying ILS run of d's window into r; *chosen = 0 (r untouched but for the tolerance)
