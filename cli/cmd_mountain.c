@@ -336,17 +336,6 @@ static int write_outputs(const mountain_args *a, const char *out, const mountain
 
 /* ---- report ------------------------------------------------------------------------------------ */
 
-static double effective_dprime(const ft_mountain_opts *m)
-{
-    if (m->shrink.dprime > 0.0)
-        return m->shrink.dprime;
-    switch (m->method) { /* the paper's settings, as ft_mountain_generate takes them (src/contour/mountain.c) */
-    case FT_MOUNTAIN_IMPROVED: return 3.0;
-    case FT_MOUNTAIN_SIMPLE: return 1.2;
-    default: return 1.4;
-    }
-}
-
 static json_object *level_array(const ft_contour_stack *st, int what)
 {
     json_object *a = json_object_new_array();
@@ -415,7 +404,7 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
     json_object_object_add(o, "seed_elevation_from",
                            json_object_new_string(a->have_seed_elev == 2 ? "field elev"
                                                                          : (a->have_seed_elev ? "option" : "default")));
-    json_object_object_add(o, "dprime", cli_json_double(effective_dprime(m)));
+    json_object_object_add(o, "dprime", cli_json_double(st->dprime));
     if (m->method == FT_MOUNTAIN_MIDPOINT || m->method == FT_MOUNTAIN_IMPROVED) {
         json_object_object_add(o, "dsecond", cli_json_double(m->dsecond));
         json_object *th = json_object_new_array();

@@ -150,8 +150,8 @@ typedef struct {
     int levels_up;              /**< contours above the seed, >= 0; -1 (default) = until they vanish
                                      (at most 10000) */
     int levels_down;            /**< contours below the seed (grown outward), >= 0; default 0 */
-    ft_shrink_opts shrink;      /**< join and d' (dprime is a multiple of d); the improved method's
-                                     default d' = 3 d (the paper's best) applies when shrink.dprime is 0 */
+    ft_shrink_opts shrink;      /**< join and d' (dprime is a multiple of d); when shrink.dprime is 0 the
+                                     method's default applies (ft_mountain_default_dprime) */
     double dsecond;             /**< d'' as a multiple of d, >= 0; default 0.5 */
     double theta_min, theta_max;/**< degrees; default 20, 40 */
     ft_fourier_opts fourier;    /**< default n = 1024, f0 = 256 */
@@ -170,6 +170,9 @@ typedef struct {
      FT_FOURIER_OPTS_DEFAULT, 0.0, 1, 1, NULL, NULL}
 
 const char *ft_mountain_method_name(ft_mountain_method m);
+/** The d' (a multiple of d) ft_mountain_generate applies when shrink.dprime is 0: 3 for the improved
+ *  method (Misawa et al. §4.3), 1.4 for midpoint and fourier (their Figs. 12 and 15), 1.2 for simple. */
+double ft_mountain_default_dprime(ft_mountain_method m);
 /** "simple", "midpoint", "fourier", "improved"; FT_E_INVALID naming the text otherwise. */
 int ft_mountain_method_parse(const char *name, ft_mountain_method *m);
 
@@ -185,6 +188,7 @@ typedef struct {
     size_t n;
     double spacing;   /**< d used (ground units) */
     double interval;  /**< elevation step */
+    double dprime;    /**< d' used, as a multiple of d (0 when no generator made the stack) */
 } ft_contour_stack;
 
 void ft_contour_stack_free(ft_contour_stack *s);

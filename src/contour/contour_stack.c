@@ -349,6 +349,7 @@ int ft_contour_stack_from_layer(const ft_layer *l, const char *field, ft_contour
     s->n = n;
     s->interval = median_step(levels, n);
     s->spacing = 0.0;
+    s->dprime = 0.0;
     ft_geos g;
     rc = ft_geos_open(&g);
     for (size_t i = n; rc == FT_OK && i-- > 0;) {

@@ -100,6 +100,17 @@ const char *ft_mountain_method_name(ft_mountain_method m)
     return METHOD_NAMES[m];
 }
 
+/* Misawa et al.: d' = 3 d for the improved method (§4.3); d' = 1.4 d "nearly like the real ones" for
+ * the polygon shrinking with midpoint displacement and Fourier descriptors (Figs. 10, 12, 15). */
+double ft_mountain_default_dprime(ft_mountain_method m)
+{
+    switch (m) {
+    case FT_MOUNTAIN_IMPROVED: return 3.0;
+    case FT_MOUNTAIN_SIMPLE: return 1.2;
+    default: return 1.4;
+    }
+}
+
 int ft_mountain_method_parse(const char *name, ft_mountain_method *m)
 {
     if (m == NULL)
@@ -626,7 +637,7 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
     gen.simplify = SIMPLIFY_TOL * gen.d;
     gen.shrink = o.shrink;
     if (gen.shrink.dprime == 0.0)
-        gen.shrink.dprime = o.method == FT_MOUNTAIN_IMPROVED ? 3.0 : 1.2;
+        gen.shrink.dprime = ft_mountain_default_dprime(o.method);
     gen.min_area = o.shrink.min_area * gen.d * gen.d;
     gen.mid.max_seg = 2.0 * mean_segment(seed); /* §4.1: segments longer than 2 d0 */
     gen.mid.max_offset = o.dsecond * gen.d;
@@ -725,6 +736,7 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
         s->levels[below.n + i] = above.v[i];
     s->n = below.n + above.n;
     s->spacing = gen.d;
+    s->dprime = gen.shrink.dprime;
     s->interval = o.interval;
     free(below.v);
     free(above.v);

@@ -268,7 +268,21 @@ static void test_defaults_and_holes(void **state)
     ft_mountain_opts o = FT_MOUNTAIN_OPTS_DEFAULT;
     check_stack(st, &o, "defaults");
     assert_near(st->spacing, sqrt(ft_polygon_set_area(s)) / 40.0, 1e-12);
+    assert_near(st->dprime, 3.0, 0.0); /* the improved method's d' = 3 d (Misawa et al. 4.3) */
     assert_true(st->n >= 5);
+    ft_contour_stack_free(st);
+    /* midpoint and Fourier shrink with d' = 1.4 d (their Figs. 12 and 15); an explicit d' is kept */
+    o.method = FT_MOUNTAIN_MIDPOINT;
+    o.levels_up = 2;
+    st = generate(s, &o);
+    assert_near(st->dprime, 1.4, 0.0);
+    ft_contour_stack_free(st);
+    o.method = FT_MOUNTAIN_FOURIER;
+    o.shrink.dprime = 1.6;
+    st = generate(s, &o);
+    assert_near(st->dprime, 1.6, 0.0);
+    ft_contour_stack_free(st);
+    st = generate(s, NULL);
     /* every level surrounds the crater: none covers the hole's centre */
     for (size_t i = 0; i < st->n; i++)
         assert_false(inside_set(st->levels[i].polys, 0.5, 0.0));
