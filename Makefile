@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 PREFIX ?= /usr/local
 
-.PHONY: all deps configure build demo test bench accuracy install clean
+.PHONY: all deps configure build demo test test-quick bench accuracy install clean
 
 all: build
 
@@ -23,6 +23,10 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The same suite without the statistical accuracy programs (CTest label "accuracy"): a quick run while editing.
+test-quick: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE accuracy
 
 bench: build
 	./$(BUILD)/fracterra_bench
