@@ -300,7 +300,9 @@ void ft_rng_fast_init(ft_rng_fast *r, uint64_t seed, uint64_t stream);
 /** The next 64 random bits. */
 uint64_t ft_rng_fast_next(ft_rng_fast *r);
 /** Fills out[0 .. n-1] with independent standard normal deviates (256-layer ziggurat of Marsaglia &
- *  Tsang 2000, one 64-bit draw per deviate on the fast path, layer and value from disjoint bits). */
+ *  Tsang 2000, one 64-bit draw per deviate on the fast path, layer and value from disjoint bits). The bits
+ *  are drawn 64 at a time and the rare slow-path draws follow each block, so the deviates depend on how
+ *  a sequence is split into calls: reproducible callers keep the same calls (e.g. one per row). */
 void ft_rng_fast_normals(ft_rng_fast *r, float *out, size_t n);
 
 /* ------------------------------------------------------------------------------------------------
