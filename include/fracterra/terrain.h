@@ -23,9 +23,13 @@ extern "C" {
 
 typedef enum {
     FT_SYNTH_FFT = 0,      /**< spectral synthesis: amplitude ~ |f|^-(H+1), Gaussian coefficients */
-    FT_SYNTH_SRA = 1,      /**< successive random addition (Voss) */
-    FT_SYNTH_MIDPOINT = 2, /**< diamond-square midpoint displacement (creases are a known artefact) */
-    FT_SYNTH_EXACT = 3     /**< stationary-increment circulant embedding (Stein 2002): exact fBm increments */
+    FT_SYNTH_SRA = 1,      /**< successive random addition (Voss), calibrated: run at the parameter whose
+                                surfaces have the asked D by the variogram over lags 1-16 cells */
+    FT_SYNTH_MIDPOINT = 2, /**< diamond-square midpoint displacement (creases are a known artefact),
+                                calibrated like sra */
+    FT_SYNTH_EXACT = 3,    /**< stationary-increment circulant embedding (Stein 2002): exact fBm increments */
+    FT_SYNTH_SRA_RAW = 4,  /**< Voss's SRA at H = 3 - D as published ("sra-raw"; Arakawa & Krotkov's data) */
+    FT_SYNTH_MIDPOINT_RAW = 5 /**< diamond-square at H = 3 - D as published ("midpoint-raw") */
 } ft_synth_method;
 
 typedef struct {
@@ -47,6 +51,10 @@ typedef struct {
 int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out);
 const char *ft_synth_method_name(ft_synth_method m);
 int ft_synth_method_parse(const char *name, ft_synth_method *m);
+/** The D the raw algorithm runs at (H = 3 - raw D) when sra or midpoint is asked for D on an nx x ny grid
+ *  (sra: from its exact expected variogram, which depends on the size; midpoint: its measured table;
+ *  src/terrain/synth_calibration.c); D itself for the other methods. */
+double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
 
 
 /* ------------------------------------------------------------------------------------------------
