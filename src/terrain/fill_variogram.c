@@ -88,7 +88,8 @@ int ft_fill_fit_model(const float *z, const uint8_t *use, size_t nx, size_t ny, 
         m->H = H;
         slope = 2.0 * H;
     }
-    /* intercept through the centroid with the slope used */
-    m->v1 = exp(my - slope * mx);
+    /* v1: the measured mean square at one cell (the one-cell increments across the border are the seam
+     * users see); the fitted line's value there only when lag 1 has too few pairs */
+    m->v1 = cnt[1] >= FT_FILL_MIN_PAIRS && sum[1] > 0.0 ? sum[1] / cnt[1] : exp(my - slope * mx);
     return FT_OK;
 }

@@ -117,6 +117,49 @@ static void test_volcano(void **state)
     ft_grid_free(orig);
 }
 
+/* Luxembourg (30", hills): a 10 x 10 void in the centre of every complete 16 x 16 window, filled with
+ * seeds 1..3 (--max-void 10: the outside stays nodata); the windows' D (lags 1-8), filled against
+ * original, within 0.05 on average. */
+static void test_luxembourg_windows(void **state)
+{
+    (void)state;
+    ft_grid *orig = read_band(LUXEMBOURG, 1), *D0 = dmap(orig), *g = ft_grid_copy(orig);
+    size_t nwin = 0;
+    for (size_t wy = 0; wy < D0->ny; wy++)
+        for (size_t wx = 0; wx < D0->nx; wx++) {
+            if (!ft_grid_is_valid(D0, wx, wy))
+                continue;
+            nwin++;
+            for (size_t y = wy * 16 + 3; y < wy * 16 + 13; y++)
+                for (size_t x = wx * 16 + 3; x < wx * 16 + 13; x++)
+                    g->mask[y * g->nx + x] = 0;
+        }
+    assert_true(nwin >= 6);
+    const char *in = ft_test_tmp("lux_holes.tif"), *out = ft_test_tmp("lux_win.tif");
+    assert_int_equal(ft_io_write_grid(in, g, NULL), FT_OK);
+    double s = 0.0;
+    const char *seeds[3] = {"1", "2", "3"};
+    for (int k = 0; k < 3; k++) {
+        json_object *o = FT_TEST_RUN_JSON("fill", in, out, "--max-void", "10", "--seed", seeds[k], "--json");
+        assert_int_equal(ft_test_json_int(o, "cells_filled"), (int64_t)(nwin * 100));
+        json_object_put(o);
+        ft_grid *f = read_band(out, 1), *D1 = dmap(f);
+        for (size_t i = 0; i < D0->nx * D0->ny; i++)
+            if (ft_grid_is_valid(D0, i % D0->nx, i / D0->nx)) {
+                assert_true(ft_grid_is_valid(D1, i % D0->nx, i / D0->nx));
+                s += D1->z[i] - D0->z[i];
+            }
+        ft_grid_free(D1);
+        ft_grid_free(f);
+    }
+    print_message("Luxembourg: mean D of %zu windows x 3 seeds, filled - original = %+.3f\n", nwin,
+                  s / (3.0 * (double)nwin));
+    assert_true(fabs(s / (3.0 * (double)nwin)) <= 0.05);
+    ft_grid_free(g);
+    ft_grid_free(D0);
+    ft_grid_free(orig);
+}
+
 static void test_luxembourg_outside_stays(void **state)
 {
     (void)state;
@@ -221,6 +264,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volcano),
+        cmocka_unit_test(test_luxembourg_windows),
         cmocka_unit_test(test_luxembourg_outside_stays),
         cmocka_unit_test(test_mask_mean_realizations),
         cmocka_unit_test(test_bad_input),
