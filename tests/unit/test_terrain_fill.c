@@ -242,6 +242,30 @@ static void test_realizations(void **state)
     ft_grid_free(g);
 }
 
+static int cancel_at_once(double frac, const char *msg, void *arg)
+{
+    (void)frac;
+    (void)msg;
+    (void)arg;
+    return 0;
+}
+
+static void test_cancel(void **state)
+{
+    (void)state;
+    ft_grid *g = fbm(64, 2.5, 6), *out = NULL, *sd = NULL;
+    punch(g, 10, 10, 8, 8);
+    ft_fill_opts o = FT_FILL_OPTS_DEFAULT;
+    o.progress = cancel_at_once;
+    o.realizations = 2;
+    ft_fill_result *r = NULL;
+    assert_int_equal(ft_terrain_fill(g, NULL, &o, &out, &sd, &r), FT_E_CANCELLED);
+    assert_null(out);
+    assert_null(sd);
+    assert_null(r);
+    ft_grid_free(g);
+}
+
 /* GDAL's FillNodata on a copy of g (max distance unbounded, no smoothing); returns the filled cells. */
 static float *gdal_fill(const ft_grid *g)
 {
@@ -324,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_exact_and_reproducible),
         cmocka_unit_test(test_max_void_and_mask),
         cmocka_unit_test(test_realizations),
+        cmocka_unit_test(test_cancel),
         cmocka_unit_test(test_fbm_accuracy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
