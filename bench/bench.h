@@ -75,6 +75,7 @@ extern const ft_bench_suite ft_bench_suite_surface;
 extern const ft_bench_suite ft_bench_suite_urban;
 extern const ft_bench_suite ft_bench_suite_points;
 extern const ft_bench_suite ft_bench_suite_reconstruct;
+extern const ft_bench_suite ft_bench_suite_fill;
 extern const ft_bench_suite ft_bench_suite_contour;
 
 /* ------------------------------------------------------------------------------------------------

@@ -42,6 +42,7 @@ static const ft_bench_suite *const bench_suites[] = {
     &ft_bench_suite_urban,
     &ft_bench_suite_points,
     &ft_bench_suite_reconstruct,
+    &ft_bench_suite_fill,
     &ft_bench_suite_contour,
 };
 #define N_SUITES (sizeof bench_suites / sizeof bench_suites[0])

@@ -30,6 +30,7 @@ extern const cli_command cli_cmd_demo;
 extern const cli_command cli_cmd_synth;     /* terrain (issue 5) */
 extern const cli_command cli_cmd_model;
 extern const cli_command cli_cmd_reconstruct; /* reconstruction (issue 7) */
+extern const cli_command cli_cmd_fill;        /* void filling (issue 14) */
 extern const cli_command cli_cmd_mountain;    /* contour mountain (issue 8) */
 extern const cli_command cli_cmd_hillshade;
 extern const cli_command cli_cmd_render;

@@ -68,7 +68,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 'm':
         return ft_synth_method_parse(arg, &a->so.method) == FT_OK
                    ? CLI_CONTINUE
-                   : cli_usage_error(cmd, "--method must be fft, sra, midpoint or exact, got '%s'", arg);
+                   : cli_usage_error(cmd, "--method must be fft, sra, midpoint, exact, sra-raw or midpoint-raw, got '%s'", arg);
     case 'c': return cli_parse_double(cmd, "--cell", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->so.cell);
     case 'o': return parse_origin(cmd, arg, &a->so.origin_x, &a->so.origin_y);
     case 'r': a->crs = arg; return CLI_CONTINUE;
@@ -92,6 +92,7 @@ static int report(const cli_command *cmd, const synth_args *a, const char *out, 
     json_object_object_add(o, "output", json_object_new_string(out));
     json_object_object_add(o, "method", json_object_new_string(ft_synth_method_name(a->so.method)));
     json_object_object_add(o, "D", cli_json_double(a->so.dim));
+    json_object_object_add(o, "D_param", cli_json_double(ft_synth_raw_dim(a->so.method, a->so.dim, a->nx, a->ny)));
     json_object_object_add(o, "seed", json_object_new_uint64(a->so.seed));
     json_object_object_add(o, "sigma", cli_json_double(a->so.sigma));
     json_object_object_add(o, "cell", cli_json_double(a->so.cell));
@@ -155,8 +156,9 @@ static int run_synth(const cli_command *cmd, int argc, char **argv)
 const cli_command cli_cmd_synth = {
     "synth",
     "synthesize a fractional Brownian terrain of dimension D (fft, sra, midpoint, exact)",
-    "fracterra synth OUT.tif --dim D --size NxM [--method fft|sra|midpoint|exact] [--cell SIZE]\n"
-    "       [--origin X,Y] [--crs EPSG:n|WKT] [--sigma S] [--periodic] [--seed N] [-f DRIVER] [--json]",
+    "fracterra synth OUT.tif --dim D --size NxM [--method fft|sra|midpoint|exact|sra-raw|midpoint-raw]\n"
+    "       [--cell SIZE] [--origin X,Y] [--crs EPSG:n|WKT] [--sigma S] [--periodic] [--seed N] [-f DRIVER]\n"
+    "       [--json]",
     "Writes a fractional Brownian surface of dimension D = 3 - H as a one-band Float32 raster (GeoTIFF\n"
     "unless the extension or -f says otherwise), north-up with the given cell size, origin and CRS.\n"
     "The same options and seed give identical cells on any machine and thread count.\n\n"
@@ -165,7 +167,9 @@ const cli_command cli_cmd_synth = {
     "  --size NxM       columns x rows (required), each up to 65536\n"
     "  --method NAME    fft (default): spectral synthesis on a padded grid, cropped;\n"
     "                   sra: successive random addition (Voss); midpoint: diamond-square (creases);\n"
-    "                   exact: circulant embedding (Stein 2002), exact fBm increments\n"
+    "                   both calibrated so that the variogram over lags 1-16 cells reads D;\n"
+    "                   exact: circulant embedding (Stein 2002), exact fBm increments;\n"
+    "                   sra-raw, midpoint-raw: the papers' algorithms at H = 3 - D, uncalibrated\n"
     "  --cell SIZE      cell size in CRS units (default 1)\n"
     "  --origin X,Y     upper-left corner (default 0,0)\n"
     "  --crs CRS        EPSG:n, WKT or a PROJ string (default none)\n"
@@ -173,7 +177,8 @@ const cli_command cli_cmd_synth = {
     "  --periodic       fft: keep the periodic tile (wraps seamlessly)\n"
     "  --seed N         random seed (default 1; printed in the JSON)\n"
     "  -f, --format DRV GDAL driver of the output (default from the extension)\n"
-    "  -j, --json       print {\"output\", \"method\", \"D\", \"seed\", \"sigma\", \"cell\", \"periodic\",\n"
+    "  -j, --json       print {\"output\", \"method\", \"D\", \"D_param\" (the D the algorithm ran at),\n"
+    "                   \"seed\", \"sigma\", \"cell\", \"periodic\",\n"
     "                   \"geotransform\", \"crs\", \"grid\": {\"size\", \"mean\", \"sd\", \"min\", \"max\"}}\n"
     "  -h, --help       print this help\n\n"
     "Example:\n"

@@ -28,6 +28,7 @@ static const cli_command *const commands[] = {
     &cli_cmd_synth,
     &cli_cmd_model,
     &cli_cmd_reconstruct,
+    &cli_cmd_fill,
     &cli_cmd_mountain,
     &cli_cmd_hillshade,
     &cli_cmd_render,

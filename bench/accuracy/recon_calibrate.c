@@ -83,7 +83,7 @@ int main(int argc, char **argv)
     double dims[16] = {2.2, 2.3, 2.4, 2.5, 2.6, 2.7, 2.8}, ks[32] = {0.0}, frac = 0.05, tension = -1.0;
     int nd = 7, nk = 1;
     const char *methods = "fractal,conditional,smooth";
-    ft_synth_method synth = FT_SYNTH_SRA;
+    ft_synth_method synth = FT_SYNTH_SRA_RAW; /* the paper's data: Voss's SRA at H = 3 - D */
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc)
             size = (size_t)atol(argv[++i]);
@@ -110,7 +110,7 @@ int main(int argc, char **argv)
             threads = atoi(argv[++i]);
         else {
             fprintf(stderr, "usage: recon_calibrate [--size N] [--seeds S] [--dims a,b] [--scan k1,k2] "
-                            "[--methods fractal,conditional,smooth] [--sweeps n] [--every 4] [--fraction 0.05] [--tension t] [--synth sra|exact|fft] [--threads n]\n");
+                            "[--methods fractal,conditional,smooth] [--sweeps n] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n]\n");
             return 2;
         }
     }

@@ -225,7 +225,7 @@ static void table4_one(const args *a, int size, double D, int s, t4_cell *out)
 {
     memset(out, 0, sizeof *out);
     ft_synth_opts so = FT_SYNTH_OPTS_DEFAULT;
-    so.method = FT_SYNTH_SRA;
+    so.method = FT_SYNTH_SRA_RAW; /* the paper's data: Voss's SRA at H = 3 - D */
     so.dim = D;
     so.sigma = TABLE4_SD;
     so.seed = a->seed + (uint64_t)s;

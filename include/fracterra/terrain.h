@@ -23,9 +23,13 @@ extern "C" {
 
 typedef enum {
     FT_SYNTH_FFT = 0,      /**< spectral synthesis: amplitude ~ |f|^-(H+1), Gaussian coefficients */
-    FT_SYNTH_SRA = 1,      /**< successive random addition (Voss) */
-    FT_SYNTH_MIDPOINT = 2, /**< diamond-square midpoint displacement (creases are a known artefact) */
-    FT_SYNTH_EXACT = 3     /**< stationary-increment circulant embedding (Stein 2002): exact fBm increments */
+    FT_SYNTH_SRA = 1,      /**< successive random addition (Voss), calibrated: run at the parameter whose
+                                surfaces have the asked D by the variogram over lags 1-16 cells */
+    FT_SYNTH_MIDPOINT = 2, /**< diamond-square midpoint displacement (creases are a known artefact),
+                                calibrated like sra */
+    FT_SYNTH_EXACT = 3,    /**< stationary-increment circulant embedding (Stein 2002): exact fBm increments */
+    FT_SYNTH_SRA_RAW = 4,  /**< Voss's SRA at H = 3 - D as published ("sra-raw"; Arakawa & Krotkov's data) */
+    FT_SYNTH_MIDPOINT_RAW = 5 /**< diamond-square at H = 3 - D as published ("midpoint-raw") */
 } ft_synth_method;
 
 typedef struct {
@@ -47,6 +51,10 @@ typedef struct {
 int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out);
 const char *ft_synth_method_name(ft_synth_method m);
 int ft_synth_method_parse(const char *name, ft_synth_method *m);
+/** The D the raw algorithm runs at (H = 3 - raw D) when sra or midpoint is asked for D on an nx x ny grid
+ *  (sra: from its exact expected variogram, which depends on the size; midpoint: its measured table;
+ *  src/terrain/synth_calibration.c); D itself for the other methods. */
+double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
 
 
 /* ------------------------------------------------------------------------------------------------
@@ -225,6 +233,72 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
  *  without nodata is returned as a copy (info->filled = 0). All-nodata is FT_E_EMPTY. */
 int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid **out, ft_grid **sd_out,
                          ft_recon_info *info);
+
+/* ------------------------------------------------------------------------------------------------
+ * Void filling of a DEM by conditional simulation (docs/terrain-fill.md): every void (8-connected
+ * nodata cells) is filled on its own, with the roughness of the terrain around it. Its model is a
+ * power variogram E(z(x) - z(y))² = v1 r^(2H), r in cells, fitted to the valid cells of a ring around
+ * the void (lags 1-8 along rows and columns; D = 3 - H). The fill is intrinsic kriging (ordinary
+ * kriging with that variogram; Matheron 1973, Chilès & Delfiner §4.4) of the valid cells within 2
+ * cells of the void, plus, for a realization, an exact fBm of the same model (Stein 2002) minus its
+ * own kriging from the same cells (Journel & Huijbregts 1978, ch. VII): every valid cell is honoured
+ * exactly, and increments across the void's border have the model's statistics (no seam).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double max_void;   /**< voids whose bounding box is longer than this many cells along either axis
+                            stay nodata (coast, outside of a survey); > 0; 0 = no limit; default 100
+                            (gdal_fillnodata's -md default) */
+    int mean;          /**< 1: the kriging mean (the best linear prediction, smooth inside large voids)
+                            instead of a realization; default 0 */
+    int realizations;  /**< >= 1; N > 1: the output is the per-cell mean of N realizations and sd_out
+                            their standard deviation; default 1 */
+    double dim;        /**< D in (2, 3) for every void; 0 (default) = fitted on each void's ring */
+    int ring;          /**< width of the ring whose variogram is fitted, cells, >= 2; 0 (default) =
+                            half the void's longer side, clamped to [10, 64] */
+    uint64_t seed;     /**< void k, realization r: streams of ft_rng_mix(ft_rng_mix(seed, k), r); default 1 */
+    ft_progress_fn progress;
+    void *progress_arg;
+} ft_fill_opts;
+#define FT_FILL_OPTS_DEFAULT {100.0, 0, 1, 0.0, 0, 1, NULL, NULL}
+
+typedef enum {
+    FT_FILL_D_RING = 0,  /**< D and v1 fitted on the void's ring */
+    FT_FILL_D_DEM = 1,   /**< the ring had too few pairs: fitted on every valid cell of the DEM */
+    FT_FILL_D_GIVEN = 2, /**< opts->dim; v1 fitted on the ring (or the DEM) with that slope */
+    FT_FILL_D_FLAT = 3   /**< every pair has the same elevation: the fill is the kriging mean, D undefined */
+} ft_fill_d_source;
+
+typedef struct {
+    size_t x0, y0, x1, y1;   /**< bounding box, inclusive cell indices */
+    size_t cells;            /**< void cells */
+    int edge;                /**< 1 if the void touches the raster's edge */
+    int filled;              /**< 0: larger than max_void, left nodata */
+    double D;                /**< the model's D (NaN if not filled or flat) */
+    double amplitude;        /**< sqrt(v1): RMS elevation difference at one cell, elevation units */
+    double r2;               /**< r² of the log-log fit (NaN if D was given, flat or not fitted) */
+    int clamped;             /**< 1 if the fitted D fell outside [2.01, 2.99] and was clamped */
+    ft_fill_d_source source;
+    size_t ring_cells;       /**< valid cells of the ring */
+    size_t conditioning;     /**< valid cells the kriging honours (within 2 cells of the void) */
+} ft_fill_void;
+
+typedef struct {
+    ft_fill_void *voids;     /**< every void, in raster order of its first cell */
+    size_t nvoids;
+    size_t voids_filled, cells_filled, cells_left;
+} ft_fill_result;
+
+/** Fills the voids of `dem`: cells whose mask is 0 or whose value is not finite, and, if `invalid` is
+ *  not NULL (nx x ny bytes), the cells where invalid[i] == 0 (gdal_fillnodata's -mask convention).
+ *  *out: a copy of dem with the filled voids (voids left nodata keep mask 0). sd_out (may be NULL):
+ *  with realizations > 1 the per-cell sd (0 on valid cells), else zero on filled cells. *res (may be
+ *  NULL): the voids and totals (ft_fill_result_free). Valid cells are copied bit for bit. Same DEM,
+ *  options and seed => bit-identical cells. Errors: FT_E_EMPTY if no cell is valid. */
+int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
+                    ft_grid **sd_out, ft_fill_result **res);
+void ft_fill_result_free(ft_fill_result *r);
+const char *ft_fill_d_source_name(ft_fill_d_source s);
 
 #ifdef __cplusplus
 }

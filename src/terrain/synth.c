@@ -2,7 +2,8 @@
  * (synth_fft.c, synth_sra.c, synth_midpoint.c, synth_exact.c; docs/terrain-synthesis.md): validates the
  * options (messages name the bad value), allocates the grid, rescales the cells to mean 0 and standard
  * deviation sigma (sigma = 0 leaves each method's raw scale) and sets the north-up geotransform
- * {origin_x, cell, 0, origin_y, 0, -cell}. H = 3 - D.
+ * {origin_x, cell, 0, origin_y, 0, -cell}. H = 3 - D, or for sra and midpoint 3 - the calibrated parameter
+ * (synth_calibration.c); sra-raw and midpoint-raw run at H = 3 - D as the papers define them.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -15,7 +16,7 @@
 #include "fracterra/core.h"
 #include "internal.h"
 
-static const char *const method_names[] = {"fft", "sra", "midpoint", "exact"};
+static const char *const method_names[] = {"fft", "sra", "midpoint", "exact", "sra-raw", "midpoint-raw"};
 #define N_METHODS (sizeof method_names / sizeof method_names[0])
 
 const char *ft_synth_method_name(ft_synth_method m)
@@ -32,7 +33,7 @@ int ft_synth_method_parse(const char *name, ft_synth_method *m)
             *m = (ft_synth_method)i;
             return FT_OK;
         }
-    return ft_error(FT_E_INVALID, "synth: unknown method '%s' (expected fft, sra, midpoint or exact)", name);
+    return ft_error(FT_E_INVALID, "synth: unknown method '%s' (expected fft, sra, midpoint, exact, sra-raw or midpoint-raw)", name);
 }
 
 static int validate(size_t nx, size_t ny, const ft_synth_opts *o)
@@ -100,11 +101,13 @@ int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **
     ft_grid *g = ft_grid_create(nx, ny);
     if (g == NULL)
         return FT_E_NOMEM;
-    double H = 3.0 - o.dim;
+    double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
     switch (o.method) {
     case FT_SYNTH_FFT: rc = ft_synth_fft_fill(nx, ny, H, &o, g->z); break;
-    case FT_SYNTH_SRA: rc = ft_synth_sra_fill(nx, ny, H, &o, g->z); break;
-    case FT_SYNTH_MIDPOINT: rc = ft_synth_midpoint_fill(nx, ny, H, &o, g->z); break;
+    case FT_SYNTH_SRA:
+    case FT_SYNTH_SRA_RAW: rc = ft_synth_sra_fill(nx, ny, H, &o, g->z); break;
+    case FT_SYNTH_MIDPOINT:
+    case FT_SYNTH_MIDPOINT_RAW: rc = ft_synth_midpoint_fill(nx, ny, H, &o, g->z); break;
     case FT_SYNTH_EXACT: rc = ft_synth_exact_fill(nx, ny, H, &o, g->z); break;
     }
     if (rc == FT_OK && o.sigma > 0.0)

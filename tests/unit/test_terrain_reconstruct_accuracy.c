@@ -98,9 +98,9 @@ static void test_table4(void **state)
     static const double dims[] = {2.3, 2.5, 2.7};
     int bad = 0;
     for (size_t i = 0; i < 3; i++) {
-        double Ds, f = table4_row(FT_SYNTH_SRA, dims[i], FT_RECON_FRACTAL, 3, &Ds);
-        double c = table4_row(FT_SYNTH_SRA, dims[i], FT_RECON_CONDITIONAL, 3, &Ds);
-        double s = table4_row(FT_SYNTH_SRA, dims[i], FT_RECON_SMOOTH, 3, &Ds);
+        double Ds, f = table4_row(FT_SYNTH_SRA_RAW, dims[i], FT_RECON_FRACTAL, 3, &Ds);
+        double c = table4_row(FT_SYNTH_SRA_RAW, dims[i], FT_RECON_CONDITIONAL, 3, &Ds);
+        double s = table4_row(FT_SYNTH_SRA_RAW, dims[i], FT_RECON_SMOOTH, 3, &Ds);
         double Dse = 0.0, ce = i == 1 ? table4_row(FT_SYNTH_EXACT, dims[i], FT_RECON_CONDITIONAL, 3, &Dse) : 0.0;
         print_message("D %.1f: SRA D* %.3f, D^ - D*: fractal %+.4f conditional %+.4f smooth %+.4f; exact fBm D* "
                       "%.3f, conditional %+.4f\n", dims[i], Ds, f, c, s, Dse, ce);
