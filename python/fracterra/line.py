@@ -1,0 +1,146 @@
+"""Fractal dimension of chains and Dutton's enhancement with its companions (line.h, urban.h's
+boundary generator; docs/line-*.md, docs/urban-boundary.md). Chains are (n, 2) float64 arrays of x, y;
+a ring does not repeat its first vertex (closed=True)."""
+import ctypes
+import os
+
+import numpy as np
+
+from . import _structs as S
+from ._lib import lib, check, parse_enum
+from ._core import xy_arrays, chain_new, chain_to_numpy, ChainSet, take_result, Progress
+from ._common import set_fit, set_scales, path_bytes
+
+__all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
+           "LINE_METHODS"]
+
+LINE_METHODS = ("divider", "equipaced", "hybrid", "box")
+
+
+def _read_layer(path, layer=None, where=None):
+    o = S.ft_read_layer_opts.default()
+    keep = [v.encode() if v is not None else None for v in (layer, where)]
+    o.layer, o.where = keep
+    o.fields = b""
+    out = ctypes.POINTER(S.ft_layer)()
+    check(lib.ft_io_read_layer(path_bytes(path), ctypes.byref(o), ctypes.byref(out)))
+    return out
+
+
+def read_chains(path, *, layer=None, where=None):
+    """The chains of a vector layer (OGR) or GMT text file, read by the library's reader: a list of
+    (coords, closed, feature) with coords an (n, 2) array, rings without their closing vertex, and the
+    layer's CRS as WKT: (chains, wkt)."""
+    lp = _read_layer(path, layer, where)
+    try:
+        lay = lp.contents
+        chains = []
+        for i in range(lay.nparts):
+            part = lay.parts[i]
+            chains.append((chain_to_numpy(part.chain), bool(part.chain.contents.closed), int(part.feature)))
+        return chains, (lay.crs_wkt.decode() if lay.crs_wkt else None)
+    finally:
+        lib.ft_layer_free(lp)
+
+
+def _chain_list(coords, y, closed):
+    """[(x, y, closed)] from one chain (x and y, or an (n, 2) array) or a list of (n, 2) arrays."""
+    if y is not None:
+        return [xy_arrays(coords, y) + (bool(closed),)]
+    if isinstance(coords, np.ndarray) and coords.ndim == 2:
+        return [xy_arrays(coords) + (bool(closed),)]
+    items = list(coords)
+    flags = closed if isinstance(closed, (list, tuple)) else [closed] * len(items)
+    if len(flags) != len(items):
+        raise ValueError("closed: %d flags for %d chains" % (len(flags), len(items)))
+    return [xy_arrays(c) + (bool(f),) for c, f in zip(items, flags)]
+
+
+def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, where=None, min_scale=None,
+             max_scale=None, nscales=None, fit_whole_range=None, both_ends=True, box_offsets=None, fit=None,
+             progress=None, progress_arg=None):
+    """Fractal dimension D (1..2) of a set of chains, as `fracterra dim line`: the values at each scale
+    are summed over the chains and one log-log table is fitted.
+
+    coords: a path (every part of every feature of the layer, as the CLI without --by; layer= and
+    where= select), x with y, an (n, 2) array, or a list of (n, 2) arrays (closed: one flag or one per
+    chain). method: one of LINE_METHODS. Returns a DimResult."""
+    if isinstance(coords, (str, bytes, os.PathLike)):
+        chains, _ = read_chains(coords, layer=layer, where=where)
+        items = [xy_arrays(c) + (cl,) for c, cl, _f in chains if len(c) >= 2]
+    else:
+        items = _chain_list(coords, y, closed)
+    m = parse_enum(lib.ft_line_method_parse, method, "method")
+    o = S.ft_line_dim_opts.default()
+    set_scales(o, min_scale, max_scale, nscales, fit_whole_range)
+    o.both_ends = 1 if both_ends else 0
+    if box_offsets is not None:
+        o.box_offsets = int(box_offsets)
+    set_fit(o.fit, fit)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out = ctypes.POINTER(S.ft_dim_result)()
+    with ChainSet(items) as cs:
+        pr.check(lib.ft_line_dim(cs.array, len(cs.ptrs), m, ctypes.byref(o), ctypes.byref(out)))
+    r = take_result(out)
+    r.method = LINE_METHODS[m]
+    return r
+
+
+def _chain_op(fn, coords, y, closed, *args):
+    x, yy = xy_arrays(coords, y)
+    cin = chain_new(x, yy, closed)
+    out = ctypes.POINTER(S.ft_chain)()
+    try:
+        check(fn(cin, *args, ctypes.byref(out)))
+        try:
+            return chain_to_numpy(out)
+        finally:
+            lib.ft_chain_free(out)
+    finally:
+        lib.ft_chain_free(cin)
+
+
+def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None):
+    """Dutton's fractal enhancement of one chain (ft_line_enhance): a new (n, 2) array. target_dim
+    selects the calibrated mode (sd is then ignored). End points of open chains stay."""
+    o = S.ft_dutton_opts.default()
+    o.sd, o.uc, o.sm, o.iterations = float(sd), float(uc), float(sm), int(iterations)
+    if st is not None:
+        o.st = float(st)
+    if target_dim is not None:
+        o.target_dim = float(target_dim)
+    return _chain_op(lib.ft_line_enhance, coords, y, closed, ctypes.byref(o))
+
+
+def smooth(coords, y=None, *, closed=False, passes=1, roundness=0.5, st=None, sm=0.0):
+    """Roundness smoothing (corner cutting; roundness 0.5 is Chaikin's) of one chain."""
+    o = S.ft_smooth_opts.default()
+    o.passes, o.roundness, o.sm = int(passes), float(roundness), float(sm)
+    if st is not None:
+        o.st = float(st)
+    return _chain_op(lib.ft_line_smooth, coords, y, closed, ctypes.byref(o))
+
+
+def weed(coords, y=None, *, closed=False, min_segment):
+    """Drops vertices so that no segment is shorter than min_segment (map units)."""
+    return _chain_op(lib.ft_line_weed, coords, y, closed, float(min_segment))
+
+
+def simplify(coords, y=None, *, closed=False, tolerance):
+    """Douglas-Peucker simplification with a distance tolerance (map units)."""
+    return _chain_op(lib.ft_line_simplify, coords, y, closed, float(tolerance))
+
+
+def remove_loops(coords, y=None, *, closed=False):
+    """Removes the loops that self-intersections make."""
+    return _chain_op(lib.ft_line_remove_loops, coords, y, closed)
+
+
+def boundary(coords, y=None, *, closed=True, dim, min, max=0.0, jitter=0.0, seed=1, stream=0):
+    """Zhang et al.'s midpoint-subdivision boundary generator on one chain (ft_urban_boundary): dim in
+    (1, 2), min > 0 and max (0 = the chain's average chord) in map units; seeded as the CLI."""
+    o = S.ft_boundary_opts.default()
+    o.dim, o.min, o.max, o.jitter = float(dim), float(min), float(max), float(jitter)
+    o.seed, o.stream = int(seed), int(stream)
+    return _chain_op(lib.ft_urban_boundary, coords, y, closed, ctypes.byref(o))
