@@ -15,10 +15,16 @@ def data():
 
 
 @pytest.fixture(scope="session")
-def cli():
+def cli_exe():
     exe = os.environ.get("FRACTERRA_CLI", os.path.join(ROOT, "build", "fracterra"))
     if not os.path.exists(exe):
         pytest.skip("no fracterra CLI at %s" % exe)
+    return exe
+
+
+@pytest.fixture(scope="session")
+def cli(cli_exe):
+    exe = cli_exe
 
     def run(*args, json_out=True):
         p = subprocess.run([exe, *map(str, args)] + (["--json"] if json_out else []), capture_output=True,
