@@ -10,8 +10,9 @@ import pytest
 
 from fracterra import _lib, _structs as S
 
-INCLUDE = os.environ.get("FRACTERRA_INCLUDE",
-                         os.path.join(os.path.dirname(__file__), os.pardir, os.pardir, "include"))
+_ROOT = os.path.join(os.path.dirname(__file__), os.pardir, os.pardir)
+INCLUDE = os.environ.get("FRACTERRA_INCLUDE", os.pathsep.join(
+    [os.path.join(_ROOT, "include"), os.path.join(_ROOT, "build", "include")])).split(os.pathsep)
 CC = os.environ.get("CC", "cc")
 
 
@@ -79,7 +80,8 @@ def test_struct_layouts_and_defaults_match_the_headers(tmp_path):
     src, expect = _program()
     (tmp_path / "layout.c").write_text(src)
     exe = tmp_path / "layout"
-    subprocess.run([CC, "-std=c11", "-I", INCLUDE, str(tmp_path / "layout.c"), "-o", str(exe)], check=True)
+    subprocess.run([CC, "-std=c11"] + ["-I" + d for d in INCLUDE] + [str(tmp_path / "layout.c"), "-o", str(exe)],
+                   check=True)
     out = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout
     got = dict(line.rsplit(" ", 1) for line in out.splitlines())
     assert got.keys() == expect.keys()
