@@ -135,6 +135,16 @@ _PROTOTYPES = [
     ("ft_area_what_parse", _int, [_str, _P(_int)]),
     ("ft_urban_dim_area", _int, [_P(S.ft_layer), _P(_sz), _sz, _P(S.ft_area_dim_opts), _P(_P(S.ft_dim_result))]),
     ("ft_urban_boundary", _int, [_P(S.ft_chain), _P(S.ft_boundary_opts), _P(_P(S.ft_chain))]),
+    # contour
+    ("ft_layer_field_index", _int, [_P(S.ft_layer), _str]),
+    ("ft_polygon_set_from_layer", _int, [_P(S.ft_layer), _P(_P(S.ft_polygon_set))]),
+    ("ft_polygon_set_free", None, [_P(S.ft_polygon_set)]),
+    ("ft_mountain_method_parse", _int, [_str, _P(_int)]),
+    ("ft_contour_join_parse", _int, [_str, _P(_int)]),
+    ("ft_mountain_generate", _int, [_P(S.ft_polygon_set), _P(S.ft_mountain_opts), _P(_P(S.ft_contour_stack))]),
+    ("ft_contour_stack_to_dem", _int, [_P(S.ft_contour_stack), _P(S.ft_contour_dem_opts), _str,
+                                       _P(_P(S.ft_grid))]),
+    ("ft_contour_stack_free", None, [_P(S.ft_contour_stack)]),
 ]
 
 for _name, _res, _args in _PROTOTYPES:

@@ -365,3 +365,67 @@ class ft_boundary_opts(_Opts):
     _c_default_ = "FT_BOUNDARY_OPTS_DEFAULT"
     _fields_ = [("dim", _dbl), ("min", _dbl), ("max", _dbl), ("jitter", _dbl), ("seed", _u64), ("stream", _u64)]
     _defaults_ = dict(dim=0.0, min=0.0, max=0.0, jitter=0.0, seed=1, stream=0)
+
+
+# ---- contour.h ----
+
+@_mirror
+class ft_polygon(c.Structure):
+    _c_name_ = "ft_polygon"
+    _fields_ = [("outer", _P(ft_chain)), ("holes", _P(_P(ft_chain))), ("nholes", _sz)]
+
+
+@_mirror
+class ft_polygon_set(c.Structure):
+    _c_name_ = "ft_polygon_set"
+    _fields_ = [("polys", _P(ft_polygon)), ("n", _sz), ("cap", _sz)]
+
+
+@_mirror
+class ft_shrink_opts(_Opts):
+    _c_name_ = "ft_shrink_opts"
+    _c_default_ = "FT_SHRINK_OPTS_DEFAULT"
+    _fields_ = [("join", _int), ("dprime", _dbl), ("quad_segs", _int), ("min_area", _dbl)]
+    _defaults_ = dict(join=0, dprime=1.2, quad_segs=8, min_area=0.5)
+
+
+@_mirror
+class ft_fourier_opts(_Opts):
+    _c_name_ = "ft_fourier_opts"
+    _c_default_ = "FT_FOURIER_OPTS_DEFAULT"
+    _fields_ = [("n", _int), ("f0", _int)]
+    _defaults_ = dict(n=1024, f0=256)
+
+
+@_mirror
+class ft_mountain_opts(_Opts):
+    _c_name_ = "ft_mountain_opts"
+    _c_default_ = "FT_MOUNTAIN_OPTS_DEFAULT"
+    _fields_ = [("method", _int), ("interval", _dbl), ("spacing", _dbl), ("seed_elevation", _dbl),
+                ("levels_up", _int), ("levels_down", _int), ("shrink", ft_shrink_opts), ("dsecond", _dbl),
+                ("theta_min", _dbl), ("theta_max", _dbl), ("fourier", ft_fourier_opts), ("collinear_deg", _dbl),
+                ("match_dim", _int), ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
+    _defaults_ = dict(method=3, interval=10.0, spacing=0.0, seed_elevation=0.0, levels_up=-1, levels_down=0,
+                      shrink=dict(join=0, dprime=0.0, quad_segs=8, min_area=0.5), dsecond=0.5, theta_min=20.0,
+                      theta_max=40.0, fourier=dict(n=1024, f0=256), collinear_deg=0.0, match_dim=1, seed=1)
+
+
+@_mirror
+class ft_contour_level(c.Structure):
+    _c_name_ = "ft_contour_level"
+    _fields_ = [("elev", _dbl), ("polys", _P(ft_polygon_set))]
+
+
+@_mirror
+class ft_contour_stack(c.Structure):
+    _c_name_ = "ft_contour_stack"
+    _fields_ = [("levels", _P(ft_contour_level)), ("n", _sz), ("spacing", _dbl), ("interval", _dbl),
+                ("dprime", _dbl)]
+
+
+@_mirror
+class ft_contour_dem_opts(_Opts):
+    _c_name_ = "ft_contour_dem_opts"
+    _c_default_ = "FT_CONTOUR_DEM_OPTS_DEFAULT"
+    _fields_ = [("cell", _dbl), ("margin", _dbl), ("summit", _dbl), ("progress", PROGRESS), ("progress_arg", _vp)]
+    _defaults_ = dict(cell=0.0, margin=0.0, summit=0.5)

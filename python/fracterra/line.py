@@ -17,11 +17,12 @@ __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "
 LINE_METHODS = ("divider", "equipaced", "hybrid", "box")
 
 
-def _read_layer(path, layer=None, where=None):
+def _read_layer(path, layer=None, where=None, fields=False):
     o = S.ft_read_layer_opts.default()
     keep = [v.encode() if v is not None else None for v in (layer, where)]
     o.layer, o.where = keep
-    o.fields = b""
+    if not fields:
+        o.fields = b""
     out = ctypes.POINTER(S.ft_layer)()
     check(lib.ft_io_read_layer(path_bytes(path), ctypes.byref(o), ctypes.byref(out)))
     return out

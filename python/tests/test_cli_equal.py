@@ -152,3 +152,16 @@ def test_line_edits_same_vertices(cli, tmp_path, args, fn, kw):
     src.write_text("".join("%r %r\n" % (x, y) for x, y in LINE))
     cli(args[0], src, dst, *args[1:], json_out=False)
     assert np.array_equal(fn(LINE, **kw), read_gmt(dst))
+
+
+def test_mountain_levels_and_dem(cli, data, tmp_path):
+    seed = data("seed_contour_volcano.geojson")
+    js = cli("mountain", seed, tmp_path / "m.geojson", "--dem", tmp_path / "m.tif", "--seed", "3")
+    levels, dem, info = ft.mountain(seed, seed=3, dem=True)
+    assert info["seed_elevation"] == js["seed_elevation"] and printed(info["spacing"]) == js["spacing"]
+    assert [e for e, _ in levels] == js["elevations"]
+    assert [sum(len(o) + sum(len(h) for h in hs) for o, hs in polys) for _, polys in levels] == js["vertices"]
+    z, valid, gt = read_band(tmp_path / "m.tif")
+    assert gt == dem.geotransform
+    gm = np.ones(dem.z.shape, bool) if dem.mask is None else dem.mask
+    assert np.array_equal(valid, gm) and np.array_equal(z[valid], dem.z[gm])
