@@ -143,14 +143,60 @@ def chain_new(x, y, closed):
                                               1 if closed else 0))
 
 
+def chain_from_coords(coords, y=None, closed=False):
+    """An ft_chain * from x and y, or from an (n, 2) array: a C-contiguous float64 (n, 2) array is read
+    in place as interleaved x y (stride 2), the library's one copy being the only one."""
+    if y is None:
+        a = np.asarray(coords)
+        if a.ndim == 2 and a.shape[1] == 2 and a.dtype == np.float64 and a.flags.c_contiguous:
+            dp = ctypes.POINTER(ctypes.c_double)
+            base = a.ctypes.data
+            return check_ptr(lib.ft_chain_from_arrays(ctypes.cast(base, dp), ctypes.cast(base + 8, dp), a.shape[0],
+                                                      2, 1 if closed else 0))
+    x, yy = xy_arrays(coords, y)
+    return chain_new(x, yy, closed)
+
+
 def chain_to_numpy(ptr):
     """An (n, 2) float64 array copied from an ft_chain *."""
     c = ptr.contents
     out = np.empty((c.n, 2))
     if c.n:
-        out[:, 0] = np.ctypeslib.as_array(c.x, shape=(c.n,))
-        out[:, 1] = np.ctypeslib.as_array(c.y, shape=(c.n,))
+        nbytes = 8 * c.n
+        out[:, 0] = np.frombuffer((ctypes.c_char * nbytes).from_address(ctypes.addressof(c.x.contents)), np.float64)
+        out[:, 1] = np.frombuffer((ctypes.c_char * nbytes).from_address(ctypes.addressof(c.y.contents)), np.float64)
     return out
+
+
+class _CChain:
+    """An ft_chain over two float64 arrays for a call taking `const ft_chain *` (no copy when they are
+    contiguous float64; the library only reads them)."""
+
+    def __init__(self, x, y, closed):
+        self._x, self._y = xy_arrays(x, y)
+        dp = ctypes.POINTER(ctypes.c_double)
+        s = S.ft_chain()
+        s.x, s.y = self._x.ctypes.data_as(dp), self._y.ctypes.data_as(dp)
+        s.n = s.cap = self._x.size
+        s.closed = 1 if closed else 0
+        self.struct = s
+        self.ref = ctypes.pointer(s)
+
+
+def chain_views(ptr):
+    """(x, y): NumPy views of a library-allocated ft_chain's coordinates (no copy), the chain freed
+    with the last of them."""
+    c = ptr.contents
+    if c.n == 0:
+        lib.ft_chain_free(ptr)
+        return np.empty(0), np.empty(0)
+    owner = _Owner(ptr, lib.ft_chain_free)
+    out = []
+    for p in (c.x, c.y):
+        buf = (ctypes.c_double * c.n).from_address(ctypes.addressof(p.contents))
+        buf._fracterra_owner = owner
+        out.append(np.frombuffer(buf, dtype=np.float64))
+    return tuple(out)
 
 
 class ChainSet:
@@ -159,8 +205,8 @@ class ChainSet:
     def __init__(self, chains):
         self.ptrs = []
         try:
-            for x, y, closed in chains:
-                self.ptrs.append(chain_new(x, y, closed))
+            for coords, closed in chains:
+                self.ptrs.append(chain_from_coords(coords, None, closed))
         except Exception:
             self.close()
             raise

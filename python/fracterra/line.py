@@ -1,6 +1,8 @@
 """Fractal dimension of chains and Dutton's enhancement with its companions (line.h, urban.h's
-boundary generator; docs/line-*.md, docs/urban-boundary.md). Chains are (n, 2) float64 arrays of x, y;
-a ring does not repeat its first vertex (closed=True)."""
+boundary generator; docs/line-*.md, docs/urban-boundary.md). A chain is an (n, 2) float64 array of
+x, y, or two arrays x and y; a ring does not repeat its first vertex (closed=True). The chain
+operations answer in the form they were asked in: f(xy) gives a new (n, 2) array, f(x, y) gives
+(x, y) views of the library's result, with no copy in or out."""
 import ctypes
 import os
 
@@ -8,7 +10,8 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, parse_enum
-from ._core import xy_arrays, chain_new, chain_to_numpy, ChainSet, take_result, Progress
+from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
+                    Progress)
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
@@ -44,17 +47,24 @@ def read_chains(path, *, layer=None, where=None):
         lib.ft_layer_free(lp)
 
 
+def _coords(c):
+    a = np.asarray(c, dtype=np.float64)
+    if a.ndim != 2 or a.shape[1] != 2:
+        raise ValueError("coordinates: expected an (n, 2) array or x and y, got shape %r" % (a.shape,))
+    return a
+
+
 def _chain_list(coords, y, closed):
-    """[(x, y, closed)] from one chain (x and y, or an (n, 2) array) or a list of (n, 2) arrays."""
+    """[((n, 2) coords, closed)] from one chain (x and y, or an (n, 2) array) or a list of (n, 2) arrays."""
     if y is not None:
-        return [xy_arrays(coords, y) + (bool(closed),)]
+        return [(np.column_stack(xy_arrays(coords, y)), bool(closed))]
     if isinstance(coords, np.ndarray) and coords.ndim == 2:
-        return [xy_arrays(coords) + (bool(closed),)]
+        return [(_coords(coords), bool(closed))]
     items = list(coords)
     flags = closed if isinstance(closed, (list, tuple)) else [closed] * len(items)
     if len(flags) != len(items):
         raise ValueError("closed: %d flags for %d chains" % (len(flags), len(items)))
-    return [xy_arrays(c) + (bool(f),) for c, f in zip(items, flags)]
+    return [(_coords(c), bool(f)) for c, f in zip(items, flags)]
 
 
 def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, where=None, min_scale=None,
@@ -68,7 +78,7 @@ def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, wher
     chain). method: one of LINE_METHODS. Returns a DimResult."""
     if isinstance(coords, (str, bytes, os.PathLike)):
         chains, _ = read_chains(coords, layer=layer, where=where)
-        items = [xy_arrays(c) + (cl,) for c, cl, _f in chains if len(c) >= 2]
+        items = [(c, cl) for c, cl, _f in chains if len(c) >= 2]
     else:
         items = _chain_list(coords, y, closed)
     m = parse_enum(lib.ft_line_method_parse, method, "method")
@@ -89,9 +99,15 @@ def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, wher
 
 
 def _chain_op(fn, coords, y, closed, *args):
-    x, yy = xy_arrays(coords, y)
-    cin = chain_new(x, yy, closed)
+    """Runs a chain operation. Called with x and y it reads them in place and returns (x, y), NumPy
+    views of the library's result (no copy either way); called with an (n, 2) array it returns a new
+    (n, 2) array (one copy in, one out)."""
     out = ctypes.POINTER(S.ft_chain)()
+    if y is not None:
+        cin = _CChain(coords, y, closed)
+        check(fn(cin.ref, *args, ctypes.byref(out)))
+        return chain_views(out)
+    cin = chain_from_coords(_coords(coords), None, closed)
     try:
         check(fn(cin, *args, ctypes.byref(out)))
         try:
