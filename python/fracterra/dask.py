@@ -13,14 +13,17 @@ __all__ = ["dim_map_dask"]
 
 def dim_map_dask(z, window, step=None, geotransform=(0.0, 1.0, 0.0, 0.0, 0.0, 1.0), method="variogram", **opts):
     """The D map of a 2-D dask array z (NaN = nodata) as a dask array of float32 (NaN where dim_map
-    leaves nodata), on the lattice of dim_map(z, window, step). Chunks must be multiples of step and
-    at least window - step cells. opts: dim_map's options (pairs, seed, min_scale, ...; pairs must
+    leaves nodata), on the lattice of dim_map(z, window, step). Chunks must be multiples of step (the
+    last excepted) and at least window - step cells (a thinner last chunk is merged into the one before). opts: dim_map's options (pairs, seed, min_scale, ...; pairs must
     stay 0, exhaustive, for block results to equal the whole array's)."""
     import dask.array as da
 
     window = int(window)
     step = max(1, window // 4) if step is None else int(step)
     depth = window - step
+    merged = tuple(cs[:-2] + (cs[-2] + cs[-1],) if len(cs) > 1 and cs[-1] < depth else cs for cs in z.chunks)
+    if merged != z.chunks:  # a last chunk thinner than the overlap joins the one before it
+        z = z.rechunk(merged)
     for axis, cs in enumerate(z.chunks):
         if any(c % step for c in cs[:-1]) or (len(cs) > 1 and min(cs) < depth):
             raise ValueError("axis %d: chunks %r must be multiples of step %d and at least window - step = %d"

@@ -14,7 +14,7 @@ def whole(z, gt, window, step):
     return np.where(D.mask, D.z, np.nan) if D.mask is not None else D.z
 
 
-@pytest.mark.parametrize("chunks", [(48, 64), (40, 56)])
+@pytest.mark.parametrize("chunks", [(48, 64), (40, 56), (32, 40)])
 def test_blocks_equal_the_whole_array(chunks):
     g = ft.synth(150, 130, 2.4, seed=11, cell=25.0, origin=(300000, 5000000))
     z = g.z.copy()
