@@ -10,6 +10,7 @@ from ._lib import lib, check, check_ptr
 __all__ = ["Grid", "DimResult"]
 
 IDENTITY_GT = (0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+_DP = ctypes.POINTER(ctypes.c_double)
 
 
 class Grid:
@@ -174,13 +175,11 @@ class _CChain:
 
     def __init__(self, x, y, closed):
         self._x, self._y = xy_arrays(x, y)
-        dp = ctypes.POINTER(ctypes.c_double)
-        s = S.ft_chain()
-        s.x, s.y = self._x.ctypes.data_as(dp), self._y.ctypes.data_as(dp)
-        s.n = s.cap = self._x.size
-        s.closed = 1 if closed else 0
+        s = S.ft_chain(_DP.from_buffer(ctypes.c_void_p(self._x.ctypes.data)),
+                       _DP.from_buffer(ctypes.c_void_p(self._y.ctypes.data)), self._x.size, self._x.size,
+                       1 if closed else 0)
         self.struct = s
-        self.ref = ctypes.pointer(s)
+        self.ref = ctypes.byref(s)
 
 
 def chain_views(ptr):
@@ -191,12 +190,20 @@ def chain_views(ptr):
         lib.ft_chain_free(ptr)
         return np.empty(0), np.empty(0)
     owner = _Owner(ptr, lib.ft_chain_free)
-    out = []
-    for p in (c.x, c.y):
-        buf = (ctypes.c_double * c.n).from_address(ctypes.addressof(p.contents))
-        buf._fracterra_owner = owner
-        out.append(np.frombuffer(buf, dtype=np.float64))
-    return tuple(out)
+    addr = ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value, \
+        ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value
+    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in addr)
+
+
+class _Memory:
+    """Library memory seen by NumPy through the array interface (base of the array), keeping the
+    owner that frees it alive."""
+
+    __slots__ = ("__array_interface__", "owner")
+
+    def __init__(self, addr, shape, typestr, owner):
+        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3}
+        self.owner = owner
 
 
 class ChainSet:
