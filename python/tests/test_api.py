@@ -1,6 +1,7 @@
 """Errors, progress and cancellation, seeds, zero-copy grids, georeferencing helpers."""
 import ctypes
 import gc
+import os
 import subprocess
 
 import numpy as np
@@ -164,3 +165,10 @@ def test_chain_ops_answer_in_the_form_asked():
     assert np.isfinite(ex).all()
     sx, sy = ft.simplify(x, y, tolerance=0.5)
     assert np.array_equal(np.c_[sx, sy], ft.simplify(xy, tolerance=0.5))
+
+
+def test_version_is_cmakes_project_version():
+    import re
+    root = os.path.join(os.path.dirname(__file__), os.pardir, os.pardir)
+    text = open(os.path.join(root, "CMakeLists.txt")).read()
+    assert ft.__version__ == re.search(r"project\(fracterra VERSION ([0-9.]+)", text).group(1)
