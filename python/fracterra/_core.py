@@ -169,15 +169,21 @@ def chain_to_numpy(ptr):
     return out
 
 
+def _double_ptr(a):
+    """A double * to a contiguous float64 array's first element (the fast route for writable arrays)."""
+    try:
+        return ctypes.pointer(ctypes.c_double.from_buffer(a))
+    except (TypeError, ValueError):  # read-only or empty
+        return ctypes.cast(a.ctypes.data, _DP)
+
+
 class _CChain:
     """An ft_chain over two float64 arrays for a call taking `const ft_chain *` (no copy when they are
     contiguous float64; the library only reads them)."""
 
     def __init__(self, x, y, closed):
         self._x, self._y = xy_arrays(x, y)
-        s = S.ft_chain(_DP.from_buffer(ctypes.c_void_p(self._x.ctypes.data)),
-                       _DP.from_buffer(ctypes.c_void_p(self._y.ctypes.data)), self._x.size, self._x.size,
-                       1 if closed else 0)
+        s = S.ft_chain(_double_ptr(self._x), _double_ptr(self._y), self._x.size, self._x.size, 1 if closed else 0)
         self.struct = s
         self.ref = ctypes.byref(s)
 
