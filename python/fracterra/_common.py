@@ -1,5 +1,7 @@
 """What the estimators share: the log-log fit options and the scale options of the CLI's `dim`
 commands (--min-scale, --max-scale, --scales; both limits given = least squares over that range)."""
+import os
+
 from . import _structs as S
 
 
@@ -32,5 +34,5 @@ def set_scales(o, min_scale, max_scale, nscales, fit_whole_range, names=("min_sc
 
 
 def path_bytes(path):
-    import os
+    """A str, bytes or os.PathLike path as the bytes the C library takes."""
     return os.fsencode(path)

@@ -7,7 +7,7 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, parse_enum
-from ._core import Grid, as_grid, _CGrid, _CPoints, grid_from_c, Progress
+from ._core import as_grid, _CGrid, _CPoints, grid_from_c, Progress
 from ._common import path_bytes
 
 __all__ = ["synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel", "hillshade",

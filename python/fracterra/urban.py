@@ -4,7 +4,7 @@ import ctypes
 import numpy as np
 
 from . import _structs as S
-from ._lib import lib, check, parse_enum
+from ._lib import lib, parse_enum
 from ._core import take_result, Progress
 from ._common import set_fit, set_scales
 from .line import _read_layer
