@@ -134,6 +134,8 @@ _PROTOTYPES = [
     # urban
     ("ft_area_what_parse", _int, [_str, _P(_int)]),
     ("ft_urban_dim_area", _int, [_P(S.ft_layer), _P(_sz), _sz, _P(S.ft_area_dim_opts), _P(_P(S.ft_dim_result))]),
+    ("ft_urban_classes_by_field", _int, [_P(S.ft_layer), _str, _P(_P(S.ft_urban_classes))]),
+    ("ft_urban_classes_free", None, [_P(S.ft_urban_classes)]),
     ("ft_urban_boundary", _int, [_P(S.ft_chain), _P(S.ft_boundary_opts), _P(_P(S.ft_chain))]),
     # contour
     ("ft_layer_field_index", _int, [_P(S.ft_layer), _str]),

@@ -429,3 +429,15 @@ class ft_contour_dem_opts(_Opts):
     _c_default_ = "FT_CONTOUR_DEM_OPTS_DEFAULT"
     _fields_ = [("cell", _dbl), ("margin", _dbl), ("summit", _dbl), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(cell=0.0, margin=0.0, summit=0.5)
+
+
+@_mirror
+class ft_urban_class(c.Structure):
+    _c_name_ = "ft_urban_class"
+    _fields_ = [("label", _str), ("features", _P(_sz)), ("n", _sz)]
+
+
+@_mirror
+class ft_urban_classes(c.Structure):
+    _c_name_ = "ft_urban_classes"
+    _fields_ = [("classes", _P(ft_urban_class)), ("n", _sz), ("nnull", _sz)]

@@ -9,7 +9,7 @@ import os
 import numpy as np
 
 from . import _structs as S
-from ._lib import lib, check, parse_enum
+from ._lib import lib, check, parse_enum, FracterraError, FT_E_FORMAT, FT_E_EMPTY, FT_E_NOMEM, FT_E_CANCELLED
 from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
                     Progress)
 from ._common import set_fit, set_scales, path_bytes
@@ -67,19 +67,28 @@ def _chain_list(coords, y, closed):
     return [(_coords(c), bool(f)) for c, f in zip(items, flags)]
 
 
-def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, where=None, min_scale=None,
-             max_scale=None, nscales=None, fit_whole_range=None, both_ends=True, box_offsets=None, fit=None,
-             progress=None, progress_arg=None):
+def dim_line(coords, y=None, *, closed=False, method="divider", by=None, layer=None, where=None,
+             min_scale=None, max_scale=None, nscales=None, fit_whole_range=None, both_ends=True, box_offsets=None,
+             fit=None, progress=None, progress_arg=None):
     """Fractal dimension D (1..2) of a set of chains, as `fracterra dim line`: the values at each scale
     are summed over the chains and one log-log table is fitted.
 
-    coords: a path (every part of every feature of the layer, as the CLI without --by; layer= and
-    where= select), x with y, an (n, 2) array, or a list of (n, 2) arrays (closed: one flag or one per
-    chain). method: one of LINE_METHODS. Returns a DimResult."""
+    coords: a path (every part of every feature of the layer; layer= and where= select), x with y, an
+    (n, 2) array, or a list of (n, 2) arrays (closed: one flag or one per chain). method: one of
+    LINE_METHODS. Returns a DimResult. With a path and by=FIELD (the CLI's --by; "fid" per feature when
+    the layer has no such field): a list of (value, result) pairs, one per distinct value in order of
+    first appearance, a group that cannot be measured giving its FracterraError instead of a result."""
     if isinstance(coords, (str, bytes, os.PathLike)):
+        if by is not None:
+            return _dim_line_by(coords, by, layer, where, dict(method=method, min_scale=min_scale,
+                                max_scale=max_scale, nscales=nscales, fit_whole_range=fit_whole_range,
+                                both_ends=both_ends, box_offsets=box_offsets, fit=fit, progress=progress,
+                                progress_arg=progress_arg))
         chains, _ = read_chains(coords, layer=layer, where=where)
         items = [(c, cl) for c, cl, _f in chains if len(c) >= 2]
     else:
+        if by is not None:
+            raise ValueError("by= groups the features of a file; got coordinates")
         items = _chain_list(coords, y, closed)
     m = parse_enum(lib.ft_line_method_parse, method, "method")
     o = S.ft_line_dim_opts.default()
@@ -96,6 +105,55 @@ def dim_line(coords, y=None, *, closed=False, method="divider", layer=None, wher
     r = take_result(out)
     r.method = LINE_METHODS[m]
     return r
+
+
+def _feature_keys(lay, by, path):
+    """Each feature's --by key as the CLI makes it (cli/cmd_dim_line.c): the field's value (None when
+    null), or the feature id when by is "fid" and no field has that name."""
+    L = lay.contents
+    k = lib.ft_layer_field_index(lay, by.encode())
+    if k < 0 and by.lower() != "fid":
+        raise FracterraError("--by: no field '%s' in '%s'" % (by, os.fsdecode(path)), FT_E_FORMAT)
+    keys = []
+    for f in range(L.nfeatures):
+        feat = L.features[f]
+        if k < 0:
+            keys.append(int(feat.fid))
+            continue
+        v = feat.values[k]
+        t = L.fields[k].type
+        keys.append(None if v.is_null else int(v.i) if t == 0 else float(v.r) if t == 1 else
+                    (v.s or b"").decode())
+    return keys
+
+
+def _dim_line_by(path, by, layer, where, kw):
+    lay = _read_layer(path, layer, where, fields=True)
+    try:
+        L = lay.contents
+        groups = {}
+        for f, key in enumerate(_feature_keys(lay, by, path)):
+            groups.setdefault(key, []).append(f)  # insertion order = order of first appearance
+        out = []
+        for key, feats in groups.items():
+            items = []
+            for f in feats:
+                feat = L.features[f]
+                for p in range(feat.first, feat.first + feat.count):
+                    ch = L.parts[p].chain
+                    if ch and ch.contents.n >= 2:
+                        items.append((chain_to_numpy(ch), bool(ch.contents.closed)))
+            try:
+                if not items:
+                    raise FracterraError("%s=%s: no chain of 2 or more vertices to measure" % (by, key), FT_E_EMPTY)
+                out.append((key, dim_line([c for c, _ in items], closed=[cl for _, cl in items], **kw)))
+            except FracterraError as e:
+                if e.code in (FT_E_NOMEM, FT_E_CANCELLED):
+                    raise
+                out.append((key, e))
+        return out
+    finally:
+        lib.ft_layer_free(lay)
 
 
 def _chain_op(fn, coords, y, closed, *args):

@@ -165,3 +165,23 @@ def test_mountain_levels_and_dem(cli, data, tmp_path):
     assert gt == dem.geotransform
     gm = np.ones(dem.z.shape, bool) if dem.mask is None else dem.mask
     assert np.array_equal(valid, gm) and np.array_equal(z[valid], dem.z[gm])
+
+
+def test_dim_line_by_field(cli, data):
+    path = data("dcw_us_states_small_albers5070.geojson")
+    js = cli("dim", "line", path, "--by", "code", "--method", "hybrid")
+    py = ft.dim_line(path, by="code", method="hybrid")
+    assert [k for k, _ in py] == [f["id"] for f in js["features"]]
+    for (_, r), f in zip(py, js["features"]):
+        same_result(r, f)
+    with pytest.raises(ft.FracterraError, match="no field 'nope'"):
+        ft.dim_line(path, by="nope")
+
+
+def test_dim_area_by_class(cli, data):
+    path = data("dcw_us_states_small_albers5070.geojson")
+    js = cli("dim", "area", path, "--class", "code", "--what", "area")
+    py = ft.dim_area(path, by="code", what="area")
+    assert [k for k, _ in py] == [f["id"] for f in js["features"]]
+    for (_, r), f in zip(py, js["features"]):
+        same_result(r, f)
