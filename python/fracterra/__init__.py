@@ -10,7 +10,7 @@ See docs/python.md.
 from ._lib import FracterraError, library_path, lib as _clib
 from ._core import Grid, DimResult
 from .surface import dim_surface, dim_map, dim_points, read_points, SURFACE_METHODS
-from .line import (read_chains, dim_line, enhance, smooth, weed, simplify, remove_loops, boundary,
+from .line import (read_chains, dim_line, enhance, smooth, weed, simplify, remove_loops, boundary, edit_file,
                    LINE_METHODS)
 from .terrain import (synth, reconstruct, ReconInfo, clarke_fit, clarke_simulate, ClarkeModel, hillshade,
                       hillshade_file, SYNTH_METHODS, RECON_METHODS)
@@ -22,7 +22,7 @@ __version__ = _clib.ft_version().decode()
 
 __all__ = ["FracterraError", "Grid", "DimResult", "library_path", "__version__",
            "dim_surface", "dim_map", "dim_points", "read_points", "dim_line", "read_chains", "dim_area",
-           "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
+           "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary", "edit_file",
            "synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel",
            "hillshade", "hillshade_file", "mountain", "read_grid", "write_grid", "from_gdal", "to_gdal",
            "SURFACE_METHODS", "LINE_METHODS", "SYNTH_METHODS", "RECON_METHODS", "MOUNTAIN_METHODS"]

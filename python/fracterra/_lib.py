@@ -119,6 +119,10 @@ _PROTOTYPES = [
     ("ft_line_weed", _int, [_P(S.ft_chain), _dbl, _P(_P(S.ft_chain))]),
     ("ft_line_simplify", _int, [_P(S.ft_chain), _dbl, _P(_P(S.ft_chain))]),
     ("ft_line_remove_loops", _int, [_P(S.ft_chain), _P(_P(S.ft_chain))]),
+    ("ft_line_apply_layer", _int, [_P(S.ft_layer), _vp, _vp, _int]),
+    ("ft_layer_check_finite", _int, [_P(S.ft_layer)]),
+    ("ft_layer_vertex_count", _sz, [_P(S.ft_layer)]),
+    ("ft_io_write_layer", _int, [_str, _P(S.ft_layer), _P(S.ft_write_layer_opts)]),
     # terrain
     ("ft_synth_method_parse", _int, [_str, _P(_int)]),
     ("ft_terrain_synth", _int, [_sz, _sz, _P(S.ft_synth_opts), _P(_P(S.ft_grid))]),

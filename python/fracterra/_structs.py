@@ -441,3 +441,10 @@ class ft_urban_class(c.Structure):
 class ft_urban_classes(c.Structure):
     _c_name_ = "ft_urban_classes"
     _fields_ = [("classes", _P(ft_urban_class)), ("n", _sz), ("nnull", _sz)]
+
+
+@_mirror
+class ft_write_layer_opts(_Opts):
+    _c_name_ = "ft_write_layer_opts"
+    _c_default_ = "FT_WRITE_LAYER_OPTS_DEFAULT"
+    _fields_ = [("driver", _str), ("layer", _str), ("lco", _P(_str))]

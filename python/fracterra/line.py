@@ -15,7 +15,7 @@ from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, C
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
-           "LINE_METHODS"]
+           "edit_file", "LINE_METHODS"]
 
 LINE_METHODS = ("divider", "equipaced", "hybrid", "box")
 
@@ -219,3 +219,65 @@ def boundary(coords, y=None, *, closed=True, dim, min, max=0.0, jitter=0.0, seed
     o.dim, o.min, o.max, o.jitter = float(dim), float(min), float(max), float(jitter)
     o.seed, o.stream = int(seed), int(stream)
     return _chain_op(lib.ft_urban_boundary, coords, y, closed, ctypes.byref(o))
+
+
+def _dutton(sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None):
+    o = S.ft_dutton_opts.default()
+    o.sd, o.uc, o.sm, o.iterations = float(sd), float(uc), float(sm), int(iterations)
+    if st is not None:
+        o.st = float(st)
+    if target_dim is not None:
+        o.target_dim = float(target_dim)
+    return o
+
+
+def _smooth(passes=1, roundness=0.5, st=None, sm=0.0):
+    o = S.ft_smooth_opts.default()
+    o.passes, o.roundness, o.sm = int(passes), float(roundness), float(sm)
+    if st is not None:
+        o.st = float(st)
+    return o
+
+
+# step name: (the library's ft_line_op, how its options are made from keyword arguments)
+_LAYER_OPS = {
+    "enhance": ("ft_line_op_enhance", _dutton),
+    "smooth": ("ft_line_op_smooth", _smooth),
+    "weed": ("ft_line_op_weed", lambda min_segment: ctypes.c_double(float(min_segment))),
+    "simplify": ("ft_line_op_simplify", lambda tolerance: ctypes.c_double(float(tolerance))),
+    "repair": ("ft_line_op_remove_loops", lambda: None),
+}
+
+
+def edit_file(src, dst, steps, *, coverage=True, layer=None, where=None, driver=None):
+    """Edits every line and ring of a vector layer and writes it, as `fracterra enhance|smooth|weed|
+    simplify` do: steps is a list of (name, options) with name "enhance" (sd, uc, st, sm, iterations,
+    target_dim), "smooth" (passes, roundness, st, sm), "weed" (min_segment), "simplify" (tolerance) or
+    "repair" (no options), applied in order through ft_line_apply_layer. On a polygon layer with
+    coverage=True (the CLI without --no-coverage) shared boundaries are edited once along the arc-node
+    topology, so neighbours stay coincident. Attributes and CRS are kept; dst is replaced only when the
+    whole write succeeded. Returns {"coverage", "vertices_in", "vertices_out", "stages": [(name, vertices)]}."""
+    prepared = []
+    for name, kw in steps:
+        if name not in _LAYER_OPS:
+            raise ValueError("unknown step %r (known: %s)" % (name, ", ".join(_LAYER_OPS)))
+        fn, make = _LAYER_OPS[name]
+        prepared.append((name, ctypes.cast(getattr(lib, fn), ctypes.c_void_p), make(**(kw or {}))))
+    lay = _read_layer(src, layer, where, fields=True)
+    try:
+        check(lib.ft_layer_check_finite(lay))
+        L = lay.contents
+        rings = any(L.parts[i].role != 0 for i in range(L.nparts))
+        cov = 1 if coverage and rings else 0
+        report = {"coverage": bool(cov), "vertices_in": lib.ft_layer_vertex_count(lay), "stages": []}
+        for name, op, opts in prepared:
+            check(lib.ft_line_apply_layer(lay, op, ctypes.byref(opts) if opts is not None else None, cov))
+            report["stages"].append((name, lib.ft_layer_vertex_count(lay)))
+        report["vertices_out"] = lib.ft_layer_vertex_count(lay)
+        wo = S.ft_write_layer_opts.default()
+        keep = driver.encode() if driver else None
+        wo.driver = keep
+        check(lib.ft_io_write_layer(path_bytes(dst), lay, ctypes.byref(wo)))
+        return report
+    finally:
+        lib.ft_layer_free(lay)

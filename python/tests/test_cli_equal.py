@@ -185,3 +185,24 @@ def test_dim_area_by_class(cli, data):
     assert [k for k, _ in py] == [f["id"] for f in js["features"]]
     for (_, r), f in zip(py, js["features"]):
         same_result(r, f)
+
+
+@pytest.mark.parametrize("args,steps,coverage", [
+    (["simplify", "--tolerance", "2000"], [("simplify", dict(tolerance=2000))], True),
+    (["enhance", "--sd", "1.4", "--uc", "0.7", "--sm", "800", "--weed", "--smooth", "1"],
+     # the CLI gives smooth the enhance step's st and sm
+     [("enhance", dict(sd=1.4, uc=0.7, sm=800)), ("weed", dict(min_segment=800)), ("smooth", dict(passes=1, sm=800))],
+     True),
+    (["smooth", "--passes", "2", "--no-coverage"], [("smooth", dict(passes=2))], False),
+])
+def test_edit_file_same_geometry(cli, data, tmp_path, args, steps, coverage):
+    src = data("dcw_us_states_small_albers5070.geojson")
+    a, b = tmp_path / "cli.geojson", tmp_path / "py.geojson"
+    js = cli(args[0], src, a, *args[1:])
+    rep = ft.edit_file(src, b, steps, coverage=coverage)
+    assert rep["coverage"] == js["coverage"] and rep["vertices_out"] == js["vertices_out"]
+    ca, wa = ft.read_chains(a)
+    cb, wb = ft.read_chains(b)
+    assert wa == wb and len(ca) == len(cb)
+    for (xa, ra, fa), (xb, rb, fb) in zip(ca, cb):
+        assert (ra, fa) == (rb, fb) and np.array_equal(xa, xb)
