@@ -30,6 +30,7 @@ test-quick: build
 
 bench: build
 	./$(BUILD)/fracterra_bench
+	/usr/bin/python3 bench/python/overhead.py $(BUILD)
 
 # Arakawa & Krotkov Table 1 on the scattered-point estimator; ACCURACY_FLAGS="--surfaces 20" for a shorter run.
 ACCURACY_FLAGS ?= --surfaces 100 --synth exact,sra,fft --snr 30,25,20

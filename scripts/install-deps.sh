@@ -12,6 +12,8 @@ packages=(
   libcairo2-dev               # PNG/SVG/PDF rendering
   libjson-c-dev               # JSON output
   libcmocka-dev               # unit tests
+  python3-numpy python3-gdal  # the Python package (python/fracterra): NumPy arrays, osgeo.gdal helpers
+  python3-pytest python3-dask # its tests (make test), and the dask example
 )
 
 missing=()

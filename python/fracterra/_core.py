@@ -1,0 +1,368 @@
+"""Conversions between NumPy and the library's types: grids, chains, points, dimension results, and
+the progress callback."""
+import ctypes
+
+import numpy as np
+
+from . import _structs as S
+from ._lib import lib, check, check_ptr
+
+__all__ = ["Grid", "DimResult"]
+
+IDENTITY_GT = (0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+_DP = ctypes.POINTER(ctypes.c_double)
+
+
+class Grid:
+    """A raster as fracterra sees it: z, a (rows, cols) float32 array with row 0 at the top (north);
+    mask, None (every cell valid) or a bool array of the same shape (True = valid); geotransform,
+    GDAL's six coefficients; wkt, the CRS as WKT or None; nodata, the value written back for masked
+    cells or None."""
+
+    __slots__ = ("z", "mask", "geotransform", "wkt", "nodata")
+
+    def __init__(self, z, mask=None, geotransform=None, wkt=None, nodata=None):
+        z = np.asarray(z)
+        if z.ndim != 2:
+            raise ValueError("a grid is a 2-D array (rows, cols); got shape %r" % (z.shape,))
+        self.z = z
+        self.mask = None if mask is None else np.asarray(mask, dtype=bool)
+        if self.mask is not None and self.mask.shape != z.shape:
+            raise ValueError("mask shape %r differs from the grid's %r" % (self.mask.shape, z.shape))
+        gt = IDENTITY_GT if geotransform is None else tuple(float(v) for v in geotransform)
+        if len(gt) != 6:
+            raise ValueError("a geotransform has 6 coefficients, got %d" % len(gt))
+        self.geotransform = gt
+        self.wkt = wkt
+        self.nodata = nodata
+
+    @property
+    def shape(self):
+        return self.z.shape
+
+    def masked(self):
+        """z as a numpy.ma array (nodata masked)."""
+        return np.ma.array(self.z, mask=None if self.mask is None else ~self.mask)
+
+    def __repr__(self):
+        return "Grid(%d x %d cells, gt=%r%s)" % (self.z.shape[1], self.z.shape[0], self.geotransform,
+                                                 ", with CRS" if self.wkt else "")
+
+
+def as_grid(g, geotransform=None, wkt=None):
+    """A Grid from a Grid, a numpy.ma array or a 2-D array (NaN cells are nodata)."""
+    if isinstance(g, Grid):
+        return g
+    if isinstance(g, np.ma.MaskedArray):
+        m = np.ma.getmaskarray(g)
+        return Grid(np.ma.getdata(g), mask=~m if m.any() else None, geotransform=geotransform, wkt=wkt)
+    return Grid(g, geotransform=geotransform, wkt=wkt)
+
+
+class _CGrid:
+    """An ft_grid over a Grid's memory for a call taking `const ft_grid *`: no copy when z is a
+    C-contiguous float32 array (the library only reads it). Keeps what it points at alive."""
+
+    def __init__(self, grid):
+        z = grid.z
+        if z.dtype != np.float32 or not z.flags.c_contiguous:
+            z = np.ascontiguousarray(z, dtype=np.float32)
+        mask = grid.mask
+        if mask is None and np.issubdtype(z.dtype, np.floating) and not np.isfinite(z).all():
+            mask = np.isfinite(z)
+        self._z = z
+        self._mask = None if mask is None else np.ascontiguousarray(mask, dtype=np.uint8)
+        self._wkt = grid.wkt.encode() if grid.wkt else None
+        s = S.ft_grid()
+        s.ny, s.nx = z.shape
+        s.z = z.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+        if self._mask is not None:
+            s.mask = self._mask.ctypes.data_as(ctypes.POINTER(ctypes.c_uint8))
+        s.gt[:] = grid.geotransform
+        s.crs_wkt = self._wkt
+        if grid.nodata is not None:
+            s.has_nodata, s.nodata_value = 1, float(grid.nodata)
+        self.struct = s
+
+    @property
+    def ref(self):
+        return ctypes.byref(self.struct)
+
+
+class _Owner:
+    """Frees a library-allocated object when the last NumPy view of its memory goes."""
+
+    def __init__(self, ptr, free):
+        self.ptr, self.free = ptr, free
+
+    def __del__(self):
+        if self.ptr:
+            self.free(self.ptr)
+            self.ptr = None
+
+
+def grid_from_c(ptr):
+    """A Grid over a library-allocated ft_grid *: z is a view of its cells (no copy), freed with the
+    array; the mask, geotransform and CRS are copied."""
+    g = ptr.contents
+    ny, nx = g.ny, g.nx
+    owner = _Owner(ptr, lib.ft_grid_free)
+    buf = (ctypes.c_float * (nx * ny)).from_address(ctypes.addressof(g.z.contents)) if nx * ny else None
+    if buf is None:
+        z = np.zeros((ny, nx), np.float32)
+    else:
+        buf._fracterra_owner = owner
+        z = np.frombuffer(buf, dtype=np.float32).reshape(ny, nx)
+    mask = None
+    if g.mask:
+        mask = np.ctypeslib.as_array(g.mask, shape=(ny * nx,)).reshape(ny, nx).astype(bool)
+    wkt = g.crs_wkt.decode() if g.crs_wkt else None
+    return Grid(z, mask=mask, geotransform=tuple(g.gt), wkt=wkt,
+                nodata=g.nodata_value if g.has_nodata else None)
+
+
+# ---- chains ----
+
+def xy_arrays(x, y=None):
+    """(x, y) float64 contiguous arrays from x and y, or from one (n, 2) array."""
+    if y is None:
+        a = np.asarray(x, dtype=np.float64)
+        if a.ndim != 2 or a.shape[1] != 2:
+            raise ValueError("coordinates: expected an (n, 2) array or x and y, got shape %r" % (a.shape,))
+        return np.ascontiguousarray(a[:, 0]), np.ascontiguousarray(a[:, 1])
+    x = np.ascontiguousarray(x, dtype=np.float64).ravel()
+    y = np.ascontiguousarray(y, dtype=np.float64).ravel()
+    if x.shape != y.shape:
+        raise ValueError("x has %d values and y %d" % (x.size, y.size))
+    return x, y
+
+
+def chain_new(x, y, closed):
+    """A library ft_chain * copied from coordinate arrays (free with ft_chain_free)."""
+    dp = ctypes.POINTER(ctypes.c_double)
+    return check_ptr(lib.ft_chain_from_arrays(x.ctypes.data_as(dp), y.ctypes.data_as(dp), x.size, 1,
+                                              1 if closed else 0))
+
+
+def chain_from_coords(coords, y=None, closed=False):
+    """An ft_chain * from x and y, or from an (n, 2) array: a C-contiguous float64 (n, 2) array is read
+    in place as interleaved x y (stride 2), the library's one copy being the only one."""
+    if y is None:
+        a = np.asarray(coords)
+        if a.ndim == 2 and a.shape[1] == 2 and a.dtype == np.float64 and a.flags.c_contiguous:
+            dp = ctypes.POINTER(ctypes.c_double)
+            base = a.ctypes.data
+            return check_ptr(lib.ft_chain_from_arrays(ctypes.cast(base, dp), ctypes.cast(base + 8, dp), a.shape[0],
+                                                      2, 1 if closed else 0))
+    x, yy = xy_arrays(coords, y)
+    return chain_new(x, yy, closed)
+
+
+def chain_to_numpy(ptr):
+    """An (n, 2) float64 array copied from an ft_chain *."""
+    c = ptr.contents
+    out = np.empty((c.n, 2))
+    if c.n:
+        nbytes = 8 * c.n
+        out[:, 0] = np.frombuffer((ctypes.c_char * nbytes).from_address(ctypes.addressof(c.x.contents)), np.float64)
+        out[:, 1] = np.frombuffer((ctypes.c_char * nbytes).from_address(ctypes.addressof(c.y.contents)), np.float64)
+    return out
+
+
+def _double_ptr(a):
+    """A double * to a contiguous float64 array's first element (the fast route for writable arrays)."""
+    try:
+        return ctypes.pointer(ctypes.c_double.from_buffer(a))
+    except (TypeError, ValueError):  # read-only or empty
+        return ctypes.cast(a.ctypes.data, _DP)
+
+
+class _CChain:
+    """An ft_chain over two float64 arrays for a call taking `const ft_chain *` (no copy when they are
+    contiguous float64; the library only reads them)."""
+
+    def __init__(self, x, y, closed):
+        self._x, self._y = xy_arrays(x, y)
+        s = S.ft_chain(_double_ptr(self._x), _double_ptr(self._y), self._x.size, self._x.size, 1 if closed else 0)
+        self.struct = s
+        self.ref = ctypes.byref(s)
+
+
+def chain_views(ptr):
+    """(x, y): NumPy views of a library-allocated ft_chain's coordinates (no copy), the chain freed
+    with the last of them."""
+    c = ptr.contents
+    if c.n == 0:
+        lib.ft_chain_free(ptr)
+        return np.empty(0), np.empty(0)
+    owner = _Owner(ptr, lib.ft_chain_free)
+    addr = ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value, \
+        ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value
+    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in addr)
+
+
+class _Memory:
+    """Library memory seen by NumPy through the array interface (base of the array), keeping the
+    owner that frees it alive."""
+
+    __slots__ = ("__array_interface__", "owner")
+
+    def __init__(self, addr, shape, typestr, owner):
+        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3}
+        self.owner = owner
+
+
+class ChainSet:
+    """A list of ft_chain * made from Python coordinates, freed together."""
+
+    def __init__(self, chains):
+        self.ptrs = []
+        try:
+            for coords, closed in chains:
+                self.ptrs.append(chain_from_coords(coords, None, closed))
+        except Exception:
+            self.close()
+            raise
+        self.array = (ctypes.POINTER(S.ft_chain) * max(1, len(self.ptrs)))(*self.ptrs)
+
+    def close(self):
+        for p in self.ptrs:
+            lib.ft_chain_free(p)
+        self.ptrs = []
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+# ---- points ----
+
+class _CPoints:
+    """An ft_points over float64 arrays (no copy when they are contiguous float64)."""
+
+    def __init__(self, x, y, z, w=None, wkt=None):
+        arrs = [np.ascontiguousarray(v, dtype=np.float64).ravel() for v in (x, y, z)]
+        if not arrs[0].size == arrs[1].size == arrs[2].size:
+            raise ValueError("x, y and z differ in length: %d, %d, %d" % tuple(a.size for a in arrs))
+        self._keep = arrs
+        dp = ctypes.POINTER(ctypes.c_double)
+        s = S.ft_points()
+        s.x, s.y, s.z = (a.ctypes.data_as(dp) for a in arrs)
+        if w is not None:
+            w = np.ascontiguousarray(w, dtype=np.float64).ravel()
+            if w.size != arrs[0].size:
+                raise ValueError("w has %d values, x %d" % (w.size, arrs[0].size))
+            self._keep.append(w)
+            s.w = w.ctypes.data_as(dp)
+        s.n = s.cap = arrs[0].size
+        self._wkt = wkt.encode() if wkt else None
+        s.crs_wkt = self._wkt
+        self.struct = s
+
+    @property
+    def ref(self):
+        return ctypes.byref(self.struct)
+
+
+def points_to_numpy(ptr):
+    p = ptr.contents
+    n = p.n
+    cols = [np.ctypeslib.as_array(getattr(p, k), shape=(n,)).copy() if n else np.empty(0) for k in "xyz"]
+    w = np.ctypeslib.as_array(p.w, shape=(n,)).copy() if p.w and n else None
+    return cols[0], cols[1], cols[2], w, (p.crs_wkt.decode() if p.crs_wkt else None)
+
+
+# ---- results ----
+
+TABLE_DTYPE = np.dtype([("scale", "f8"), ("value", "f8"), ("count", "f8"), ("slope", "f8"), ("used", "?")])
+SEGMENT_DTYPE = np.dtype([("first", "i8"), ("last", "i8"), ("n", "i8"), ("scale_lo", "f8"), ("scale_hi", "f8"),
+                          ("slope", "f8"), ("intercept", "f8"), ("D", "f8"), ("r2", "f8"), ("stderr_D", "f8"),
+                          ("max_err", "f8"), ("D_minimax", "f8")])
+
+
+class DimResult:
+    """A fractal dimension with everything needed to judge it (docs/loglog.md): D, stderr (of D), r2,
+    range (the scales of the first and last used rows), units, method, segmentation, noise, max_err,
+    table (a NumPy structured array: scale, value, count, slope, used), segments (structured array of
+    the minimax segments), best (index of the segment that gave D, or None), warnings (list of str),
+    slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
+
+    def __init__(self, ptr):
+        r = ptr.contents
+        self.method = r.method.decode() if r.method else None
+        self.segmentation = r.segmentation.decode() if r.segmentation else None
+        self.D = r.D
+        self.r2 = r.r2
+        self.stderr = r.stderr_D
+        self.range = (r.range[0], r.range[1])
+        self.max_err = r.max_err
+        self.noise = r.noise
+        self.slope = r.fit.slope
+        self.intercept = r.fit.intercept
+        self.units = r.units.decode()
+        t = r.table.contents if r.table else None
+        n = t.n if t else 0
+        self.table = np.zeros(n, TABLE_DTYPE)
+        for i in range(n):
+            row = t.rows[i]
+            self.table[i] = (row.scale, row.value, row.count, row.slope, bool(row.used))
+        self.segments = np.zeros(r.nsegments, SEGMENT_DTYPE)
+        for i in range(r.nsegments):
+            s = r.segments[i]
+            self.segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self.best = None if r.best == ctypes.c_size_t(-1).value else int(r.best)
+        self.warnings = [r.warnings[i].decode("utf-8", "replace") for i in range(r.nwarnings)]
+        self.extra = {}
+
+    def as_dict(self):
+        """The result as plain Python values (the CLI's JSON members of the same names)."""
+        return {"method": self.method, "segmentation": self.segmentation, "D": self.D, "r2": self.r2,
+                "stderr": self.stderr, "range": list(self.range), "units": self.units,
+                "warnings": list(self.warnings),
+                "table": [dict(zip(TABLE_DTYPE.names, (float(a), float(b), float(c), float(d), bool(e))))
+                          for a, b, c, d, e in self.table.tolist()]}
+
+    def __repr__(self):
+        return "DimResult(method=%r, D=%.4f, stderr=%.4f, r2=%.4f, range=%.6g..%.6g%s%s)" % (
+            self.method, self.D, self.stderr, self.r2, self.range[0], self.range[1],
+            " " + self.units if self.units else "", ", %d warning(s)" % len(self.warnings) if self.warnings else "")
+
+
+def take_result(out):
+    """A DimResult from an ft_dim_result ** the library filled; frees the C result."""
+    try:
+        return DimResult(out)
+    finally:
+        lib.ft_dim_result_free(out)
+
+
+# ---- progress ----
+
+class Progress:
+    """Wraps a Python callable fn(frac, message, arg) (GDAL's signature: GDALTermProgress-style, or
+    osgeo.gdal.TermProgress_nocb) as the library's ft_progress_fn. A false (but not None) return value
+    cancels the call (FracterraError with code FT_E_CANCELLED); an exception in fn cancels it too and
+    is raised again after the call."""
+
+    def __init__(self, fn, arg=None):
+        self.fn, self.arg, self.error = fn, arg, None
+        self.c = S.PROGRESS(self._call) if fn is not None else S.PROGRESS()
+
+    def _call(self, frac, msg, _):
+        try:
+            r = self.fn(frac, msg.decode("utf-8", "replace") if msg else "", self.arg)
+        except BaseException as e:  # noqa: B902 - must not cross the C frames
+            self.error = e
+            return 0
+        return 1 if r is None or r else 0
+
+    def install(self, opts):
+        opts.progress = self.c
+
+    def check(self, rc):
+        if self.error is not None:
+            err, self.error = self.error, None
+            raise err
+        return check(rc)

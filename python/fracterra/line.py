@@ -1,0 +1,283 @@
+"""Fractal dimension of chains and Dutton's enhancement with its companions (line.h, urban.h's
+boundary generator; docs/line-*.md, docs/urban-boundary.md). A chain is an (n, 2) float64 array of
+x, y, or two arrays x and y; a ring does not repeat its first vertex (closed=True). The chain
+operations answer in the form they were asked in: f(xy) gives a new (n, 2) array, f(x, y) gives
+(x, y) views of the library's result, with no copy in or out."""
+import ctypes
+import os
+
+import numpy as np
+
+from . import _structs as S
+from ._lib import lib, check, parse_enum, FracterraError, FT_E_FORMAT, FT_E_EMPTY, FT_E_NOMEM, FT_E_CANCELLED
+from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
+                    Progress)
+from ._common import set_fit, set_scales, path_bytes
+
+__all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
+           "edit_file", "LINE_METHODS"]
+
+LINE_METHODS = ("divider", "equipaced", "hybrid", "box")
+
+
+def _read_layer(path, layer=None, where=None, fields=False):
+    o = S.ft_read_layer_opts.default()
+    keep = [v.encode() if v is not None else None for v in (layer, where)]
+    o.layer, o.where = keep
+    if not fields:
+        o.fields = b""
+    out = ctypes.POINTER(S.ft_layer)()
+    check(lib.ft_io_read_layer(path_bytes(path), ctypes.byref(o), ctypes.byref(out)))
+    return out
+
+
+def read_chains(path, *, layer=None, where=None):
+    """The chains of a vector layer (OGR) or GMT text file, read by the library's reader: a list of
+    (coords, closed, feature) with coords an (n, 2) array, rings without their closing vertex, and the
+    layer's CRS as WKT: (chains, wkt)."""
+    lp = _read_layer(path, layer, where)
+    try:
+        lay = lp.contents
+        chains = []
+        for i in range(lay.nparts):
+            part = lay.parts[i]
+            chains.append((chain_to_numpy(part.chain), bool(part.chain.contents.closed), int(part.feature)))
+        return chains, (lay.crs_wkt.decode() if lay.crs_wkt else None)
+    finally:
+        lib.ft_layer_free(lp)
+
+
+def _coords(c):
+    a = np.asarray(c, dtype=np.float64)
+    if a.ndim != 2 or a.shape[1] != 2:
+        raise ValueError("coordinates: expected an (n, 2) array or x and y, got shape %r" % (a.shape,))
+    return a
+
+
+def _chain_list(coords, y, closed):
+    """[((n, 2) coords, closed)] from one chain (x and y, or an (n, 2) array) or a list of (n, 2) arrays."""
+    if y is not None:
+        return [(np.column_stack(xy_arrays(coords, y)), bool(closed))]
+    if isinstance(coords, np.ndarray) and coords.ndim == 2:
+        return [(_coords(coords), bool(closed))]
+    items = list(coords)
+    flags = closed if isinstance(closed, (list, tuple)) else [closed] * len(items)
+    if len(flags) != len(items):
+        raise ValueError("closed: %d flags for %d chains" % (len(flags), len(items)))
+    return [(_coords(c), bool(f)) for c, f in zip(items, flags)]
+
+
+def dim_line(coords, y=None, *, closed=False, method="divider", by=None, layer=None, where=None,
+             min_scale=None, max_scale=None, nscales=None, fit_whole_range=None, both_ends=True, box_offsets=None,
+             fit=None, progress=None, progress_arg=None):
+    """Fractal dimension D (1..2) of a set of chains, as `fracterra dim line`: the values at each scale
+    are summed over the chains and one log-log table is fitted.
+
+    coords: a path (every part of every feature of the layer; layer= and where= select), x with y, an
+    (n, 2) array, or a list of (n, 2) arrays (closed: one flag or one per chain). method: one of
+    LINE_METHODS. Returns a DimResult. With a path and by=FIELD (the CLI's --by; "fid" per feature when
+    the layer has no such field): a list of (value, result) pairs, one per distinct value in order of
+    first appearance, a group that cannot be measured giving its FracterraError instead of a result."""
+    if isinstance(coords, (str, bytes, os.PathLike)):
+        if by is not None:
+            return _dim_line_by(coords, by, layer, where, dict(method=method, min_scale=min_scale,
+                                max_scale=max_scale, nscales=nscales, fit_whole_range=fit_whole_range,
+                                both_ends=both_ends, box_offsets=box_offsets, fit=fit, progress=progress,
+                                progress_arg=progress_arg))
+        chains, _ = read_chains(coords, layer=layer, where=where)
+        items = [(c, cl) for c, cl, _f in chains if len(c) >= 2]
+    else:
+        if by is not None:
+            raise ValueError("by= groups the features of a file; got coordinates")
+        items = _chain_list(coords, y, closed)
+    m = parse_enum(lib.ft_line_method_parse, method, "method")
+    o = S.ft_line_dim_opts.default()
+    set_scales(o, min_scale, max_scale, nscales, fit_whole_range)
+    o.both_ends = 1 if both_ends else 0
+    if box_offsets is not None:
+        o.box_offsets = int(box_offsets)
+    set_fit(o.fit, fit)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out = ctypes.POINTER(S.ft_dim_result)()
+    with ChainSet(items) as cs:
+        pr.check(lib.ft_line_dim(cs.array, len(cs.ptrs), m, ctypes.byref(o), ctypes.byref(out)))
+    r = take_result(out)
+    r.method = LINE_METHODS[m]
+    return r
+
+
+def _feature_keys(lay, by, path):
+    """Each feature's --by key as the CLI makes it (cli/cmd_dim_line.c): the field's value (None when
+    null), or the feature id when by is "fid" and no field has that name."""
+    L = lay.contents
+    k = lib.ft_layer_field_index(lay, by.encode())
+    if k < 0 and by.lower() != "fid":
+        raise FracterraError("--by: no field '%s' in '%s'" % (by, os.fsdecode(path)), FT_E_FORMAT)
+    keys = []
+    for f in range(L.nfeatures):
+        feat = L.features[f]
+        if k < 0:
+            keys.append(int(feat.fid))
+            continue
+        v = feat.values[k]
+        t = L.fields[k].type
+        keys.append(None if v.is_null else int(v.i) if t == 0 else float(v.r) if t == 1 else
+                    (v.s or b"").decode())
+    return keys
+
+
+def _dim_line_by(path, by, layer, where, kw):
+    lay = _read_layer(path, layer, where, fields=True)
+    try:
+        L = lay.contents
+        groups = {}
+        for f, key in enumerate(_feature_keys(lay, by, path)):
+            groups.setdefault(key, []).append(f)  # insertion order = order of first appearance
+        out = []
+        for key, feats in groups.items():
+            items = []
+            for f in feats:
+                feat = L.features[f]
+                for p in range(feat.first, feat.first + feat.count):
+                    ch = L.parts[p].chain
+                    if ch and ch.contents.n >= 2:
+                        items.append((chain_to_numpy(ch), bool(ch.contents.closed)))
+            try:
+                if not items:
+                    raise FracterraError("%s=%s: no chain of 2 or more vertices to measure" % (by, key), FT_E_EMPTY)
+                out.append((key, dim_line([c for c, _ in items], closed=[cl for _, cl in items], **kw)))
+            except FracterraError as e:
+                if e.code in (FT_E_NOMEM, FT_E_CANCELLED):
+                    raise
+                out.append((key, e))
+        return out
+    finally:
+        lib.ft_layer_free(lay)
+
+
+def _chain_op(fn, coords, y, closed, *args):
+    """Runs a chain operation. Called with x and y it reads them in place and returns (x, y), NumPy
+    views of the library's result (no copy either way); called with an (n, 2) array it returns a new
+    (n, 2) array (one copy in, one out)."""
+    out = ctypes.POINTER(S.ft_chain)()
+    if y is not None:
+        cin = _CChain(coords, y, closed)
+        check(fn(cin.ref, *args, ctypes.byref(out)))
+        return chain_views(out)
+    cin = chain_from_coords(_coords(coords), None, closed)
+    try:
+        check(fn(cin, *args, ctypes.byref(out)))
+        try:
+            return chain_to_numpy(out)
+        finally:
+            lib.ft_chain_free(out)
+    finally:
+        lib.ft_chain_free(cin)
+
+
+def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None):
+    """Dutton's fractal enhancement of one chain (ft_line_enhance): a new (n, 2) array. target_dim
+    selects the calibrated mode (sd is then ignored). End points of open chains stay."""
+    o = S.ft_dutton_opts.default()
+    o.sd, o.uc, o.sm, o.iterations = float(sd), float(uc), float(sm), int(iterations)
+    if st is not None:
+        o.st = float(st)
+    if target_dim is not None:
+        o.target_dim = float(target_dim)
+    return _chain_op(lib.ft_line_enhance, coords, y, closed, ctypes.byref(o))
+
+
+def smooth(coords, y=None, *, closed=False, passes=1, roundness=0.5, st=None, sm=0.0):
+    """Roundness smoothing (corner cutting; roundness 0.5 is Chaikin's) of one chain."""
+    o = S.ft_smooth_opts.default()
+    o.passes, o.roundness, o.sm = int(passes), float(roundness), float(sm)
+    if st is not None:
+        o.st = float(st)
+    return _chain_op(lib.ft_line_smooth, coords, y, closed, ctypes.byref(o))
+
+
+def weed(coords, y=None, *, closed=False, min_segment):
+    """Drops vertices so that no segment is shorter than min_segment (map units)."""
+    return _chain_op(lib.ft_line_weed, coords, y, closed, float(min_segment))
+
+
+def simplify(coords, y=None, *, closed=False, tolerance):
+    """Douglas-Peucker simplification with a distance tolerance (map units)."""
+    return _chain_op(lib.ft_line_simplify, coords, y, closed, float(tolerance))
+
+
+def remove_loops(coords, y=None, *, closed=False):
+    """Removes the loops that self-intersections make."""
+    return _chain_op(lib.ft_line_remove_loops, coords, y, closed)
+
+
+def boundary(coords, y=None, *, closed=True, dim, min, max=0.0, jitter=0.0, seed=1, stream=0):
+    """Zhang et al.'s midpoint-subdivision boundary generator on one chain (ft_urban_boundary): dim in
+    (1, 2), min > 0 and max (0 = the chain's average chord) in map units; seeded as the CLI."""
+    o = S.ft_boundary_opts.default()
+    o.dim, o.min, o.max, o.jitter = float(dim), float(min), float(max), float(jitter)
+    o.seed, o.stream = int(seed), int(stream)
+    return _chain_op(lib.ft_urban_boundary, coords, y, closed, ctypes.byref(o))
+
+
+def _dutton(sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None):
+    o = S.ft_dutton_opts.default()
+    o.sd, o.uc, o.sm, o.iterations = float(sd), float(uc), float(sm), int(iterations)
+    if st is not None:
+        o.st = float(st)
+    if target_dim is not None:
+        o.target_dim = float(target_dim)
+    return o
+
+
+def _smooth(passes=1, roundness=0.5, st=None, sm=0.0):
+    o = S.ft_smooth_opts.default()
+    o.passes, o.roundness, o.sm = int(passes), float(roundness), float(sm)
+    if st is not None:
+        o.st = float(st)
+    return o
+
+
+# step name: (the library's ft_line_op, how its options are made from keyword arguments)
+_LAYER_OPS = {
+    "enhance": ("ft_line_op_enhance", _dutton),
+    "smooth": ("ft_line_op_smooth", _smooth),
+    "weed": ("ft_line_op_weed", lambda min_segment: ctypes.c_double(float(min_segment))),
+    "simplify": ("ft_line_op_simplify", lambda tolerance: ctypes.c_double(float(tolerance))),
+    "repair": ("ft_line_op_remove_loops", lambda: None),
+}
+
+
+def edit_file(src, dst, steps, *, coverage=True, layer=None, where=None, driver=None):
+    """Edits every line and ring of a vector layer and writes it, as `fracterra enhance|smooth|weed|
+    simplify` do: steps is a list of (name, options) with name "enhance" (sd, uc, st, sm, iterations,
+    target_dim), "smooth" (passes, roundness, st, sm), "weed" (min_segment), "simplify" (tolerance) or
+    "repair" (no options), applied in order through ft_line_apply_layer. On a polygon layer with
+    coverage=True (the CLI without --no-coverage) shared boundaries are edited once along the arc-node
+    topology, so neighbours stay coincident. Attributes and CRS are kept; dst is replaced only when the
+    whole write succeeded. Returns {"coverage", "vertices_in", "vertices_out", "stages": [(name, vertices)]}."""
+    prepared = []
+    for name, kw in steps:
+        if name not in _LAYER_OPS:
+            raise ValueError("unknown step %r (known: %s)" % (name, ", ".join(_LAYER_OPS)))
+        fn, make = _LAYER_OPS[name]
+        prepared.append((name, ctypes.cast(getattr(lib, fn), ctypes.c_void_p), make(**(kw or {}))))
+    lay = _read_layer(src, layer, where, fields=True)
+    try:
+        check(lib.ft_layer_check_finite(lay))
+        L = lay.contents
+        rings = any(L.parts[i].role != 0 for i in range(L.nparts))
+        cov = 1 if coverage and rings else 0
+        report = {"coverage": bool(cov), "vertices_in": lib.ft_layer_vertex_count(lay), "stages": []}
+        for name, op, opts in prepared:
+            check(lib.ft_line_apply_layer(lay, op, ctypes.byref(opts) if opts is not None else None, cov))
+            report["stages"].append((name, lib.ft_layer_vertex_count(lay)))
+        report["vertices_out"] = lib.ft_layer_vertex_count(lay)
+        wo = S.ft_write_layer_opts.default()
+        keep = driver.encode() if driver else None
+        wo.driver = keep
+        check(lib.ft_io_write_layer(path_bytes(dst), lay, ctypes.byref(wo)))
+        return report
+    finally:
+        lib.ft_layer_free(lay)

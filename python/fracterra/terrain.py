@@ -1,0 +1,180 @@
+"""Terrain: synthesis, reconstruction from sparse points or voids, Clarke's model, hillshade
+(terrain.h, render.h, io.h; docs/terrain-*.md). Seeds are unsigned 64-bit integers, default 1 as in
+the CLI; the same seed gives bit-identical cells on any thread count."""
+import ctypes
+
+import numpy as np
+
+from . import _structs as S
+from ._lib import lib, check, parse_enum
+from ._core import as_grid, _CGrid, _CPoints, grid_from_c, Progress
+from ._common import path_bytes
+
+__all__ = ["synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel", "hillshade",
+           "hillshade_file", "SYNTH_METHODS", "RECON_METHODS"]
+
+SYNTH_METHODS = ("fft", "sra", "midpoint", "exact")
+RECON_METHODS = ("fractal", "conditional", "smooth")
+
+
+def _wkt_of(crs):
+    """WKT from a CRS given as WKT, "EPSG:n" or anything GDAL's OSRSetFromUserInput reads (the CLI's --crs)."""
+    if crs is None:
+        return None
+    out = ctypes.c_void_p()
+    check(lib.ft_io_crs_to_wkt(crs.encode(), ctypes.byref(out)))
+    try:
+        return ctypes.string_at(out).decode()
+    finally:
+        from ._lib import c_free
+        c_free(out)
+
+
+def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), periodic=False, seed=1,
+          crs=None, progress=None, progress_arg=None):
+    """A fractional Brownian surface of dimension dim in (2, 3) on nx x ny cells, as `fracterra synth`:
+    a Grid (north-up geotransform from origin = upper-left corner and cell; crs as the CLI's --crs)."""
+    o = S.ft_synth_opts.default()
+    o.method = parse_enum(lib.ft_synth_method_parse, method, "method")
+    o.dim, o.sigma, o.cell = float(dim), float(sigma), float(cell)
+    o.origin_x, o.origin_y = (float(v) for v in origin)
+    o.periodic = 1 if periodic else 0
+    o.seed = int(seed)
+    wkt = _wkt_of(crs)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out = ctypes.POINTER(S.ft_grid)()
+    pr.check(lib.ft_terrain_synth(int(nx), int(ny), ctypes.byref(o), ctypes.byref(out)))
+    g = grid_from_c(out)
+    g.wkt = wkt
+    return g
+
+
+class ReconInfo:
+    """What a reconstruction used and achieved (ft_recon_info): dim, dim_estimated, sigma0, k,
+    temperature, levels, data_used, data_outside, filled, data_rms, lambda_."""
+
+    def __init__(self, info):
+        for f, _t in S.ft_recon_info._fields_:
+            v = getattr(info, f)
+            setattr(self, f, bool(v) if f == "dim_estimated" else v)
+
+    def __repr__(self):
+        return "ReconInfo(%s)" % ", ".join("%s=%r" % (f, getattr(self, f)) for f, _ in S.ft_recon_info._fields_)
+
+
+def reconstruct(data, target=None, *, method="fractal", dim=0.0, tension=0.1, lambda_=1.0, sigma=0.0,
+                temperature=0.0, k=0.0, sweeps=0, realizations=1, seed=1, threads=0, progress=None,
+                progress_arg=None):
+    """Dense terrain from sparse elevations or a DEM with voids (Arakawa & Krotkov), as
+    `fracterra reconstruct`. data: a Grid/array with nodata (its voids are filled, valid cells kept),
+    or (x, y, z) or (x, y, z, w) arrays with target a Grid (or array) giving the output's shape,
+    geotransform and CRS. dim 0 = estimated from the data. Returns (grid, sd, info): sd is the
+    per-cell standard deviation over realizations (None with one realization)."""
+    o = S.ft_recon_opts.default()
+    o.method = parse_enum(lib.ft_recon_method_parse, method, "method")
+    o.dim, o.tension, o.lambda_, o.sigma = float(dim), float(tension), float(lambda_), float(sigma)
+    o.temperature, o.k, o.sweeps = float(temperature), float(k), int(sweeps)
+    o.realizations, o.seed, o.threads = int(realizations), int(seed), int(threads)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out = ctypes.POINTER(S.ft_grid)()
+    sd = ctypes.POINTER(S.ft_grid)()
+    sd_ref = ctypes.byref(sd) if o.realizations > 1 else None
+    info = S.ft_recon_info()
+    if isinstance(data, tuple):
+        if target is None:
+            raise ValueError("reconstruct from points needs target= (a Grid giving shape and geotransform)")
+        t = as_grid(target)
+        p = _CPoints(*data[:4], wkt=t.wkt)
+        ct = _CGrid(t)
+        pr.check(lib.ft_reconstruct_points(p.ref, ct.ref, ctypes.byref(o), ctypes.byref(out), sd_ref,
+                                           ctypes.byref(info)))
+    else:
+        cg = _CGrid(as_grid(data))
+        pr.check(lib.ft_reconstruct_voids(cg.ref, ctypes.byref(o), ctypes.byref(out), sd_ref, ctypes.byref(info)))
+    z = grid_from_c(out)
+    s = grid_from_c(sd) if sd else None
+    if s is not None:
+        s.geotransform, s.wkt = z.geotransform, z.wkt
+    return z, s, ReconInfo(info)
+
+
+HARMONIC_DTYPE = np.dtype([(f, "i4" if f in ("k", "l") else "f8") for f, _ in S.ft_clarke_harmonic._fields_])
+
+
+class ClarkeModel:
+    """Clarke's scale-based model z = T + cF + H fitted to a DEM (ft_clarke_model): the trend
+    (beta0, beta1, beta2, trend_r2), the significant harmonics (a structured array), the spectral
+    regression (slope, intercept, r2, stderr_slope, npairs, D, D_clarke_eq8) and c. Keeps the C model
+    for clarke_simulate."""
+
+    def __init__(self, ptr):
+        self._ptr = ptr
+        m = ptr.contents
+        for f, _t in S.ft_clarke_model._fields_:
+            if f in ("harmonics", "crs_wkt", "gt"):
+                continue
+            setattr(self, f, getattr(m, f))
+        self.geotransform = tuple(m.gt)
+        self.wkt = m.crs_wkt.decode() if m.crs_wkt else None
+        self.harmonics = np.zeros(m.nharmonics, HARMONIC_DTYPE)
+        for i in range(m.nharmonics):
+            h = m.harmonics[i]
+            self.harmonics[i] = tuple(getattr(h, f) for f, _ in S.ft_clarke_harmonic._fields_)
+
+    def __del__(self):
+        if getattr(self, "_ptr", None):
+            lib.ft_clarke_model_free(self._ptr)
+            self._ptr = None
+
+    def __repr__(self):
+        return "ClarkeModel(D=%.4f, %d harmonics, c=%.4g)" % (self.D, self.nharmonics, self.c)
+
+
+def clarke_fit(dem, *, cutoff=2.5, taper=True, min_wavelength=4.0, progress=None, progress_arg=None):
+    """Fits Clarke's model to a DEM (a Grid or array), as `fracterra model`'s fit."""
+    o = S.ft_clarke_opts.default()
+    o.cutoff, o.taper, o.min_wavelength = float(cutoff), 1 if taper else 0, float(min_wavelength)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    cg = _CGrid(as_grid(dem))
+    out = ctypes.POINTER(S.ft_clarke_model)()
+    pr.check(lib.ft_clarke_fit(cg.ref, ctypes.byref(o), ctypes.byref(out)))
+    return ClarkeModel(out)
+
+
+def clarke_simulate(model, *, refine=1, extent=1, seed=1, progress=None, progress_arg=None):
+    """Simulates T + cF + H from a ClarkeModel on (extent * refine) times the fitted cells per axis.
+    Returns (grid, c_used)."""
+    o = S.ft_clarke_sim_opts.default()
+    o.refine, o.extent, o.seed = int(refine), int(extent), int(seed)
+    c_used = ctypes.c_double()
+    o.c_used = ctypes.pointer(c_used)
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out = ctypes.POINTER(S.ft_grid)()
+    pr.check(lib.ft_clarke_simulate(model._ptr, ctypes.byref(o), ctypes.byref(out)))
+    return grid_from_c(out), c_used.value
+
+
+def hillshade(dem, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=1.0, geotransform=None):
+    """The library's in-memory hillshade of a grid (ft_render_hillshade: Horn's 3x3 slope and aspect, as
+    gdaldem): a Grid of shades in [0, 255], nodata where a window touches nodata, with the input's
+    geotransform and CRS. `fracterra hillshade` (gdaldem on files) is hillshade_file."""
+    o = S.ft_hillshade_opts.default()
+    o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
+    cg = _CGrid(as_grid(dem, geotransform))
+    out = ctypes.POINTER(S.ft_grid)()
+    check(lib.ft_render_hillshade(cg.ref, ctypes.byref(o), ctypes.byref(out)))
+    return grid_from_c(out)
+
+
+def hillshade_file(dem_path, out_path, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=False,
+                   band=1):
+    """gdaldem's hillshade of a DEM file written to out_path (PNG, GeoTIFF, ... by extension), exactly
+    `fracterra hillshade` (ft_io_hillshade). scale 0 = 111120 for a DEM in degrees, else 1."""
+    o = S.ft_io_hillshade_opts.default()
+    o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
+    o.color, o.band = 1 if color else 0, int(band)
+    check(lib.ft_io_hillshade(path_bytes(dem_path), path_bytes(out_path), ctypes.byref(o)))

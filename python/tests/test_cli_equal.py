@@ -1,0 +1,208 @@
+"""The Python results equal the CLI's on the same inputs: the same D to the last digit the CLI prints
+(its JSON has 15 significant digits: cli/cli.c sets "%.15g"), the same table, the same cells."""
+import numpy as np
+import pytest
+
+import fracterra as ft
+
+gdal = pytest.importorskip("osgeo.gdal")
+
+VOLCANO = "dem_volcano_maunga_whau_10m.tif"
+LUX = "dem_luxembourg_terra_30s.tif"
+
+
+def printed(v):
+    """v as the CLI's JSON prints it, read back."""
+    return float("%.15g" % v)
+
+
+def same_result(py, js):
+    assert printed(py.D) == js["D"]
+    assert printed(py.r2) == js["r2"]
+    assert printed(py.stderr) == js["stderr"]
+    assert [printed(v) for v in py.range] == js["range"]
+    assert py.segmentation == js["segmentation"]
+    assert py.warnings == js["warnings"]
+    assert py.units == js.get("units", "")
+    assert len(py.table) == len(js["table"])
+    for row, jrow in zip(py.table, js["table"]):
+        assert (printed(row["scale"]), printed(row["value"]), printed(row["count"]), bool(row["used"])) == \
+            (jrow["scale"], jrow["value"], jrow["count"], jrow["used"])
+
+
+def read_band(path, band=1):
+    ds = gdal.Open(str(path))
+    b = ds.GetRasterBand(band)
+    z = b.ReadAsArray()
+    return z, b.GetMaskBand().ReadAsArray() != 0, ds.GetGeoTransform()
+
+
+@pytest.mark.parametrize("method", ["variogram", "pentland", "prism", "cubes"])
+def test_dim_surface(cli, data, method):
+    js = cli("dim", "surface", data(VOLCANO), "--method", method)
+    py = ft.dim_surface(ft.read_grid(data(VOLCANO)), method=method)
+    assert py.method == js["method"]
+    same_result(py, js)
+
+
+def test_dim_surface_scale_range_and_gdal_grid(cli, data):
+    js = cli("dim", "surface", data(LUX), "--min-scale", "0.01", "--max-scale", "0.1")
+    py = ft.dim_surface(ft.from_gdal(data(LUX)), min_scale=0.01, max_scale=0.1)
+    same_result(py, js)
+
+
+def test_dim_line_file_and_arrays(cli, data):
+    path = data("gshhg_newfoundland_utm21n.geojson")
+    js = cli("dim", "line", path)
+    same_result(ft.dim_line(path), js)
+    chains, wkt = ft.read_chains(path)
+    assert "UTM zone 21N" in wkt and len(chains) == 1 and chains[0][0].shape == (64193, 2)
+    coords, closed, _ = chains[0]
+    same_result(ft.dim_line(coords, closed=closed), js)
+    js_box = cli("dim", "line", path, "--method", "box")
+    same_result(ft.dim_line(coords[:, 0], coords[:, 1], closed=closed, method="box"), js_box)
+
+
+def test_dim_points(cli, data):
+    path = data("points_mass_topo_davis1973.csv")
+    js = cli("dim", "points", path, "--min-pairs", "5", "--method", "pentland")
+    py = ft.dim_points(path, min_pairs=5, method="pentland")
+    same_result(py, js)
+    x, y, z, w, _ = ft.read_points(path)
+    py2 = ft.dim_points(x, y, z, min_pairs=5, method="pentland")
+    assert py2.D == py.D
+    dropped = [printed(l["lag"]) for l in py.extra["lags"] if l["status"] != "kept"]
+    assert dropped == [d["lag"] for d in js["dropped_lags"]]
+
+
+def test_dim_area(cli, data):
+    path = data("dcw_us_states_small_albers5070.geojson")
+    js = cli("dim", "area", path)
+    py = ft.dim_area(path)
+    assert py.method == js["method"]
+    same_result(py, js)
+
+
+def test_dim_map_cells(cli, data, tmp_path):
+    out = tmp_path / "map.tif"
+    cli("dim", "map", data(VOLCANO), out, "--window", "16", "--step", "8")
+    D, r2 = ft.dim_map(ft.read_grid(data(VOLCANO)), 16, 8)
+    for band, g in ((1, D), (2, r2)):
+        z, valid, gt = read_band(out, band)
+        assert gt == g.geotransform
+        gm = np.ones(g.z.shape, bool) if g.mask is None else g.mask
+        assert np.array_equal(valid, gm)
+        assert np.array_equal(z[valid], g.z[gm])
+
+
+def test_synth_cells(cli, tmp_path):
+    out = tmp_path / "s.tif"
+    cli("synth", out, "--dim", "2.4", "--size", "64x48", "--seed", "9", "--method", "sra", "--cell", "30",
+        "--origin", "500000,4000000", "--crs", "EPSG:32633")
+    g = ft.synth(64, 48, 2.4, method="sra", seed=9, cell=30, origin=(500000, 4000000), crs="EPSG:32633")
+    z, valid, gt = read_band(out)
+    assert valid.all() and g.mask is None
+    assert np.array_equal(z, g.z)
+    assert gt == g.geotransform
+    assert "32633" in g.wkt
+
+
+def test_hillshade_file_cells(cli, data, tmp_path):
+    a, b = tmp_path / "cli.tif", tmp_path / "py.tif"
+    cli("hillshade", data(VOLCANO), a, "--azimuth", "300")
+    ft.hillshade_file(data(VOLCANO), b, azimuth=300)
+    assert np.array_equal(read_band(a)[0], read_band(b)[0])
+
+
+def test_reconstruct_voids_cells(cli, data, tmp_path):
+    out = tmp_path / "r.tif"
+    cli("reconstruct", data(LUX), out, "--method", "conditional", "--seed", "5")
+    z, s, info = ft.reconstruct(ft.read_grid(data(LUX)), method="conditional", seed=5)
+    zc, valid, gt = read_band(out)
+    assert s is None and info.filled > 0
+    assert np.array_equal(zc, z.z) and gt == z.geotransform
+
+
+def test_clarke_fit(cli, data, tmp_path):
+    js = cli("model", "fit", data(VOLCANO))
+    m = ft.clarke_fit(ft.read_grid(data(VOLCANO)))
+    flat = repr(js)
+    assert repr(printed(m.D)) in flat and repr(printed(m.c)) in flat
+    assert m.nharmonics == len(m.harmonics) > 0
+
+
+LINE = np.array([[0, 0], [10, 1], [20, -2], [30, 4], [40, 0], [55, 3], [70, 1]], dtype=float)
+
+
+def read_gmt(path):
+    return np.array([[float(v) for v in ln.split()[:2]] for ln in open(path) if ln[0] not in ">#"])
+
+
+@pytest.mark.parametrize("args,fn,kw", [
+    (["enhance", "--sd", "1.4", "--iterations", "2"], ft.enhance, dict(sd=1.4, iterations=2)),
+    (["enhance", "--target-dim", "1.5", "--uc", "0.7"], ft.enhance, dict(target_dim=1.5, uc=0.7)),
+    (["simplify", "--tolerance", "2.5"], ft.simplify, dict(tolerance=2.5)),
+    (["weed", "--min-segment", "12"], ft.weed, dict(min_segment=12)),
+    (["smooth", "--passes", "2"], ft.smooth, dict(passes=2)),
+    (["boundary", "--dim", "1.3", "--min", "1", "--seed", "4"], ft.boundary, dict(dim=1.3, min=1, seed=4,
+                                                                                closed=False)),
+])
+def test_line_edits_same_vertices(cli, tmp_path, args, fn, kw):
+    src, dst = tmp_path / "in.gmt", tmp_path / "out.gmt"
+    src.write_text("".join("%r %r\n" % (x, y) for x, y in LINE))
+    cli(args[0], src, dst, *args[1:], json_out=False)
+    assert np.array_equal(fn(LINE, **kw), read_gmt(dst))
+
+
+def test_mountain_levels_and_dem(cli, data, tmp_path):
+    seed = data("seed_contour_volcano.geojson")
+    js = cli("mountain", seed, tmp_path / "m.geojson", "--dem", tmp_path / "m.tif", "--seed", "3")
+    levels, dem, info = ft.mountain(seed, seed=3, dem=True)
+    assert info["seed_elevation"] == js["seed_elevation"] and printed(info["spacing"]) == js["spacing"]
+    assert [e for e, _ in levels] == js["elevations"]
+    assert [sum(len(o) + sum(len(h) for h in hs) for o, hs in polys) for _, polys in levels] == js["vertices"]
+    z, valid, gt = read_band(tmp_path / "m.tif")
+    assert gt == dem.geotransform
+    gm = np.ones(dem.z.shape, bool) if dem.mask is None else dem.mask
+    assert np.array_equal(valid, gm) and np.array_equal(z[valid], dem.z[gm])
+
+
+def test_dim_line_by_field(cli, data):
+    path = data("dcw_us_states_small_albers5070.geojson")
+    js = cli("dim", "line", path, "--by", "code", "--method", "hybrid")
+    py = ft.dim_line(path, by="code", method="hybrid")
+    assert [k for k, _ in py] == [f["id"] for f in js["features"]]
+    for (_, r), f in zip(py, js["features"]):
+        same_result(r, f)
+    with pytest.raises(ft.FracterraError, match="no field 'nope'"):
+        ft.dim_line(path, by="nope")
+
+
+def test_dim_area_by_class(cli, data):
+    path = data("dcw_us_states_small_albers5070.geojson")
+    js = cli("dim", "area", path, "--class", "code", "--what", "area")
+    py = ft.dim_area(path, by="code", what="area")
+    assert [k for k, _ in py] == [f["id"] for f in js["features"]]
+    for (_, r), f in zip(py, js["features"]):
+        same_result(r, f)
+
+
+@pytest.mark.parametrize("args,steps,coverage", [
+    (["simplify", "--tolerance", "2000"], [("simplify", dict(tolerance=2000))], True),
+    (["enhance", "--sd", "1.4", "--uc", "0.7", "--sm", "800", "--weed", "--smooth", "1"],
+     # the CLI gives smooth the enhance step's st and sm
+     [("enhance", dict(sd=1.4, uc=0.7, sm=800)), ("weed", dict(min_segment=800)), ("smooth", dict(passes=1, sm=800))],
+     True),
+    (["smooth", "--passes", "2", "--no-coverage"], [("smooth", dict(passes=2))], False),
+])
+def test_edit_file_same_geometry(cli, data, tmp_path, args, steps, coverage):
+    src = data("dcw_us_states_small_albers5070.geojson")
+    a, b = tmp_path / "cli.geojson", tmp_path / "py.geojson"
+    js = cli(args[0], src, a, *args[1:])
+    rep = ft.edit_file(src, b, steps, coverage=coverage)
+    assert rep["coverage"] == js["coverage"] and rep["vertices_out"] == js["vertices_out"]
+    ca, wa = ft.read_chains(a)
+    cb, wb = ft.read_chains(b)
+    assert wa == wb and len(ca) == len(cb)
+    for (xa, ra, fa), (xb, rb, fb) in zip(ca, cb):
+        assert (ra, fa) == (rb, fb) and np.array_equal(xa, xb)
