@@ -109,7 +109,8 @@ static void exhaustive_row(const ft_grid *g, const float *z, const float *w, siz
     for (size_t k = 0; k < nl; k++) {
         size_t h = lags[k], j0 = (hmax - h + 1) / 2;
         ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
-        if (h + hmax <= 2 * (nx - 1)) /* j from j0 while 2j + h + hmax <= 2(nx - 1) */
+        /* j from j0 to jmax = (2(nx - 1) - h - hmax) / 2; none when hmax reaches past a row (nx < ny) */
+        if (h + hmax <= 2 * (nx - 1) && (2 * (nx - 1) - h - hmax) / 2 >= j0)
             ft_lag_pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
         if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1))
             ft_lag_pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);

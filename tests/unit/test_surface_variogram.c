@@ -142,6 +142,27 @@ static void test_ground_units(void **state)
     ft_grid_free(g);
 }
 
+/* Lags longer than the grid's width but within its height (a 61 x 87 grid, lags up to 70 cells): only
+ * column pairs reach them; rows contribute nothing at any lag instead of a negative count (this read far
+ * past the rows before). A tilted plane still gives D = 2. */
+static void test_lags_beyond_the_short_side(void **state)
+{
+    (void)state;
+    ft_grid *g = ft_grid_create(61, 87);
+    for (size_t i = 0; i < 87; i++)
+        for (size_t j = 0; j < 61; j++)
+            g->z[i * 61 + j] = (float)(0.3 * (double)j - 0.7 * (double)i + 100.0);
+    ft_variogram_opts v = FT_VARIOGRAM_OPTS_DEFAULT;
+    v.min_lag = 2;
+    v.max_lag = 70;
+    v.fit_whole_range = 1;
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_surface_dim_variogram(g, &v, &r), 0);
+    assert_near(r->D, 2.0, 0.02);
+    ft_dim_result_free(r);
+    ft_grid_free(g);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -173,6 +194,7 @@ int main(void)
         cmocka_unit_test(test_nodata_skipped),
         cmocka_unit_test(test_random_pairs_reproducible),
         cmocka_unit_test(test_ground_units),
+        cmocka_unit_test(test_lags_beyond_the_short_side),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
