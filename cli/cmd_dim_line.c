@@ -260,6 +260,7 @@ static int measure_all(const cli_command *cmd, const ft_layer *l, const char *pa
     o.max_scale = a->dim.max_scale;
     o.nscales = a->dim.nscales;
     o.fit_whole_range = a->dim.min_scale > 0.0 && a->dim.max_scale > 0.0;
+    o.min_r2 = FT_LINE_R2_FLOOR;
     o.progress = cli_progress();
     if (a->by == NULL)
         return measure(l, NULL, ms, nm, &o, rep, path) == FT_OK ? CLI_OK : cli_fail(cmd);
