@@ -10,6 +10,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "clarke_json.h"
+#include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <math.h>
@@ -95,8 +96,13 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
     if (a.out && ft_io_check_writable(a.out) != FT_OK)
         return cli_fail(cmd);
     ft_grid *g = NULL;
+    ft_crs_info crs;
     if (terrain_read_dem(cmd, argv[first], &g) != CLI_CONTINUE)
         return CLI_FAIL;
+    if (cli_geo_grid_ground(cmd, argv[first], &g, &crs) != CLI_CONTINUE) { /* lon/lat: fitted in metres */
+        ft_grid_free(g);
+        return CLI_FAIL;
+    }
     ft_clarke_model *m = NULL;
     a.co.progress = cli_progress();
     rc = ft_clarke_fit(g, &a.co, &m) == FT_OK ? fit_report(cmd, &a, argv[first], m) : cli_fail(cmd);
