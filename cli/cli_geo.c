@@ -55,6 +55,49 @@ int cli_geo_layer_local(const cli_command *cmd, const ft_layer *l, ft_local_proj
     return CLI_CONTINUE;
 }
 
+int cli_geo_layer_ground(const cli_command *cmd, const char *path, ft_layer *l, ft_local_projection kind,
+                         ft_crs_info *crs)
+{
+    int rc = cli_geo_crs(cmd, path, l->crs_wkt, crs);
+    if (rc != CLI_CONTINUE || !crs->geographic)
+        return rc;
+    double x0, y0, x1, y1;
+    char *wkt = NULL;
+    if (ft_layer_bbox(l, &x0, &y0, &x1, &y1) != FT_OK)
+        return cli_fail(cmd);
+    if ((rc = cli_geo_local_crs(cmd, l->crs_wkt, kind, x0, y0, x1, y1, &wkt)) != CLI_CONTINUE)
+        return rc;
+    if (ft_io_layer_reproject(l, wkt) != FT_OK) {
+        cli_error(cmd, "%s: %s", path, ft_last_error());
+        rc = CLI_FAIL;
+    }
+    free(wkt);
+    return rc;
+}
+
+int cli_geo_points_ground(const cli_command *cmd, const char *path, ft_points *p, ft_crs_info *crs)
+{
+    int rc = cli_geo_crs(cmd, path, p->crs_wkt, crs);
+    if (rc != CLI_CONTINUE || !crs->geographic || p->n == 0)
+        return rc;
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (size_t i = 0; i < p->n; i++) {
+        x0 = fmin(x0, p->x[i]);
+        x1 = fmax(x1, p->x[i]);
+        y0 = fmin(y0, p->y[i]);
+        y1 = fmax(y1, p->y[i]);
+    }
+    char *wkt = NULL;
+    if ((rc = cli_geo_local_crs(cmd, p->crs_wkt, FT_LOCAL_TMERC, x0, y0, x1, y1, &wkt)) != CLI_CONTINUE)
+        return rc;
+    if (ft_io_points_reproject(p, wkt) != FT_OK) {
+        cli_error(cmd, "%s: %s", path, ft_last_error());
+        rc = CLI_FAIL;
+    }
+    free(wkt);
+    return rc;
+}
+
 int cli_geo_grid_local(const cli_command *cmd, const ft_grid *g, ft_grid **out)
 {
     ft_crs_info crs;

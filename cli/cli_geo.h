@@ -22,6 +22,14 @@ int cli_geo_local_crs(const cli_command *cmd, const char *wkt, ft_local_projecti
 /** A copy of a layer in degrees projected to a local projection of the given kind centred on its extent.
  *  CLI_CONTINUE or CLI_FAIL (printed). */
 int cli_geo_layer_local(const cli_command *cmd, const ft_layer *l, ft_local_projection kind, ft_layer **out);
+/** The CRS of a layer read from path; a layer in degrees is reprojected in place to a local projection of
+ *  the given kind centred on its extent (its CRS becomes that projection; crs keeps the input's).
+ *  CLI_CONTINUE or CLI_FAIL (printed). */
+int cli_geo_layer_ground(const cli_command *cmd, const char *path, ft_layer *l, ft_local_projection kind,
+                         ft_crs_info *crs);
+/** The same for points: in degrees they are projected in place to a local transverse Mercator centred on
+ *  their extent. CLI_CONTINUE or CLI_FAIL (printed). */
+int cli_geo_points_ground(const cli_command *cmd, const char *path, ft_points *p, ft_crs_info *crs);
 /** A grid in degrees warped to a local transverse Mercator centred on it, square cells of the geometric mean
  *  of its ground cell sizes at its centre (bilinear). CLI_CONTINUE or CLI_FAIL (printed). */
 int cli_geo_grid_local(const cli_command *cmd, const ft_grid *g, ft_grid **out);

@@ -11,6 +11,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <errno.h>
@@ -319,7 +320,14 @@ static int reconstruct(const cli_command *cmd, recon_args *a, const char *in, co
     ft_recon_info info;
     memset(&info, 0, sizeof info);
     int rc = CLI_CONTINUE;
-    if (d.kind == FT_KIND_POINTS && d.points->n < 3) {
+    ft_crs_info crs;
+    rc = cli_geo_crs(cmd, in, d.kind == FT_KIND_GRID ? d.grid->crs_wkt : d.points ? d.points->crs_wkt : NULL, &crs);
+    if (rc == CLI_CONTINUE && crs.geographic)
+        rc = cli_geo_refuse(cmd, in, &crs, "the reconstruction's lags, cells and fractal scaling are lengths on the "
+                            "ground, which degrees are not",
+                            d.kind == FT_KIND_GRID ? "gdalwarp -t_srs EPSG:32632 in.tif out.tif"
+                                                   : "ogr2ogr -t_srs EPSG:32632 out.gpkg in.gpkg");
+    if (rc == CLI_CONTINUE && d.kind == FT_KIND_POINTS && d.points->n < 3) {
         cli_error(cmd, "%s holds %zu point%s; a reconstruction needs at least 3 (not on a line)", in, d.points->n,
                   d.points->n == 1 ? "" : "s");
         rc = CLI_FAIL;
