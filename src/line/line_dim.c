@@ -310,6 +310,12 @@ static int build_table(const chain_set *s, ft_line_method method, const ft_line_
         int usable = method == FT_LINE_BOX ? value > 0.0 : value >= r;
         if (rc == FT_OK && usable)
             rc = ft_loglog_push(t, scale, value, count);
+        else if (rc == FT_OK && o->fit_whole_range) /* the range was asked for: say it does not fit */
+            rc = ft_error(FT_E_INVALID, "%s %g%s of the range [%g, %g]%s is longer than the chains: they are %g%s "
+                          "long and %g%s across; choose a largest scale below %g%s", method == FT_LINE_BOX ?
+                          "box size" : "ruler", r, o->ellipsoid ? " m" : "", lo, hi, o->ellipsoid ? " m" : "",
+                          s->length, o->ellipsoid ? " m" : "", extent_diagonal(s), o->ellipsoid ? " m" : "",
+                          HI_FRACTION_WALK * extent_diagonal(s), o->ellipsoid ? " m" : "");
         snprintf(msg, sizeof msg, "%s: scale %d of %d", method_names[method], i + 1, nscales);
         if (rc == FT_OK)
             rc = ft_progress(o->progress, o->progress_arg, (i + 1.0) / nscales, msg);
