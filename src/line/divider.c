@@ -31,52 +31,120 @@ void ft_walk_src_init(ft_walk_src *w, const ft_chain *c, int from_end)
     w->backward = c->closed ? 0 : (from_end != 0);
 }
 
-/* Parameter t in [0, 1] where A + t (B - A) leaves the sphere (circle in the plane) of radius^2 r2 around P,
- * A inside it and B on or outside it: the larger root of a t^2 + 2 b t + c = 0, written to avoid
- * cancellation. Planar chains pass dz = 0 terms, which add exactly nothing. */
-static double sphere_exit(const double a3[3], const double b3[3], const double p3[3], double r2)
+/* Parameter t in [0, 1] where A + t (B - A) leaves the circle of radius^2 r2 around P, A inside it and B
+ * on or outside it: the larger root of a t^2 + 2 b t + c = 0, written to avoid cancellation. */
+static double circle_exit(double ax, double ay, double bx, double by, double px, double py, double r2)
 {
-    double ex = b3[0] - a3[0], ey = b3[1] - a3[1], ez = b3[2] - a3[2];
-    double fx = a3[0] - p3[0], fy = a3[1] - p3[1], fz = a3[2] - p3[2];
-    double a = ex * ex + ey * ey + ez * ez;
-    double b = fx * ex + fy * ey + fz * ez;
-    double c = fx * fx + fy * fy + fz * fz - r2;
+    double ex = bx - ax, ey = by - ay;
+    double fx = ax - px, fy = ay - py;
+    double a = ex * ex + ey * ey;
+    double b = fx * ex + fy * ey;
+    double c = fx * fx + fy * fy - r2;
     double disc = b * b - a * c;
     double sq = sqrt(disc > 0.0 ? disc : 0.0);
     double t = b >= 0.0 ? -c / (b + sq) : (sq - b) / a;
     return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
 }
 
-/* One structured walk along w with ruler r: the walked length (whole steps plus the last fraction). */
-static void walk(const ft_walk_src *w, double r, double *length, size_t *steps)
+/* One structured walk along a planar w with ruler r: the walked length (whole steps plus the last fraction). */
+static void walk_plane(const ft_walk_src *w, double r, double *length, size_t *steps)
+{
+    const double r2 = r * r;
+    double px, py, ax, ay;
+    ft_walk_vertex(w, 0, &px, &py);
+    ax = px;
+    ay = py;
+    size_t nsteps = 0;
+    for (size_t k = 1; k < w->m;) {
+        double bx, by;
+        ft_walk_vertex(w, k, &bx, &by);
+        double dx = bx - px, dy = by - py;
+        if (dx * dx + dy * dy < r2) { /* B still inside: the walk's next point lies further on */
+            ax = bx;
+            ay = by;
+            k++;
+            continue;
+        }
+        double t = circle_exit(ax, ay, bx, by, px, py, r2);
+        px = ax + t * (bx - ax);
+        py = ay + t * (by - ay);
+        ax = px;
+        ay = py;
+        nsteps++;
+    }
+    double ex, ey;
+    ft_walk_vertex(w, w->m - 1, &ex, &ey);
+    *length = (double)nsteps * r + hypot(ex - px, ey - py);
+    *steps = nsteps;
+}
+
+/* Parameter t in [0, 1] where A + t (B - A) leaves the sphere (circle in the plane, d3 = 0) of radius^2 r2
+ * around P, A inside it and B on or outside it: the larger root of a t^2 + 2 b t + c = 0, written to avoid
+ * cancellation. */
+FT_WALK_INLINE double sphere_exit(const double *a3, const double *b3, const double *p3, double r2, int d3)
+{
+    double ex = b3[0] - a3[0], ey = b3[1] - a3[1];
+    double fx = a3[0] - p3[0], fy = a3[1] - p3[1];
+    double a = ex * ex + ey * ey;
+    double b = fx * ex + fy * ey;
+    double c = fx * fx + fy * fy - r2;
+    if (d3) {
+        double ez = b3[2] - a3[2], fz = a3[2] - p3[2];
+        a += ez * ez;
+        b += fz * ez;
+        c += fz * fz;
+    }
+    double disc = b * b - a * c;
+    double sq = sqrt(disc > 0.0 ? disc : 0.0);
+    double t = b >= 0.0 ? -c / (b + sq) : (sq - b) / a;
+    return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+}
+
+/* One structured walk along w with ruler r: the walked length (whole steps plus the last fraction). d3: a
+ * constant, 1 for Earth-centred chains (w->z set); the planar walk never touches z. */
+FT_WALK_INLINE void walk_impl(const ft_walk_src *w, double r, double *length, size_t *steps, int d3)
 {
     const double r2 = r * r;
     double p[3], a[3];
-    ft_walk_vertex3(w, 0, &p[0], &p[1], &p[2]);
+    ft_walk_vertex3(w, 0, &p[0], &p[1], &p[2], d3);
     a[0] = p[0];
     a[1] = p[1];
     a[2] = p[2];
     size_t nsteps = 0;
     for (size_t k = 1; k < w->m;) {
         double b[3];
-        ft_walk_vertex3(w, k, &b[0], &b[1], &b[2]);
-        double dx = b[0] - p[0], dy = b[1] - p[1], dz = b[2] - p[2];
-        if (dx * dx + dy * dy + dz * dz < r2) { /* B still inside: the walk's next point lies further on */
+        ft_walk_vertex3(w, k, &b[0], &b[1], &b[2], d3);
+        double dx = b[0] - p[0], dy = b[1] - p[1], d2 = dx * dx + dy * dy;
+        if (d3)
+            d2 += (b[2] - p[2]) * (b[2] - p[2]);
+        if (d2 < r2) { /* B still inside: the walk's next point lies further on */
             a[0] = b[0];
             a[1] = b[1];
-            a[2] = b[2];
+            if (d3)
+                a[2] = b[2];
             k++;
             continue;
         }
-        double t = sphere_exit(a, b, p, r2);
-        for (int i = 0; i < 3; i++)
-            a[i] = p[i] = a[i] + t * (b[i] - a[i]);
+        double t = sphere_exit(a, b, p, r2, d3);
+        a[0] = p[0] = a[0] + t * (b[0] - a[0]);
+        a[1] = p[1] = a[1] + t * (b[1] - a[1]);
+        if (d3)
+            a[2] = p[2] = a[2] + t * (b[2] - a[2]);
         nsteps++;
     }
     double e[3];
-    ft_walk_vertex3(w, w->m - 1, &e[0], &e[1], &e[2]);
-    *length = (double)nsteps * r + ft_walk_dist(e[0] - p[0], e[1] - p[1], e[2] - p[2]);
+    ft_walk_vertex3(w, w->m - 1, &e[0], &e[1], &e[2], d3);
+    *length = (double)nsteps * r + (d3 ? ft_walk_dist(e[0] - p[0], e[1] - p[1], e[2] - p[2])
+                                       : hypot(e[0] - p[0], e[1] - p[1]));
     *steps = nsteps;
+}
+
+static void walk(const ft_walk_src *w, double r, double *length, size_t *steps)
+{
+    if (w->z)
+        walk_impl(w, r, length, steps, 1);
+    else
+        walk_plane(w, r, length, steps);
 }
 
 void ft_line_divider_length(const ft_chain *c, const double *z, double r, int both_ends, double *length,

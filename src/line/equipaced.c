@@ -12,13 +12,11 @@
 #include "fracterra/line.h"
 #include "line/line_dim_internal.h"
 
-void ft_line_equipaced_length(const ft_chain *c, const double *z, double s, double *length, double *steps)
+FT_WALK_INLINE void equipaced_impl(const ft_walk_src *wp, double s, double *length, double *steps, int d3)
 {
-    ft_walk_src w;
-    ft_walk_src_init(&w, c, 0);
-    w.z = z;
+    const ft_walk_src w = *wp;
     double a[3], q[3];
-    ft_walk_vertex3(&w, 0, &a[0], &a[1], &a[2]);
+    ft_walk_vertex3(&w, 0, &a[0], &a[1], &a[2], d3);
     q[0] = a[0];
     q[1] = a[1];
     q[2] = a[2];
@@ -26,7 +24,7 @@ void ft_line_equipaced_length(const ft_chain *c, const double *z, double s, doub
     size_t nsteps = 0;
     for (size_t k = 1; k < w.m; k++) {
         double b[3];
-        ft_walk_vertex3(&w, k, &b[0], &b[1], &b[2]);
+        ft_walk_vertex3(&w, k, &b[0], &b[1], &b[2], d3);
         double seg = ft_walk_dist(b[0] - a[0], b[1] - a[1], b[2] - a[2]), pos = 0.0;
         while (seg - pos >= need) {
             pos += need;
@@ -47,4 +45,15 @@ void ft_line_equipaced_length(const ft_chain *c, const double *z, double s, doub
     }
     *length = len + ft_walk_dist(a[0] - q[0], a[1] - q[1], a[2] - q[2]);
     *steps = (double)nsteps;
+}
+
+void ft_line_equipaced_length(const ft_chain *c, const double *z, double s, double *length, double *steps)
+{
+    ft_walk_src w;
+    ft_walk_src_init(&w, c, 0);
+    w.z = z;
+    if (z)
+        equipaced_impl(&w, s, length, steps, 1);
+    else
+        equipaced_impl(&w, s, length, steps, 0);
 }

@@ -37,13 +37,19 @@ static inline void ft_walk_vertex(const ft_walk_src *w, size_t k, double *x, dou
     *y = w->y[i];
 }
 
-/** Vertex k of the walked sequence in 3-D (z = 0 for a planar chain). */
-static inline void ft_walk_vertex3(const ft_walk_src *w, size_t k, double *x, double *y, double *z)
+/** Vertex k of the walked sequence in 3-D; d3 = 0 (a compile-time constant in the walks, which are
+ *  specialised for planar and 3-D chains so the planar loop stays as lean as before) gives z = 0. */
+#if defined(__GNUC__)
+#define FT_WALK_INLINE static inline __attribute__((always_inline))
+#else
+#define FT_WALK_INLINE static inline
+#endif
+FT_WALK_INLINE void ft_walk_vertex3(const ft_walk_src *w, size_t k, double *x, double *y, double *z, int d3)
 {
     size_t i = k == w->n ? 0 : (w->backward ? w->n - 1 - k : k);
     *x = w->x[i];
     *y = w->y[i];
-    *z = w->z ? w->z[i] : 0.0;
+    *z = d3 ? w->z[i] : 0.0;
 }
 
 /** |(dx, dy, dz)|: hypot in the plane (dz = 0), so planar results do not change in the last bit. */
