@@ -12,6 +12,7 @@ packages=(
   libcairo2-dev               # PNG/SVG/PDF rendering
   libjson-c-dev               # JSON output
   libcmocka-dev               # unit tests
+  libproj-dev                 # PROJ geodesic.h: reference ellipsoidal lengths in the tests (pulled in by GDAL too)
 )
 
 missing=()

@@ -258,8 +258,21 @@ static void test_refusals(void **state)
 {
     (void)state;
     const char *out = ft_test_tmp("recon.tif");
-    FT_TEST_EXPECT_FAILURE(1, "reconstruct", "longitude/latitude (WGS 84)", "reconstruct", LUX_LONLAT, out);
+    const char *pts = ft_test_tmp_text(
+        "pts.geojson", "{\"type\":\"FeatureCollection\",\"features\":["
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.0,49.5,300]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.1,49.5,320]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.0,49.6,310]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.1,49.6,330]}}]}");
+    FT_TEST_EXPECT_FAILURE(1, "reconstruct", "longitude/latitude (WGS 84)", "reconstruct", pts, out, "--cell",
+                           "100");
     assert_int_equal(access(out, F_OK), -1);
+    /* voids of a lon/lat DEM are filled in its cells, with a warning giving their ground size */
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "reconstruct", LUX_LONLAT, out, NULL), 0);
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.err, "on the ground, and the voids are filled as if they were square"));
+    ft_run_free(&r);
     FT_TEST_EXPECT_FAILURE(1, "mountain", "geographic CRS (WGS 84)", "mountain", US_LONLAT,
                            ft_test_tmp("m.geojson"));
 }
