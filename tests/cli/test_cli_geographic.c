@@ -309,6 +309,43 @@ static void test_hillshade(void **state)
         ft_grid_free(g[i]);
 }
 
+/* info says what the measuring commands will do, and a lon/lat grid's ground cells: 30" at 49.8 N are about
+ * 600 m x 927 m (a degree of longitude is 71 696 m at 50 N, of latitude 111 229 m: textbook values). */
+static void test_info(void **state)
+{
+    (void)state;
+    json_object *o = FT_TEST_RUN_JSON("info", LUX_LONLAT, "--json");
+    json_object *crs = ft_test_json_key(o, "crs");
+    assert_true(json_object_get_boolean(ft_test_json_key(crs, "geographic")));
+    assert_string_equal(ft_test_json_str(crs, "ellipsoid"), "WGS 84");
+    json_object *g = ft_test_json_key(o, "ground_cell_size");
+    assert_true(fabs(json_object_get_double(json_object_array_get_idx(g, 0)) / (71696.0 / 120.0) - 1.0) < 0.01);
+    assert_true(fabs(json_object_get_double(json_object_array_get_idx(g, 1)) / (111229.0 / 120.0) - 1.0) < 0.001);
+    json_object_put(o);
+}
+
+/* urban table of the lon/lat states: areas in square metres, equal to the Albers twin's. */
+static void test_urban_table(void **state)
+{
+    (void)state;
+    const char *t1 = ft_test_tmp("t1.json"), *t2 = ft_test_tmp("t2.json");
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "urban", "table", US_LONLAT, "--class", "code", "-o", t1, NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    assert_int_equal(ft_run(&r, "urban", "table", US_ALBERS, "--class", "code", "-o", t2, NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    json_object *a = json_object_from_file(t1), *b = json_object_from_file(t2);
+    assert_non_null(a);
+    assert_non_null(b);
+    double aa = ft_test_json_num(ft_test_json_at(ft_test_json_key(a, "rows"), 0), "area");
+    double ab = ft_test_json_num(ft_test_json_at(ft_test_json_key(b, "rows"), 0), "area");
+    assert_true(fabs(aa / ab - 1.0) < 1e-4);
+    json_object_put(a);
+    json_object_put(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -317,7 +354,8 @@ int main(void)
         cmocka_unit_test(test_dim_surface_twin), cmocka_unit_test(test_model_fit_twin),
         cmocka_unit_test(test_dim_map),          cmocka_unit_test(test_dim_points),
         cmocka_unit_test(test_line_editors),     cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_hillshade),
+        cmocka_unit_test(test_hillshade),        cmocka_unit_test(test_info),
+        cmocka_unit_test(test_urban_table),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }
