@@ -254,13 +254,14 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
     double hi_auto = (box ? HI_FRACTION_BOX : HI_FRACTION_WALK) * diag;
     *lo = o->min_scale > 0.0 ? o->min_scale : lo_auto;
     *hi = o->max_scale > 0.0 ? o->max_scale : hi_auto;
+    const char *u = o->ellipsoid ? " m" : "";
     if (!(*lo < *hi))
-        return ft_error(FT_E_INVALID, "empty scale range: min_scale %g%s >= max_scale %g%s (median segment %g, "
-                        "bounding-box diagonal %g); set --min-scale/--max-scale", *lo,
+        return ft_error(FT_E_INVALID, "empty scale range: min_scale %g%s%s >= max_scale %g%s%s (median segment %g%s, "
+                        "bounding-box diagonal %g%s); set --min-scale/--max-scale", *lo, u,
                         o->min_scale > 0.0 ? "" : (box ? " (automatic: median segment)"
-                                                       : " (automatic: 2 x median segment)"), *hi,
+                                                       : " (automatic: 2 x median segment)"), *hi, u,
                         o->max_scale > 0.0 ? "" : (box ? " (automatic: diagonal / 48)" : " (automatic: diagonal / 4)"),
-                        s->median_seg, diag);
+                        s->median_seg, u, diag, u);
     return FT_OK;
 }
 
