@@ -233,11 +233,14 @@ static int write_plot(const cli_dim_report *rep, const cli_dim_opts *o, size_t g
         snprintf(title, sizeof title, "%s: %s", base, it->r->method);
     ft_plot_opts po = FT_PLOT_OPTS_DEFAULT;
     po.title = title;
-    char xlabel[96];
-    if (it->r->units[0] != '\0' && it->xlabel) /* the axis names the unit of its scales */
+    char xlabel[96], ylabel[96];
+    const int unit = it->r->units[0] != '\0';
+    if (unit && it->xlabel) /* the axis names the unit of its scales, and of lengths */
         snprintf(xlabel, sizeof xlabel, "%s (%s)", it->xlabel, it->r->units);
-    po.xlabel = it->r->units[0] != '\0' && it->xlabel ? xlabel : it->xlabel;
-    po.ylabel = it->ylabel;
+    if (unit && it->ylabel && strcmp(it->ylabel, "length") == 0)
+        snprintf(ylabel, sizeof ylabel, "%s (%s)", it->ylabel, it->r->units);
+    po.xlabel = unit && it->xlabel ? xlabel : it->xlabel;
+    po.ylabel = unit && it->ylabel && strcmp(it->ylabel, "length") == 0 ? ylabel : it->ylabel;
     po.segments = o->segments;
     char *path = plot_path(rep, o->plot, g, (size_t)(it - gr->items));
     if (path == NULL)
