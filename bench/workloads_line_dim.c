@@ -8,6 +8,11 @@
  * the diagonal for the divider; the median segment to 1/48 of it for boxes), with the default 4 x 4 grid
  * offsets. No peer: no installed tool measures the dimension of a line.
  *
+ * line.divider.1m.lonlat (issue 12, speed target: at most 3 x line.divider.1m): the same curve laid at
+ * 50 N in longitude/latitude degrees (x / metres per degree of longitude, y / metres per degree of
+ * latitude there, WGS 84), walked on the ellipsoid (opts.ellipsoid): the chain is turned into Earth-centred
+ * points once, then the 16 walks step by 3-D chords.
+ *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "bench.h"
@@ -61,11 +66,29 @@ static int line_prepare(ft_bench_case *c)
     return build_curve();
 }
 
+static const ft_ellipsoid wgs84 = FT_ELLIPSOID_WGS84;
+static int lonlat; /* 1: the curve is in degrees, walked on wgs84 */
+
+static int lonlat_prepare(ft_bench_case *c)
+{
+    (void)c;
+    int rc = build_curve();
+    double per_lon, per_lat;
+    ft_ellipsoid_metres_per_degree(&wgs84, 50.0, &per_lon, &per_lat);
+    for (size_t i = 0; rc == FT_OK && i < curve->n; i++) {
+        curve->x[i] = 6.0 + curve->x[i] / per_lon;
+        curve->y[i] = 50.0 + curve->y[i] / per_lat;
+    }
+    lonlat = 1;
+    return rc;
+}
+
 static int run_method(ft_line_method m, int nscales)
 {
     const ft_chain *cs[] = {curve};
     ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
     o.nscales = nscales;
+    o.ellipsoid = lonlat ? &wgs84 : NULL;
     ft_dim_result *r = NULL;
     int rc = ft_line_dim(cs, 1, m, &o, &r);
     ft_dim_result_free(r);
@@ -87,6 +110,9 @@ static int box_run(ft_bench_case *c)
 static const ft_bench_workload line_dim_workloads[] = {
     {"line.divider.1m", "ft_line_dim divider, 16 rulers, both ends, on a 1,000,000-vertex D = 1.3 curve",
      FT_BENCH_VERTICES, line_setup, line_prepare, divider_run, NULL},
+    {"line.divider.1m.lonlat", "ft_line_dim divider, 16 rulers, both ends, on that curve in lon/lat at 50 N, "
+     "walked on the WGS 84 ellipsoid (target: <= 3 x line.divider.1m)", FT_BENCH_VERTICES, line_setup,
+     lonlat_prepare, divider_run, NULL},
     {"line.box.1m", "ft_line_dim box counting, 12 sizes x 16 grid offsets, on the same curve", FT_BENCH_VERTICES,
      line_setup, line_prepare, box_run, NULL},
 };

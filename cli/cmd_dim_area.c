@@ -10,6 +10,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "dim_output.h"
 #include "urban_cli.h"
 
@@ -28,6 +29,7 @@ typedef struct {
     cli_dim_report *rep;
     int classes; /* 1 when every set is a feature group (--class, or a raster) */
     const char *what;
+    ft_crs_info crs; /* of the input */
 } area_ctx;
 
 /* ---- collecting ---- */
@@ -48,8 +50,10 @@ static int add_set(const urban_set *s, ft_dim_result *r, void *arg)
     int rc = cli_dim_report_group(c->rep, c->classes, json_object_get(s->id), label, info);
     if (rc == FT_OK && r == NULL)
         cli_dim_report_group_failed(c->cmd, c->rep);
-    else if (rc == FT_OK)
+    else if (rc == FT_OK) {
+        cli_geo_units(r, &c->crs);
         rc = cli_dim_report_add(c->rep, r, "box side", "boxes");
+    }
     else
         ft_dim_result_free(r);
     return rc;
@@ -96,6 +100,14 @@ static int measure_input(const cli_command *cmd, const char *path, const area_ar
     ft_area_dim_opts o;
     set_scales(a, &o);
     int rc = read_input(cmd, path, a, &d);
+    if (rc == CLI_CONTINUE && d.layer) /* lon/lat polygons: boxes in a local equal-area projection */
+        rc = cli_geo_layer_ground(cmd, path, d.layer, FT_LOCAL_LAEA, &c->crs);
+    else if (rc == CLI_CONTINUE && (rc = cli_geo_crs(cmd, path, d.grid->crs_wkt, &c->crs)) == CLI_CONTINUE &&
+             c->crs.geographic)
+        rc = cli_geo_refuse(cmd, path, &c->crs, "its cells are not squares on the ground, and a classified raster "
+                            "cannot be resampled", "gdalwarp -t_srs EPSG:3035 -r near in.tif out.tif");
+    if (rc == CLI_CONTINUE && c->crs.geographic)
+        json_object_object_add(extra, "geographic", cli_geo_json(&c->crs, d.layer->crs_wkt));
     if (rc == CLI_CONTINUE) {
         c->classes = a->cls != NULL || d.grid != NULL;
         json_object_object_add(extra, "layer", d.layer && d.layer->name ? json_object_new_string(d.layer->name)
@@ -160,7 +172,7 @@ static int run_dim_area(const cli_command *cmd, int argc, char **argv)
     if (rc != CLI_CONTINUE)
         return rc;
     const char *path = argv[first];
-    area_ctx c = {cmd, cli_dim_report_create(path), 0, ft_area_what_name(a.box.dim.what)};
+    area_ctx c = {cmd, cli_dim_report_create(path), 0, ft_area_what_name(a.box.dim.what), {0}};
     json_object *extra = json_object_new_object();
     json_object_object_add(extra, "file", json_object_new_string(path));
     if (a.cls)

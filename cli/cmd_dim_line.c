@@ -10,6 +10,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "dim_output.h"
 
 #include <stdio.h>
@@ -225,51 +226,75 @@ static json_object *group_info(size_t features, size_t chains, size_t vertices)
     return o;
 }
 
-/* Measures one group (g == NULL: the whole layer) with every method into the report. */
-static int measure(const ft_layer *l, const line_group *g, const ft_line_method *ms, int nm,
+/* The input as measured: the layer, its CRS, and for box counting of lon/lat data its copy in a local
+ * equal-area projection (NULL otherwise). */
+typedef struct {
+    const ft_layer *l, *box_layer;
+    const ft_crs_info *crs;
+} line_input;
+
+/* Measures one group (g == NULL: the whole layer) with every method into the report. Lon/lat chains are
+ * walked on the ellipsoid, and box-counted in the equal-area copy. */
+static int measure(const line_input *in, const line_group *g, const ft_line_method *ms, int nm,
                    const ft_line_dim_opts *opts, cli_dim_report *rep, const char *label)
 {
-    const ft_chain **chains = NULL;
-    size_t n = 0, vertices = 0;
+    const ft_layer *l = in->l;
+    const ft_chain **chains = NULL, **box_chains = NULL;
+    size_t n = 0, vertices = 0, nb = 0, vb = 0;
     int rc = group_chains(l, g, &chains, &n, &vertices);
-    if (rc != FT_OK)
+    if (rc == FT_OK && in->box_layer)
+        rc = group_chains(in->box_layer, g, &box_chains, &nb, &vb);
+    if (rc != FT_OK) {
+        free(chains);
         return rc;
+    }
     json_object *id = g ? json_object_get(g->id) : NULL;
     rc = cli_dim_report_group(rep, g != NULL, id, label, group_info(g ? g->n : l->nfeatures, n, vertices));
     if (rc == FT_OK && n == 0)
         rc = ft_error(FT_E_EMPTY, "%s: no chain of 2 or more vertices to measure", label);
     for (int i = 0; rc == FT_OK && i < nm; i++) {
         ft_dim_result *r = NULL;
-        rc = ft_line_dim(chains, n, ms[i], opts, &r);
-        if (rc != FT_OK)
+        ft_line_dim_opts o = *opts;
+        int box = ms[i] == FT_LINE_BOX && in->box_layer != NULL;
+        o.ellipsoid = in->crs->geographic && !box ? &in->crs->ellipsoid : NULL;
+        rc = ft_line_dim(box ? box_chains : chains, box ? nb : n, ms[i], &o, &r);
+        if (rc != FT_OK) { /* the message names the line */
+            char msg[512];
+            snprintf(msg, sizeof msg, "%s", ft_last_error());
+            rc = ft_error(rc, "%s, %s: %s", label, ft_line_method_name(ms[i]), msg);
             break;
+        }
         r->method = ft_line_method_name(ms[i]);
+        cli_geo_units(r, in->crs);
         const char *xl, *yl;
         axis_labels(ms[i], &xl, &yl);
         rc = cli_dim_report_add(rep, r, xl, yl);
     }
     free(chains);
+    free(box_chains);
     return rc;
 }
 
-static int measure_all(const cli_command *cmd, const ft_layer *l, const char *path, const line_args *a,
+static int measure_all(const cli_command *cmd, const line_input *in, const char *path, const line_args *a,
                        const ft_line_method *ms, int nm, cli_dim_report *rep)
 {
+    const ft_layer *l = in->l;
     ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
     o.min_scale = a->dim.min_scale;
     o.max_scale = a->dim.max_scale;
     o.nscales = a->dim.nscales;
     o.fit_whole_range = a->dim.min_scale > 0.0 && a->dim.max_scale > 0.0;
+    o.min_r2 = FT_LINE_R2_FLOOR;
     o.progress = cli_progress();
     if (a->by == NULL)
-        return measure(l, NULL, ms, nm, &o, rep, path) == FT_OK ? CLI_OK : cli_fail(cmd);
+        return measure(in, NULL, ms, nm, &o, rep, path) == FT_OK ? CLI_OK : cli_fail(cmd);
     line_group *groups = NULL;
     size_t ng = 0;
     if (group_by(l, path, a->by, &groups, &ng) != FT_OK)
         return cli_fail(cmd);
     int rc = CLI_OK;
     for (size_t i = 0; i < ng && rc == CLI_OK; i++) {
-        int mrc = measure(l, &groups[i], ms, nm, &o, rep, groups[i].label);
+        int mrc = measure(in, &groups[i], ms, nm, &o, rep, groups[i].label);
         if (mrc == FT_E_NOMEM || mrc == FT_E_CANCELLED)
             rc = cli_fail(cmd);
         else if (mrc != FT_OK)
@@ -300,11 +325,14 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     }
 }
 
-static json_object *extra_members(const char *path, const ft_layer *l, const char *by)
+static json_object *extra_members(const char *path, const line_input *in, const char *by)
 {
+    const ft_layer *l = in->l;
     json_object *o = json_object_new_object();
     json_object_object_add(o, "file", json_object_new_string(path));
     json_object_object_add(o, "layer", l->name ? json_object_new_string(l->name) : NULL);
+    if (in->crs->geographic) /* walks on the ellipsoid; boxes in the local equal-area projection */
+        json_object_object_add(o, "geographic", cli_geo_json(in->crs, in->box_layer ? in->box_layer->crs_wkt : NULL));
     if (by)
         json_object_object_add(o, "by", json_object_new_string(by));
     return o;
@@ -336,14 +364,25 @@ static int run_dim_line(const cli_command *cmd, int argc, char **argv)
     const char *path = argv[first];
     if (a.dim.plot && ft_io_check_writable(a.dim.plot) != FT_OK)
         return cli_fail(cmd);
-    ft_layer *l = NULL;
+    ft_layer *l = NULL, *box_layer = NULL;
     if ((rc = cli_read_layer(cmd, path, a.layer, a.where, &l)) != CLI_CONTINUE)
         return rc;
+    ft_crs_info crs;
+    rc = cli_geo_crs(cmd, path, l->crs_wkt, &crs);
+    for (int i = 0; rc == CLI_CONTINUE && crs.geographic && i < nm; i++)
+        if (ms[i] == FT_LINE_BOX)
+            rc = cli_geo_layer_local(cmd, l, FT_LOCAL_LAEA, &box_layer);
+    if (rc != CLI_CONTINUE) {
+        ft_layer_free(l);
+        return rc;
+    }
+    line_input in = {l, box_layer, &crs};
     cli_dim_report *rep = cli_dim_report_create(path);
-    rc = rep ? measure_all(cmd, l, path, &a, ms, nm, rep) : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
+    rc = rep ? measure_all(cmd, &in, path, &a, ms, nm, rep) : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK)
-        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, l, a.by));
+        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, &in, a.by));
     cli_dim_report_free(rep);
+    ft_layer_free(box_layer);
     ft_layer_free(l);
     return rc;
 }

@@ -101,8 +101,11 @@ static int run_dim_map(const cli_command *cmd, int argc, char **argv)
     if (ft_io_check_writable(out) != FT_OK)
         return cli_fail(cmd);
     ft_grid *g = NULL, *D = NULL, *r2 = NULL;
-    if ((rc = surface_read_dem(cmd, in, a.band, &g)) != CLI_CONTINUE)
+    ft_crs_info crs;
+    if ((rc = surface_read_dem(cmd, in, a.band, &g, &crs)) != CLI_CONTINUE) {
+        ft_grid_free(g);
         return rc;
+    }
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.min_scale = a.min_scale;
     o.max_scale = a.max_scale;

@@ -8,6 +8,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "dim_output.h"
 
 #include <math.h>
@@ -23,6 +24,7 @@ typedef struct {
     ft_read_points_opts read;
     ft_points_dim_opts est;
     int seed_given;
+    const ft_crs_info *crs; /* of the input, once read */
 } points_args;
 
 enum {
@@ -186,6 +188,7 @@ static int measure(const cli_command *cmd, const ft_points *p, const points_args
                 json_object_object_add(sse, ft_points_method_name(ms[i]), cli_json_double(c->D_sample_se));
             else if (c->sample > 0)
                 json_object_object_add(extra, "sample_stderr", cli_json_double(c->D_sample_se));
+            cli_geo_units(r, a->crs);
             rc = cli_dim_report_add(rep, r, "mean pair separation",
                                     ms[i] == FT_POINTS_YOKOYA ? "mean |dz|" : "sd of |dz|");
         } else {
@@ -226,7 +229,7 @@ static int run_dim_points(const cli_command *cmd, int argc, char **argv)
     };
     static const char *const names[] = {"POINTS"};
     points_args a = {CLI_DIM_OPTS_DEFAULT, "yokoya", NULL, NULL, NULL, FT_READ_POINTS_OPTS_DEFAULT,
-                     FT_POINTS_DIM_OPTS_DEFAULT, 0};
+                     FT_POINTS_DIM_OPTS_DEFAULT, 0, NULL};
     ft_points_method ms[2];
     double lags[MAX_USER_LAGS];
     int first = 0, nm = 0;
@@ -254,10 +257,18 @@ static int run_dim_points(const cli_command *cmd, int argc, char **argv)
     if (a.dim.plot && ft_io_check_writable(a.dim.plot) != FT_OK)
         return cli_fail(cmd);
     ft_points *p = NULL;
+    ft_crs_info crs;
     if (ft_io_read_points(path, &a.read, &p) != FT_OK)
         return cli_fail(cmd);
+    if (cli_geo_points_ground(cmd, path, p, &crs) != CLI_CONTINUE) { /* lon/lat: lags in metres */
+        ft_points_free(p);
+        return CLI_FAIL;
+    }
     cli_dim_report *rep = cli_dim_report_create(path);
     json_object *extra = extra_members(path, &a);
+    a.crs = &crs;
+    if (crs.geographic)
+        json_object_object_add(extra, "geographic", cli_geo_json(&crs, p->crs_wkt));
     rc = rep ? measure(cmd, p, &a, ms, nm, rep, extra) : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK) {
         rc = cli_dim_report_print(cmd, rep, &a.dim, extra);

@@ -5,6 +5,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "dim_output.h"
 #include "surface_cli.h"
 #include "terrain_cli.h"
@@ -22,11 +23,13 @@ typedef struct {
 
 /* ---- shared with dim map (surface_cli.h) ---- */
 
-int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid **out)
+int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid **out, ft_crs_info *crs)
 {
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
     ro.band = band;
-    return ft_io_read_grid(path, &ro, out) == FT_OK ? CLI_CONTINUE : cli_fail(cmd);
+    if (ft_io_read_grid(path, &ro, out) != FT_OK)
+        return cli_fail(cmd);
+    return cli_geo_grid_ground(cmd, path, out, crs);
 }
 
 int surface_parse_methods(const cli_command *cmd, const char *text, int allow_all, ft_surface_method *ms, int *n)
@@ -95,10 +98,13 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     }
 }
 
-static json_object *extra_members(const char *path, const surface_args *a, const ft_grid *g, size_t pairs)
+static json_object *extra_members(const char *path, const surface_args *a, const ft_grid *g, size_t pairs,
+                                  const ft_crs_info *crs)
 {
     json_object *o = json_object_new_object(), *size = json_object_new_array();
     json_object_object_add(o, "file", json_object_new_string(path));
+    if (crs->geographic) /* measured on its warp to a local transverse Mercator */
+        json_object_object_add(o, "geographic", cli_geo_json(crs, g->crs_wkt));
     json_object_object_add(o, "band", json_object_new_int(a->band));
     json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
     json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
@@ -112,8 +118,8 @@ static json_object *extra_members(const char *path, const surface_args *a, const
 }
 
 /* Every method into the report; a method failing among several is a warning, a lone one an error. */
-static int measure(const cli_command *cmd, const ft_grid *g, const ft_surface_method *ms, int nm,
-                   const ft_surface_dim_opts *o, cli_dim_report *rep)
+static int measure(const cli_command *cmd, const ft_grid *g, const ft_crs_info *crs, const ft_surface_method *ms,
+                   int nm, const ft_surface_dim_opts *o, cli_dim_report *rep)
 {
     for (int i = 0; i < nm; i++) {
         ft_dim_result *r = NULL;
@@ -125,6 +131,7 @@ static int measure(const cli_command *cmd, const ft_grid *g, const ft_surface_me
         }
         const char *xl, *yl;
         axis_labels(ms[i], &xl, &yl);
+        cli_geo_units(r, crs);
         if (cli_dim_report_add(rep, r, xl, yl) != FT_OK)
             return cli_fail(cmd);
     }
@@ -160,8 +167,11 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     if (a.dim.plot && ft_io_check_writable(a.dim.plot) != FT_OK)
         return cli_fail(cmd);
     ft_grid *g = NULL;
-    if ((rc = surface_read_dem(cmd, path, a.band, &g)) != CLI_CONTINUE)
+    ft_crs_info crs;
+    if ((rc = surface_read_dem(cmd, path, a.band, &g, &crs)) != CLI_CONTINUE) {
+        ft_grid_free(g);
         return rc;
+    }
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.min_scale = a.dim.min_scale;
     o.max_scale = a.dim.max_scale;
@@ -172,10 +182,10 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     o.progress = cli_progress();
     cli_dim_report *rep = cli_dim_report_create(path);
     rc = rep && cli_dim_report_group(rep, 0, NULL, path, NULL) == FT_OK
-             ? measure(cmd, g, ms, nm, &o, rep)
+             ? measure(cmd, g, &crs, ms, nm, &o, rep)
              : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK)
-        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, &a, g, o.pairs));
+        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, &a, g, o.pairs, &crs));
     cli_dim_report_free(rep);
     ft_grid_free(g);
     return rc;

@@ -8,7 +8,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <ogr_srs_api.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,17 +78,6 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     }
 }
 
-static int is_geographic(const char *wkt)
-{
-    if (wkt == NULL || *wkt == '\0')
-        return 0;
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
-    int geographic = srs != NULL && OSRIsGeographic(srs);
-    if (srs != NULL)
-        OSRDestroySpatialReference(srs);
-    return geographic;
-}
-
 /* max_void in cells from --max-void (ground units: over the larger cell side). */
 static int resolve_max_void(const cli_command *cmd, fill_args *a, const ft_grid *g, const char *in)
 {
@@ -97,7 +85,8 @@ static int resolve_max_void(const cli_command *cmd, fill_args *a, const ft_grid 
         a->fo.max_void = a->max_void;
         return CLI_CONTINUE;
     }
-    if (is_geographic(g->crs_wkt)) {
+    ft_crs_info crs;
+    if (ft_io_crs_info(g->crs_wkt, &crs) == FT_OK && crs.geographic) {
         cli_error(cmd, "--max-void %gm: %s has a geographic CRS (cells in degrees); give --max-void in cells",
                   a->max_void, in);
         return CLI_USAGE;

@@ -73,7 +73,27 @@ static json_object *json_crs(const char *wkt)
     json_object *o = json_object_new_object();
     json_object_object_add(o, "name", json_object_new_string(name));
     json_object_object_add(o, "epsg", epsg ? json_object_new_int(epsg) : NULL);
+    ft_crs_info crs; /* what the measuring commands will make of it (docs/geographic.md) */
+    if (ft_io_crs_info(wkt, &crs) == FT_OK) {
+        json_object_object_add(o, "geographic", json_object_new_boolean(crs.geographic));
+        json_object_object_add(o, "unit", json_object_new_string(crs.unit));
+        json_object_object_add(o, "ellipsoid", json_object_new_string(crs.ellipsoid_name));
+    }
+    ft_clear_error();
     return o;
+}
+
+/* A lon/lat grid's cell size on the ground at its centre, metres (dx shrinks with cos(latitude)). */
+static json_object *ground_cell(const ft_grid *g, double ymid)
+{
+    ft_crs_info crs;
+    double per_lon, per_lat;
+    if (ft_io_crs_info(g->crs_wkt, &crs) != FT_OK || !crs.geographic || !(fabs(ymid) <= 90.0)) {
+        ft_clear_error();
+        return NULL;
+    }
+    ft_ellipsoid_metres_per_degree(&crs.ellipsoid, ymid, &per_lon, &per_lat);
+    return json_pair(cli_json_double(fabs(g->gt[1]) * per_lon), cli_json_double(fabs(g->gt[5]) * per_lat));
 }
 
 static void add_size(json_object *o, const char *key, size_t v)
@@ -126,6 +146,9 @@ static int describe_grid(const ft_grid *g, int band, json_object *o)
     json_object_object_add(o, "cell_size",
                            json_pair(cli_json_double(fabs(g->gt[1])), cli_json_double(fabs(g->gt[5]))));
     json_object_object_add(o, "crs", json_crs(g->crs_wkt));
+    json_object *ground = ground_cell(g, 0.5 * (y0 + y1));
+    if (ground)
+        json_object_object_add(o, "ground_cell_size", ground);
     return FT_OK;
 }
 
@@ -299,6 +322,10 @@ static void print_crs(json_object *o)
         row("crs", "%s (EPSG:%d)", json_object_get_string(get(c, "name")), json_object_get_int(epsg));
     else
         row("crs", "%s", json_object_get_string(get(c, "name")));
+    json_object *geo = NULL;
+    if (c && json_object_object_get_ex(c, "geographic", &geo) && json_object_get_boolean(geo))
+        row("", "longitude/latitude on %s: measured in metres (docs/geographic.md)",
+            json_object_get_string(get(c, "ellipsoid")));
 }
 
 static long long int_of(json_object *o, const char *key)
@@ -320,6 +347,9 @@ static void print_grid(json_object *o)
     print_z_range(o);
     print_extent(o);
     row("cell size", "%.10g x %.10g", num_at(cs, 0), num_at(cs, 1));
+    json_object *ground = NULL;
+    if (json_object_object_get_ex(o, "ground_cell_size", &ground))
+        row("ground", "cells of %.1f m x %.1f m at the centre", num_at(ground, 0), num_at(ground, 1));
     print_crs(o);
 }
 
@@ -442,8 +472,10 @@ const cli_command cli_cmd_info = {
     "  -b, --band N      raster band to read (default: 1)\n"
     "  -j, --json        print one JSON object on stdout instead of a table\n"
     "  -h, --help        print this help\n\n"
-    "JSON keys: file, kind (grid|chains|points), driver, crs {name, epsg}, extent [xmin,ymin,xmax,ymax];\n"
-    "  grids: band, size [nx,ny], cells, valid, nodata, nodata_value, z_range [min,max], cell_size [dx,dy];\n"
+    "JSON keys: file, kind (grid|chains|points), driver, crs {name, epsg, geographic, unit, ellipsoid},\n"
+    "  extent [xmin,ymin,xmax,ymax];\n"
+    "  grids: band, size [nx,ny], cells, valid, nodata, nodata_value, z_range [min,max], cell_size [dx,dy],\n"
+    "  ground_cell_size [dx,dy] in metres at the centre for a lon/lat grid;\n"
     "  chains: layer, features, parts, rings, holes, lines, vertices, file_vertices, short_chains, fields;\n"
     "  points: points, z_range, weights; and \"warnings\" [...] when there are any.\n\n"
     "Examples:\n"

@@ -10,6 +10,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "clarke_json.h"
+#include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <math.h>
@@ -55,7 +56,8 @@ static void print_model(const char *dem, const ft_clarke_model *m)
            m->c);
 }
 
-static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem, const ft_clarke_model *m)
+static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem, const ft_clarke_model *m,
+                      const ft_crs_info *crs)
 {
     if (!(m->D > 2.0 && m->D < 3.0))
         cli_warn(cmd, "%s: the spectrum (beta = %.2f) is %s than any fractional Brownian surface's: D = %.2f is "
@@ -72,6 +74,10 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
     json_object *o = clarke_model_to_json(m);
     json_object_object_add(o, "input", json_object_new_string(dem));
     json_object_object_add(o, "output", a->out ? json_object_new_string(a->out) : NULL);
+    /* wavelengths and the range in this unit, trend per unit; lon/lat input was fitted on its local TM warp */
+    json_object_object_add(o, "units", crs->scale_unit[0] ? json_object_new_string(crs->scale_unit) : NULL);
+    if (crs->geographic)
+        json_object_object_add(o, "geographic", cli_geo_json(crs, m->crs_wkt));
     return cli_print_json(cmd, o);
 }
 
@@ -95,11 +101,16 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
     if (a.out && ft_io_check_writable(a.out) != FT_OK)
         return cli_fail(cmd);
     ft_grid *g = NULL;
+    ft_crs_info crs;
     if (terrain_read_dem(cmd, argv[first], &g) != CLI_CONTINUE)
         return CLI_FAIL;
+    if (cli_geo_grid_ground(cmd, argv[first], &g, &crs) != CLI_CONTINUE) { /* lon/lat: fitted in metres */
+        ft_grid_free(g);
+        return CLI_FAIL;
+    }
     ft_clarke_model *m = NULL;
     a.co.progress = cli_progress();
-    rc = ft_clarke_fit(g, &a.co, &m) == FT_OK ? fit_report(cmd, &a, argv[first], m) : cli_fail(cmd);
+    rc = ft_clarke_fit(g, &a.co, &m) == FT_OK ? fit_report(cmd, &a, argv[first], m, &crs) : cli_fail(cmd);
     ft_clarke_model_free(m);
     ft_grid_free(g);
     return rc;

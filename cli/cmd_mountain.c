@@ -14,7 +14,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <ogr_srs_api.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,18 +182,6 @@ static void seed_elevation_from_layer(const ft_layer *l, mountain_args *a)
     a->have_seed_elev = 2; /* from the layer */
 }
 
-/* 1 if the WKT names a geographic CRS (distances in degrees). */
-static int crs_is_geographic(const char *wkt)
-{
-    if (wkt == NULL || *wkt == '\0')
-        return 0;
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
-    int geographic = srs != NULL && OSRIsGeographic(srs);
-    if (srs != NULL)
-        OSRDestroySpatialReference(srs);
-    return geographic;
-}
-
 static int read_seed(const cli_command *cmd, const char *path, mountain_args *a, ft_layer **layer,
                      ft_polygon_set **seed)
 {
@@ -206,11 +193,16 @@ static int read_seed(const cli_command *cmd, const char *path, mountain_args *a,
         return CLI_FAIL;
     }
     seed_elevation_from_layer(*layer, a);
-    if (crs_is_geographic((*layer)->crs_wkt))
-        cli_warn(cmd, "%s is in a geographic CRS: the spacing, the shrinking and the DEM's cells are in degrees, "
-                      "and a degree of longitude is shorter on the ground than one of latitude; reproject the seed "
-                      "to a projected CRS first (e.g. ogr2ogr -t_srs EPSG:32632)",
-                 path);
+    ft_crs_info crs;
+    if (ft_io_crs_info((*layer)->crs_wkt, &crs) != FT_OK)
+        return cli_fail(cmd);
+    if (crs.geographic) {
+        cli_error(cmd, "%s is in a geographic CRS (%s): the spacing, the shrinking and the DEM's cells are lengths on "
+                       "the ground, which degrees are not; reproject the seed to a projected CRS first (e.g. "
+                       "ogr2ogr -t_srs EPSG:32632 seed_utm.gpkg %s)",
+                  path, crs.name, path);
+        return CLI_FAIL;
+    }
     return CLI_CONTINUE;
 }
 

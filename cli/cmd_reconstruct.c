@@ -11,6 +11,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <errno.h>
@@ -319,7 +320,20 @@ static int reconstruct(const cli_command *cmd, recon_args *a, const char *in, co
     ft_recon_info info;
     memset(&info, 0, sizeof info);
     int rc = CLI_CONTINUE;
-    if (d.kind == FT_KIND_POINTS && d.points->n < 3) {
+    ft_crs_info crs;
+    rc = cli_geo_crs(cmd, in, d.kind == FT_KIND_GRID ? d.grid->crs_wkt : d.points ? d.points->crs_wkt : NULL, &crs);
+    if (rc == CLI_CONTINUE && crs.geographic && d.kind == FT_KIND_GRID) { /* voids: filled in place, in cells */
+        double per_lon, per_lat, x0, y0, x1, y1;
+        ft_grid_extent(d.grid, &x0, &y0, &x1, &y1);
+        ft_ellipsoid_metres_per_degree(&crs.ellipsoid, 0.5 * (y0 + y1), &per_lon, &per_lat);
+        cli_warn(cmd, "%s is in longitude/latitude (%s): its cells are %.0f m x %.0f m on the ground, and the voids "
+                      "are filled as if they were square (reproject it first for an isotropic model)",
+                 in, crs.name, fabs(d.grid->gt[1]) * per_lon, fabs(d.grid->gt[5]) * per_lat);
+    } else if (rc == CLI_CONTINUE && crs.geographic) {
+        rc = cli_geo_refuse(cmd, in, &crs, "the target grid's cells and the fractal scaling of the lags are lengths "
+                            "on the ground, which degrees are not", "ogr2ogr -t_srs EPSG:32632 out.gpkg in.gpkg");
+    }
+    if (rc == CLI_CONTINUE && d.kind == FT_KIND_POINTS && d.points->n < 3) {
         cli_error(cmd, "%s holds %zu point%s; a reconstruction needs at least 3 (not on a line)", in, d.points->n,
                   d.points->n == 1 ? "" : "s");
         rc = CLI_FAIL;

@@ -233,8 +233,14 @@ static int write_plot(const cli_dim_report *rep, const cli_dim_opts *o, size_t g
         snprintf(title, sizeof title, "%s: %s", base, it->r->method);
     ft_plot_opts po = FT_PLOT_OPTS_DEFAULT;
     po.title = title;
-    po.xlabel = it->xlabel;
-    po.ylabel = it->ylabel;
+    char xlabel[96], ylabel[96];
+    const int unit = it->r->units[0] != '\0';
+    if (unit && it->xlabel) /* the axis names the unit of its scales, and of lengths */
+        snprintf(xlabel, sizeof xlabel, "%s (%s)", it->xlabel, it->r->units);
+    if (unit && it->ylabel && strcmp(it->ylabel, "length") == 0)
+        snprintf(ylabel, sizeof ylabel, "%s (%s)", it->ylabel, it->r->units);
+    po.xlabel = unit && it->xlabel ? xlabel : it->xlabel;
+    po.ylabel = unit && it->ylabel && strcmp(it->ylabel, "length") == 0 ? ylabel : it->ylabel;
     po.segments = o->segments;
     char *path = plot_path(rep, o->plot, g, (size_t)(it - gr->items));
     if (path == NULL)
@@ -396,16 +402,18 @@ static size_t used_rows(const ft_loglog *t)
 static void print_summary(const dim_item *it)
 {
     const ft_dim_result *r = it->r;
-    printf("%-10s D = %.4f \xc2\xb1 %.4f   r\xc2\xb2 = %.4f   range %.6g .. %.6g (%zu of %zu scales)\n",
-           r->method ? r->method : "", r->D, r->stderr_D, r->r2, r->range[0], r->range[1], used_rows(r->table),
-           r->table ? r->table->n : 0);
+    printf("%-10s D = %.4f \xc2\xb1 %.4f   r\xc2\xb2 = %.4f   range %.6g .. %.6g%s%s (%zu of %zu scales)\n",
+           r->method ? r->method : "", r->D, r->stderr_D, r->r2, r->range[0], r->range[1], r->units[0] ? " " : "",
+           r->units, used_rows(r->table), r->table ? r->table->n : 0);
     if (it->plot)
         printf("%-10s plot %s\n", "", it->plot);
 }
 
-static void print_table(const ft_loglog *t)
+static void print_table(const ft_loglog *t, const char *units)
 {
-    printf("  %14s %14s %12s %9s  %s\n", "scale", "value", "count", "slope", "used");
+    char head[48];
+    snprintf(head, sizeof head, units[0] ? "scale (%s)" : "scale", units);
+    printf("  %14s %14s %12s %9s  %s\n", head, "value", "count", "slope", "used");
     for (size_t i = 0; t && i < t->n; i++) {
         const ft_loglog_row *row = &t->rows[i];
         printf("  %14.6g %14.6g %12.6g %9.4f  %s\n", row->scale, row->value, row->count, row->slope,
@@ -453,7 +461,7 @@ static void print_human(const cli_dim_report *rep, const cli_dim_opts *o)
                 putchar('\n');
             print_summary(&gr->items[i]);
             if (!features)
-                print_table(gr->items[i].r->table);
+                print_table(gr->items[i].r->table, gr->items[i].r->units);
             if (o->segments)
                 print_segments(gr->items[i].r);
         }

@@ -44,8 +44,9 @@ enum {
 #define CLI_DIM_MAX_SCALES 1000
 /* Their help text, for the commands' own. */
 #define CLI_DIM_OPTIONS_HELP                                                                                 \
-    "      --min-scale S    smallest scale (ruler, box side) in map units; default: from the data\n"             \
-    "      --max-scale S    largest scale; default: from the extent\n"                                           \
+    "      --min-scale S    smallest scale (ruler, box side) in the CRS's unit, metres for lon/lat data\n"     \
+    "                       (measured on the ellipsoid or in a local projection); default: from the data\n"     \
+    "      --max-scale S    largest scale, same unit; default: from the extent\n"                               \
     "      --scales N       scales in the geometric series between them (3..1000); default: the method's\n"     \
     "      --segments       also report every straight segment of the log-log plot (minimax polyline)\n"       \
     "      --plot FILE      draw the log-log plot to FILE.svg, .png or .pdf (several results: FILE-ID-METHOD.ext)\n" \

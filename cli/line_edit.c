@@ -5,6 +5,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "line_edit.h"
+#include "cli_geo.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -211,7 +212,7 @@ static void print_human(const char *input, const char *output, const ft_layer *l
 /* Everything after the input is read: prepare, edit, write, report. */
 static int edit_and_write(const cli_command *cmd, const char *input, const char *output, const line_io *io,
                           ft_layer *l, const line_step *steps, size_t nsteps, line_prepare_fn prepare, void *ctx,
-                          json_object *params)
+                          json_object *params, const char *geo_wkt)
 {
     edit_report r = {0};
     r.coverage = !io->no_coverage && has_rings(l);
@@ -222,6 +223,8 @@ static int edit_and_write(const cli_command *cmd, const char *input, const char 
     ft_write_layer_opts wo = FT_WRITE_LAYER_OPTS_DEFAULT;
     wo.driver = io->driver;
     int rc = apply_steps(l, steps, nsteps, &r);
+    if (rc == FT_OK && geo_wkt) /* back to longitude/latitude */
+        rc = ft_io_layer_reproject(l, geo_wkt);
     if (rc == FT_OK)
         rc = ft_io_write_layer(output, l, &wo);
     if (rc != FT_OK) {
@@ -238,14 +241,36 @@ static int edit_and_write(const cli_command *cmd, const char *input, const char 
     return rc;
 }
 
+/* A layer in longitude/latitude is edited in a local azimuthal equal-area projection centred on it, so that
+ * every tolerance and length is in metres, then projected back (edit_and_write writes it in its input CRS). */
+static int to_ground(const cli_command *cmd, const char *input, ft_layer *l, char **geo_wkt, json_object *params)
+{
+    ft_crs_info crs;
+    *geo_wkt = NULL;
+    if (l->crs_wkt && (*geo_wkt = strdup(l->crs_wkt)) == NULL)
+        return ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd);
+    int rc = cli_geo_layer_ground(cmd, input, l, FT_LOCAL_LAEA, &crs);
+    if (rc == CLI_CONTINUE && crs.geographic)
+        json_object_object_add(params, "geographic", cli_geo_json(&crs, l->crs_wkt));
+    if (rc != CLI_CONTINUE || !crs.geographic) {
+        free(*geo_wkt);
+        *geo_wkt = NULL;
+    }
+    return rc;
+}
+
 int line_edit_run(const cli_command *cmd, const char *input, const char *output, const line_io *io,
                   const line_step *steps, size_t nsteps, line_prepare_fn prepare, void *ctx, json_object *params)
 {
     ft_layer *l = NULL;
+    char *geo_wkt = NULL;
     int rc = ft_io_check_writable(output) != FT_OK ? cli_fail(cmd)
                                                    : cli_read_layer(cmd, input, io->layer, io->where, &l);
     if (rc == CLI_CONTINUE)
-        rc = edit_and_write(cmd, input, output, io, l, steps, nsteps, prepare, ctx, params);
+        rc = to_ground(cmd, input, l, &geo_wkt, params);
+    if (rc == CLI_CONTINUE)
+        rc = edit_and_write(cmd, input, output, io, l, steps, nsteps, prepare, ctx, params, geo_wkt);
+    free(geo_wkt);
     ft_layer_free(l);
     json_object_put(params);
     return rc;

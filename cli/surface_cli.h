@@ -14,7 +14,7 @@
 #define SURFACE_DEFAULT_PAIRS 32000
 
 /** Reads band `band` of a DEM: CLI_CONTINUE, or CLI_FAIL with a message naming the file. */
-int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid **out);
+int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid **out, ft_crs_info *crs);
 /** Parses "all" (when allow_all) or a comma-separated list of distinct methods into ms (room for
  *  FT_SURFACE_NMETHODS): CLI_CONTINUE with *n set, or CLI_USAGE naming the text. */
 int surface_parse_methods(const cli_command *cmd, const char *text, int allow_all, ft_surface_method *ms, int *n);

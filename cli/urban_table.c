@@ -11,6 +11,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
+#include "cli_geo.h"
 #include "urban_cli.h"
 
 #include <errno.h>
@@ -165,8 +166,13 @@ static int measure_row(const cli_command *cmd, urban_tab *t, const table_args *a
     ft_layer *l = NULL;
     const char *path = t->files[t->row];
     int rc = cli_read_layer(cmd, path, a->layer, a->where, &l);
-    if (rc != CLI_CONTINUE)
+    ft_crs_info crs;
+    if (rc == CLI_CONTINUE) /* lon/lat: areas and boxes in a local equal-area projection, m and m² */
+        rc = cli_geo_layer_ground(cmd, path, l, FT_LOCAL_LAEA, &crs);
+    if (rc != CLI_CONTINUE) {
+        ft_layer_free(l);
         return rc;
+    }
     ft_area_dim_opts o = a->box.dim;
     o.fit_whole_range = o.ncells > 0;
     o.progress = cli_progress();

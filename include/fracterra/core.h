@@ -208,6 +208,23 @@ int ft_layer_apply_topology(ft_layer *l);
 void ft_topology_free(ft_topology *t);
 
 /* ------------------------------------------------------------------------------------------------
+ * Ellipsoids: what geographic (longitude/latitude) data are measured on. io's CRS service
+ * (ft_io_crs_info) says which one a file's CRS uses.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    double a; /**< semi-major axis, metres */
+    double f; /**< flattening (0 for a sphere) */
+} ft_ellipsoid;
+#define FT_ELLIPSOID_WGS84 {6378137.0, 1.0 / 298.257223563}
+
+/** Earth-centred Cartesian coordinates (metres) of the point at longitude lon, latitude lat (degrees) on e. */
+void ft_ellipsoid_to_ecef(const ft_ellipsoid *e, double lon, double lat, double *X, double *Y, double *Z);
+/** Ground metres per degree of longitude (along the parallel) and of latitude (along the meridian) at
+ *  latitude lat (degrees); either pointer may be NULL. */
+void ft_ellipsoid_metres_per_degree(const ft_ellipsoid *e, double lat, double *per_lon, double *per_lat);
+
+/* ------------------------------------------------------------------------------------------------
  * Grids: float cells, row-major, row 0 at the top (north), as GDAL stores them.
  * Cell (col, row) covers x = gt[0] + col*gt[1] + row*gt[2], y = gt[3] + col*gt[4] + row*gt[5] at its
  * upper-left corner. Nodata is a mask: mask[i] = 1 valid, 0 nodata; mask == NULL means all valid.

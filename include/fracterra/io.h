@@ -153,7 +153,8 @@ typedef struct {
     double azimuth;   /**< light direction, degrees clockwise from north, [0, 360]; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees, (0, 90]; default 45 */
     double z_factor;  /**< vertical exaggeration, > 0; default 1 */
-    double scale;     /**< horizontal units per vertical unit; 0 (default) = 111120 for a DEM in degrees,
+    double scale;     /**< horizontal units per vertical unit; 0 (default) = metres per degree of latitude
+                           on the ellipsoid at the centre for a DEM in degrees,
                            1 otherwise */
     int color;        /**< 1: multiply a hypsometric colour relief (gdaldem color-relief) by the shade */
     int band;         /**< 1-based band of the DEM; default 1 */
@@ -173,6 +174,45 @@ int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_
 /** A CRS given as "EPSG:n", WKT, a PROJ string or anything OSRSetFromUserInput accepts, as malloc'd WKT
  *  (free()). FT_E_INVALID naming the input if GDAL does not know it. */
 int ft_io_crs_to_wkt(const char *user_input, char **wkt);
+
+/* ------------------------------------------------------------------------------------------------
+ * The CRS service (crs.c, grid_reproject.c): the one place that reads a CRS. Geographic data are measured
+ * in metres on their ellipsoid (lines) or in a local projection centred on them (boxes, grids, points,
+ * tolerances); docs/geographic.md.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct {
+    int has_crs;            /**< 0: no CRS; coordinates are taken as planar, in an unknown unit */
+    int geographic;         /**< 1: x = longitude, y = latitude in degrees (compound and bound CRSs resolved) */
+    char name[128];         /**< the CRS's name ("WGS 84", "NAD83 / UTM zone 21N") */
+    char unit[48];          /**< unit of x and y: "metre", "US survey foot", ..., "degree" if geographic */
+    char scale_unit[16];    /**< unit of measured scales: "m" (metres, and every geographic CRS), "ft", "US ft",
+                                 "km", else the unit's name; "" without CRS */
+    double metres_per_unit; /**< metres in one unit of x and y (0.3048 for feet); 0 if geographic or unknown */
+    ft_ellipsoid ellipsoid; /**< a (m) and f; zero if unknown */
+    char ellipsoid_name[64];
+} ft_crs_info;
+
+/** What a WKT (or anything OSRSetFromUserInput reads) says; NULL or "" gives has_crs = 0 and FT_OK.
+ *  FT_E_INVALID for a CRS GDAL does not know, FT_E_FORMAT for a geographic CRS without an ellipsoid. */
+int ft_io_crs_info(const char *wkt, ft_crs_info *out);
+
+typedef enum {
+    FT_LOCAL_LAEA = 0,  /**< Lambert azimuthal equal-area: areas and box counts */
+    FT_LOCAL_TMERC = 1, /**< transverse Mercator, scale 1 on the central meridian: conformal, for grids */
+} ft_local_projection;
+
+/** WKT (malloc'd) of a projection in metres centred on (lon0, lat0), on the datum of the geographic (or
+ *  any) CRS geo_wkt; its name says what it is ("Lambert azimuthal equal-area centred on 49.6000N ..."). */
+int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt);
+/** Reprojects every part (and topology arc) of the layer from its CRS to dst_wkt in place (OCT, x =
+ *  longitude order) and sets its CRS. FT_E_NUMERIC naming a vertex that cannot be transformed. */
+int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt);
+/** The same for points (x, y change; z and weights stay). */
+int ft_io_points_reproject(ft_points *p, const char *dst_wkt);
+/** The grid warped to dst_wkt with square cells of side `cell` (target units), bilinear, nodata kept
+ *  (as `gdalwarp -t_srs -tr cell cell -r bilinear`). */
+int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out);
 
 #ifdef __cplusplus
 }

@@ -41,11 +41,30 @@ typedef struct {
     int fit_whole_range;    /**< 1: fit every scale between min and max, no segmentation; default 0 */
     ft_progress_fn progress;
     void *progress_arg;
+    const ft_ellipsoid *ellipsoid; /**< NULL (default): planar chains, scales in their own unit. Else x =
+                                        longitude, y = latitude in degrees on this ellipsoid: the walks step
+                                        by straight 3-D chords between Earth-centred points, scales and
+                                        lengths are metres (docs/geographic.md); box counting refuses
+                                        (project the chains to an equal-area CRS first) */
+    double min_r2;          /**< 0 (default): off; else a fit with r² below it fails (the CLI uses
+                                 FT_LINE_R2_FLOOR), unless D is pinned anyway (see FT_LINE_R2_FLOOR) */
 } ft_line_dim_opts;
-#define FT_LINE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 1, 4, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+#define FT_LINE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 1, 4, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, 0.0}
+
+/** The least r² the CLI accepts (opts.min_r2; docs/line-dimension.md): below it ft_line_dim fails
+ *  (FT_E_INVALID) naming the range, rather than return a D read from a table that is not a straight line.
+ *  Exempt are fits whose values vary by less than FT_LINE_R2_MIN_SPREAD in log10 (lengths within 1.2%: a
+ *  straight line, D = 1, leaves r² nothing to explain) and fits whose D has a standard error below
+ *  FT_LINE_R2_MAX_STDERR (a smooth curve's slope near 0 is pinned even when r² is low). */
+#define FT_LINE_R2_FLOOR 0.5
+#define FT_LINE_R2_MIN_SPREAD 0.005
+#define FT_LINE_R2_MAX_STDERR 0.01
 
 /** Dimension of a set of chains (n >= 1; chains with fewer than 2 vertices are skipped and counted in the
- *  error message if none is left). *out is allocated; free with ft_dim_result_free. */
+ *  error message if none is left). *out is allocated; free with ft_dim_result_free. Rows where the chains
+ *  are shorter than one ruler (no whole step: the value is only the chord) are not used; fewer than 3 usable
+ *  rows, or a fit with r² below opts.min_r2, fail with FT_E_INVALID naming the range and the chains'
+ *  length and extent in the same unit. */
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out);
 /** The method's name as used by the CLI and the JSON ("divider", "equipaced", "hybrid", "box"). */

@@ -15,7 +15,7 @@ typedef struct {
     double azimuth;   /**< light direction, degrees clockwise from north; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees; default 45 */
     double z_factor;  /**< vertical exaggeration; default 1 */
-    double scale;     /**< horizontal units per vertical unit (111120 for degrees and metres); default 1 */
+    double scale;     /**< horizontal units per vertical unit (e.g. metres per degree for a DEM in degrees); default 1 */
 } ft_hillshade_opts;
 #define FT_HILLSHADE_OPTS_DEFAULT {315.0, 45.0, 1.0, 1.0}
 
@@ -113,8 +113,9 @@ typedef struct {
     int width;             /**< image width in pixels, [64, 8192]; default 1200 (height follows the scene) */
     double light_azimuth;  /**< sun direction, degrees clockwise from north; default 315 */
     double light_altitude; /**< sun elevation, degrees in (0, 90]; default 40 */
-    double scale;          /**< ground units per elevation unit; 0 (default) = 111120 when the grid's CRS
-                                is geographic (then longitudes shrink by cos(latitude)), else 1 */
+    double scale;          /**< ground units per elevation unit; 0 (default) = the ellipsoid's metres per
+                                degree of latitude and of longitude at the grid's centre when its CRS is
+                                geographic (ft_io_crs_info), else 1 */
     int sky;               /**< 1 (default): a sky gradient behind the terrain; 0: transparent */
 } ft_perspective_opts;
 #define FT_PERSPECTIVE_OPTS_DEFAULT {20.0, 35.0, 0.0, 1200, 315.0, 40.0, 0.0, 1}

@@ -74,15 +74,14 @@ static int valid_range(const ft_grid *g, double *zmin, double *zmax, int *any_in
     return FT_OK;
 }
 
-/* A one-band Float32 MEM raster holding the grid, nodata cells set to `nodata`. */
-static int make_raster(const ft_grid *g, float nodata, GDALDatasetH *out)
+int ft_io_grid_mem_raster(const ft_grid *g, float nodata, GDALDatasetH *out)
 {
     *out = NULL;
     GDALDriverH mem = GDALGetDriverByName("MEM");
     ft_io_gdal_reset();
     GDALDatasetH ds = mem ? GDALCreate(mem, "", (int)g->nx, (int)g->ny, 1, GDT_Float32, NULL) : NULL;
     if (ds == NULL)
-        return ft_io_fail(FT_E_NOMEM, "contours: cannot hold a %zu x %zu grid in memory", g->nx, g->ny);
+        return ft_io_fail(FT_E_NOMEM, "cannot hold a %zu x %zu grid in memory", g->nx, g->ny);
     double gt[6];
     memcpy(gt, g->gt, sizeof gt);
     GDALSetGeoTransform(ds, gt);
@@ -93,7 +92,7 @@ static int make_raster(const ft_grid *g, float nodata, GDALDatasetH *out)
         for (size_t c = 0; c < g->nx; c++)
             row[c] = cell_valid(g, r * g->nx + c) ? g->z[r * g->nx + c] : nodata;
         if (GDALRasterIO(band, GF_Write, 0, (int)r, (int)g->nx, 1, row, (int)g->nx, 1, GDT_Float32, 0, 0) != CE_None)
-            rc = ft_io_fail(FT_E_IO, "contours: cannot fill row %zu of the in-memory raster", r);
+            rc = ft_io_fail(FT_E_IO, "cannot fill row %zu of the in-memory raster", r);
     }
     free(row);
     if (rc != FT_OK) {
@@ -202,7 +201,7 @@ int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_
     float nodata = below > -FLT_MAX ? (float)below : -FLT_MAX;
     GDALDatasetH raster = NULL, vds = NULL;
     OGRLayerH layer = NULL;
-    rc = make_raster(dem, nodata, &raster);
+    rc = ft_io_grid_mem_raster(dem, nodata, &raster);
     if (rc == FT_OK)
         rc = make_layer(dem, &vds, &layer);
     if (rc == FT_OK)

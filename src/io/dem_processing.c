@@ -7,7 +7,8 @@
  * multiplied by 0.25 + 0.75 * shade / 255 (an ambient term keeps shadows readable). Intermediate
  * products live in /vsimem; the output (any GDAL raster driver that can CreateCopy, chosen by extension:
  * PNG, GeoTIFF, ...) is written under a temporary name and renamed when complete. A geographic DEM
- * (degrees) gets scale 111120 unless the caller gives one, as gdaldem's documentation advises. GDAL's
+ * (degrees) gets the ground metres of a degree of latitude at its centre (CRS service) unless the caller gives
+ * a scale, as gdaldem's documentation advises (its 111120 is that figure at about 45 degrees). GDAL's
  * auxiliary .aux.xml files are off during the call: neither the input's folder nor the output's gets one.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -27,7 +28,6 @@
 #include "io/io_internal.h"
 
 #define SHADE_AMBIENT 0.25
-#define DEGREE_SCALE 111120.0
 
 static atomic_ulong vsimem_counter;
 
@@ -73,17 +73,23 @@ static int check_opts(const ft_io_hillshade_opts *o)
     return FT_OK;
 }
 
-/* 111120 for a DEM in degrees, 1 otherwise, unless the caller set a scale. */
+/* For a DEM in degrees (ft_io_crs_info), the ground metres of a degree of latitude on its ellipsoid at its
+ * centre; 1 otherwise, unless the caller set a scale. gdaldem takes one scale for both axes, so the
+ * shortening of a degree of longitude (cos latitude) is not applied. */
 static double effective_scale(GDALDatasetH ds, double scale)
 {
     if (scale > 0.0)
         return scale;
-    const char *wkt = GDALGetProjectionRef(ds);
-    OGRSpatialReferenceH srs = wkt && *wkt ? OSRNewSpatialReference(wkt) : NULL;
-    int geographic = srs != NULL && OSRIsGeographic(srs);
-    if (srs)
-        OSRDestroySpatialReference(srs);
-    return geographic ? DEGREE_SCALE : 1.0;
+    ft_crs_info crs;
+    if (ft_io_crs_info(GDALGetProjectionRef(ds), &crs) != FT_OK || !crs.geographic) {
+        ft_clear_error();
+        return 1.0;
+    }
+    double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0}, per_lat = 0.0;
+    GDALGetGeoTransform(ds, gt);
+    double lat = gt[3] + 0.5 * GDALGetRasterXSize(ds) * gt[4] + 0.5 * GDALGetRasterYSize(ds) * gt[5];
+    ft_ellipsoid_metres_per_degree(&crs.ellipsoid, fabs(lat) <= 90.0 ? lat : 0.0, NULL, &per_lat);
+    return per_lat;
 }
 
 /* Runs GDALDEMProcessing(mode) from src to the /vsimem GeoTIFF dst; the result stays open in *out. */

@@ -54,6 +54,10 @@ int ft_io_find_driver(const char *path, const char *name, const char *cap, GDALD
 char *ft_io_srs_to_wkt(OGRSpatialReferenceH srs);    /* malloc'd WKT2 (or WKT1), NULL if srs is NULL */
 int ft_io_srs_from_wkt(const char *wkt, OGRSpatialReferenceH *srs); /* *srs NULL for NULL/empty wkt */
 
+/* A one-band Float32 MEM raster holding the grid and its geotransform (not its CRS), nodata cells set to
+ * `nodata` (contour_generate.c). */
+int ft_io_grid_mem_raster(const ft_grid *g, float nodata, GDALDatasetH *out);
+
 /* Text (common.c). */
 void ft_io_put_double(FILE *f, double v);            /* shortest text that reads back to exactly v */
 int ft_io_parse_double(const char *s, double *v);    /* 1 if s is one whole number (spaces around allowed) */

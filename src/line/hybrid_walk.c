@@ -18,35 +18,43 @@
 #include "fracterra/line.h"
 #include "line/line_dim_internal.h"
 
-static double hybrid_walk(const ft_walk_src *w, double r)
+FT_WALK_INLINE double hybrid_walk_impl(const ft_walk_src *w, double r, int d3)
 {
     const double r2 = r * r;
-    double px, py;
-    ft_walk_vertex(w, 0, &px, &py);
+    double p[3];
+    ft_walk_vertex3(w, 0, &p[0], &p[1], &p[2], d3);
     double len = 0.0;
-    size_t k = 1;
-    for (; k < w->m; k++) {
-        double bx, by;
-        ft_walk_vertex(w, k, &bx, &by);
-        double dx = bx - px, dy = by - py, d2 = dx * dx + dy * dy;
+    for (size_t k = 1; k < w->m; k++) {
+        double b[3];
+        ft_walk_vertex3(w, k, &b[0], &b[1], &b[2], d3);
+        double dx = b[0] - p[0], dy = b[1] - p[1], dz = b[2] - p[2], d2 = dx * dx + dy * dy + dz * dz;
         if (d2 >= r2) {
             len += sqrt(d2);
-            px = bx;
-            py = by;
+            p[0] = b[0];
+            p[1] = b[1];
+            p[2] = b[2];
         }
     }
-    double ex, ey;
-    ft_walk_vertex(w, w->m - 1, &ex, &ey);
-    return len + hypot(ex - px, ey - py);
+    double e[3];
+    ft_walk_vertex3(w, w->m - 1, &e[0], &e[1], &e[2], d3);
+    return len + ft_walk_dist(e[0] - p[0], e[1] - p[1], e[2] - p[2]);
 }
 
-void ft_line_hybrid_length(const ft_chain *c, double r, int both_ends, double *length, double *steps)
+static double hybrid_walk(const ft_walk_src *w, double r)
+{
+    return w->z ? hybrid_walk_impl(w, r, 1) : hybrid_walk_impl(w, r, 0);
+}
+
+void ft_line_hybrid_length(const ft_chain *c, const double *z, double r, int both_ends, double *length,
+                           double *steps)
 {
     ft_walk_src w;
     ft_walk_src_init(&w, c, 0);
+    w.z = z;
     double len = hybrid_walk(&w, r);
     if (!c->closed && both_ends) {
         ft_walk_src_init(&w, c, 1);
+        w.z = z;
         len = 0.5 * (len + hybrid_walk(&w, r));
     }
     *length = len;

@@ -67,9 +67,12 @@ int ft_line_method_parse(const char *name, ft_line_method *m)
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
-    const ft_chain **chains; /* the chains with >= 2 vertices */
+    const ft_chain **chains; /* the chains with >= 2 vertices (Earth-centred copies for geographic input) */
+    const double **z;        /* per chain its third coordinate, or NULL (planar) */
+    ft_chain **ecef;         /* owned Earth-centred chains (geographic input), else NULL */
+    double **ecef_z;
     size_t n;
-    double xmin, ymin, xmax, ymax;
+    double xmin, ymin, zmin, xmax, ymax, zmax;
     double median_seg; /* median of the non-zero segment lengths */
     double length;     /* total length */
 } chain_set;
@@ -87,6 +90,8 @@ static int check_opts(ft_line_method method, const ft_line_dim_opts *o)
                         o->max_scale);
     if (o->nscales != 0 && (o->nscales < 3 || o->nscales > NSCALES_MAX))
         return ft_error(FT_E_INVALID, "nscales must be in [3, %d] (0 = default), got %d", NSCALES_MAX, o->nscales);
+    if (!(o->min_r2 >= 0.0 && o->min_r2 <= 1.0))
+        return ft_error(FT_E_INVALID, "min_r2 must be in [0, 1], got %g", o->min_r2);
     if (o->box_offsets < 1 || o->box_offsets > BOX_OFFSETS_MAX)
         return ft_error(FT_E_INVALID, "box_offsets must be in [1, %d], got %d", BOX_OFFSETS_MAX, o->box_offsets);
     return FT_OK;
@@ -98,7 +103,8 @@ static int collect_chains(const ft_chain *const *chains, size_t n, chain_set *s)
     if (chains == NULL || n == 0)
         return ft_error(FT_E_EMPTY, "line dimension: no chains (n = %zu)", chains == NULL ? (size_t)0 : n);
     s->chains = ft_malloc(n * sizeof *s->chains);
-    if (s->chains == NULL)
+    s->z = ft_calloc(n, sizeof *s->z);
+    if (s->chains == NULL || s->z == NULL)
         return FT_E_NOMEM;
     for (size_t c = 0; c < n; c++) {
         if (chains[c] == NULL)
@@ -115,6 +121,48 @@ static int collect_chains(const ft_chain *const *chains, size_t n, chain_set *s)
         return ft_error(FT_E_EMPTY, "line dimension: none of the %zu chain%s has 2 vertices or more", n,
                         n == 1 ? "" : "s");
     return FT_OK;
+}
+
+/* Geographic input: replaces every chain by its Earth-centred copy on the ellipsoid (x, y and z in metres),
+ * so that the walks measure straight 3-D chords. A chord is shorter than the geodesic between its ends by
+ * s^3 / (24 R^2) (1 m in 100 km, 1e-5 relative; docs/geographic.md). */
+static int to_ecef(chain_set *s, const ft_ellipsoid *e)
+{
+    if (!(e->a > 0.0) || !(e->f >= 0.0 && e->f < 1.0))
+        return ft_error(FT_E_INVALID, "ellipsoid must have a > 0 and 0 <= f < 1, got a = %g, f = %g", e->a, e->f);
+    s->ecef = ft_calloc(s->n, sizeof *s->ecef);
+    s->ecef_z = ft_calloc(s->n, sizeof *s->ecef_z);
+    if (s->ecef == NULL || s->ecef_z == NULL)
+        return FT_E_NOMEM;
+    for (size_t c = 0; c < s->n; c++) {
+        const ft_chain *g = s->chains[c];
+        for (size_t i = 0; i < g->n; i++)
+            if (!(fabs(g->y[i]) <= 90.0))
+                return ft_error(FT_E_INVALID, "line dimension: chain %zu vertex %zu has latitude %g, outside "
+                                "[-90, 90]: the coordinates are not longitude/latitude degrees", c, i, g->y[i]);
+        s->ecef[c] = ft_chain_create(g->n, g->closed);
+        s->ecef_z[c] = ft_malloc(g->n * sizeof *s->ecef_z[c]);
+        if (s->ecef[c] == NULL || s->ecef_z[c] == NULL)
+            return FT_E_NOMEM;
+        for (size_t i = 0; i < g->n; i++)
+            ft_ellipsoid_to_ecef(e, g->x[i], g->y[i], &s->ecef[c]->x[i], &s->ecef[c]->y[i], &s->ecef_z[c][i]);
+        s->ecef[c]->n = g->n;
+        s->chains[c] = s->ecef[c];
+        s->z[c] = s->ecef_z[c];
+    }
+    return FT_OK;
+}
+
+static void chain_set_clear(chain_set *s)
+{
+    for (size_t c = 0; s->ecef && c < s->n; c++) {
+        ft_chain_free(s->ecef[c]);
+        free(s->ecef_z ? s->ecef_z[c] : NULL);
+    }
+    free(s->ecef);
+    free(s->ecef_z);
+    free(s->chains);
+    free(s->z);
 }
 
 /* The k-th smallest of v[0..n) (v is reordered): Wirth's selection, O(n) on average; runs of equal values
@@ -155,22 +203,25 @@ static int set_statistics(chain_set *s)
     if (len == NULL)
         return FT_E_NOMEM;
     size_t m = 0;
-    s->xmin = s->ymin = INFINITY;
-    s->xmax = s->ymax = -INFINITY;
+    s->xmin = s->ymin = s->zmin = INFINITY;
+    s->xmax = s->ymax = s->zmax = -INFINITY;
     s->length = 0.0;
     for (size_t c = 0; c < s->n; c++) {
         const ft_chain *ch = s->chains[c];
+        const double *z = s->z[c];
         size_t ns = ft_chain_segments(ch);
         for (size_t i = 0; i < ch->n; i++) {
-            double x = ch->x[i], y = ch->y[i];
+            double x = ch->x[i], y = ch->y[i], h = z ? z[i] : 0.0;
             s->xmin = x < s->xmin ? x : s->xmin;
             s->xmax = x > s->xmax ? x : s->xmax;
             s->ymin = y < s->ymin ? y : s->ymin;
             s->ymax = y > s->ymax ? y : s->ymax;
+            s->zmin = h < s->zmin ? h : s->zmin;
+            s->zmax = h > s->zmax ? h : s->zmax;
         }
         for (size_t i = 0; i < ns; i++) {
             size_t j = i + 1 == ch->n ? 0 : i + 1;
-            double d = hypot(ch->x[j] - ch->x[i], ch->y[j] - ch->y[i]);
+            double d = ft_walk_dist(ch->x[j] - ch->x[i], ch->y[j] - ch->y[i], z ? z[j] - z[i] : 0.0);
             s->length += d;
             if (d > 0.0)
                 len[m++] = d;
@@ -188,22 +239,29 @@ static int set_statistics(chain_set *s)
  * Scales and measurement
  * --------------------------------------------------------------------------------------------- */
 
+/* Diagonal of the chains' bounding box (3-D for Earth-centred chains): their extent. */
+static double extent_diagonal(const chain_set *s)
+{
+    return ft_walk_dist(s->xmax - s->xmin, s->ymax - s->ymin, s->zmax - s->zmin);
+}
+
 static int scale_range(const chain_set *s, ft_line_method method, const ft_line_dim_opts *o, double *lo,
                        double *hi)
 {
-    double diag = hypot(s->xmax - s->xmin, s->ymax - s->ymin);
+    double diag = extent_diagonal(s);
     int box = method == FT_LINE_BOX;
     double lo_auto = (box ? LO_SEGMENTS_BOX : LO_SEGMENTS_WALK) * s->median_seg;
     double hi_auto = (box ? HI_FRACTION_BOX : HI_FRACTION_WALK) * diag;
     *lo = o->min_scale > 0.0 ? o->min_scale : lo_auto;
     *hi = o->max_scale > 0.0 ? o->max_scale : hi_auto;
+    const char *u = o->ellipsoid ? " m" : "";
     if (!(*lo < *hi))
-        return ft_error(FT_E_INVALID, "empty scale range: min_scale %g%s >= max_scale %g%s (median segment %g, "
-                        "bounding-box diagonal %g); set --min-scale/--max-scale", *lo,
+        return ft_error(FT_E_INVALID, "empty scale range: min_scale %g%s%s >= max_scale %g%s%s (median segment %g%s, "
+                        "bounding-box diagonal %g%s); set --min-scale/--max-scale", *lo, u,
                         o->min_scale > 0.0 ? "" : (box ? " (automatic: median segment)"
-                                                       : " (automatic: 2 x median segment)"), *hi,
+                                                       : " (automatic: 2 x median segment)"), *hi, u,
                         o->max_scale > 0.0 ? "" : (box ? " (automatic: diagonal / 48)" : " (automatic: diagonal / 4)"),
-                        s->median_seg, diag);
+                        s->median_seg, u, diag, u);
     return FT_OK;
 }
 
@@ -221,11 +279,11 @@ static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_
     for (size_t c = 0; c < s->n; c++) {
         double l = 0.0, k = 0.0;
         if (method == FT_LINE_DIVIDER)
-            ft_line_divider_length(s->chains[c], r, o->both_ends, &l, &k);
+            ft_line_divider_length(s->chains[c], s->z[c], r, o->both_ends, &l, &k);
         else if (method == FT_LINE_EQUIPACED)
-            ft_line_equipaced_length(s->chains[c], r, &l, &k);
+            ft_line_equipaced_length(s->chains[c], s->z[c], r, &l, &k);
         else
-            ft_line_hybrid_length(s->chains[c], r, o->both_ends, &l, &k);
+            ft_line_hybrid_length(s->chains[c], s->z[c], r, o->both_ends, &l, &k);
         len += l;
         steps += k;
     }
@@ -234,8 +292,9 @@ static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_
     return FT_OK;
 }
 
-/* One row per scale of the geometric series; rows whose value is 0 (every chain shorter than the ruler
- * and closed) are left out. */
+/* One row per scale of the geometric series; rows where the chains are shorter than one ruler (a walk
+ * takes no whole step: its value is the chord between the ends, or 0 for rings) are left out: they say
+ * nothing about the line's detail, and kept they read as D = 1. */
 static int build_table(const chain_set *s, ft_line_method method, const ft_line_dim_opts *o, double lo,
                        double hi, int nscales, ft_loglog **out)
 {
@@ -249,23 +308,52 @@ static int build_table(const chain_set *s, ft_line_method method, const ft_line_
         double r = i == nscales - 1 ? hi : lo * exp(ratio * i), value = 0.0, count = 0.0;
         rc = measure(s, method, o, r, &value, &count);
         double scale = method == FT_LINE_EQUIPACED ? r * value / s->length : r;
-        if (rc == FT_OK && value > 0.0)
+        int usable = method == FT_LINE_BOX ? value > 0.0 : value >= r;
+        if (rc == FT_OK && usable)
             rc = ft_loglog_push(t, scale, value, count);
+        else if (rc == FT_OK && o->fit_whole_range) /* the range was asked for: say it does not fit */
+            rc = ft_error(FT_E_INVALID, "%s %g%s of the range [%g, %g]%s is longer than the chains: they are %g%s "
+                          "long and %g%s across; choose a largest scale below %g%s", method == FT_LINE_BOX ?
+                          "box size" : "ruler", r, o->ellipsoid ? " m" : "", lo, hi, o->ellipsoid ? " m" : "",
+                          s->length, o->ellipsoid ? " m" : "", extent_diagonal(s), o->ellipsoid ? " m" : "",
+                          HI_FRACTION_WALK * extent_diagonal(s), o->ellipsoid ? " m" : "");
         snprintf(msg, sizeof msg, "%s: scale %d of %d", method_names[method], i + 1, nscales);
         if (rc == FT_OK)
             rc = ft_progress(o->progress, o->progress_arg, (i + 1.0) / nscales, msg);
     }
     if (rc == FT_OK && method == FT_LINE_EQUIPACED)
         rc = ft_loglog_sort(t);
+    const char *u = o->ellipsoid ? " m" : "";
     if (rc == FT_OK && t->n < 3)
-        rc = ft_error(FT_E_INVALID, "line dimension: only %zu of %d scales in [%g, %g] gave a value > 0; "
-                      "lower max_scale", t->n, nscales, lo, hi);
+        rc = ft_error(FT_E_INVALID, "only %zu of %d %s in [%g, %g]%s %s; the chains are %g%s long and %g%s "
+                      "across: lower the largest scale (about %g%s) or measure a longer line", t->n, nscales,
+                      method == FT_LINE_BOX ? "box sizes" : "rulers", lo, hi, u,
+                      method == FT_LINE_BOX ? "cover a box" : "fit once along the chains", s->length, u,
+                      extent_diagonal(s), u, HI_FRACTION_WALK * extent_diagonal(s), u);
     if (rc != FT_OK) {
         ft_loglog_free(t);
         return rc;
     }
     *out = t;
     return FT_OK;
+}
+
+/* FT_E_INVALID if the fit's r² is below min_r2 while its values do change and its D is not pinned (line.h,
+ * FT_LINE_R2_FLOOR). */
+static int check_r2(const ft_dim_result *r, double min_r2, const char *unit)
+{
+    const ft_loglog *t = r->table;
+    double vmin = INFINITY, vmax = -INFINITY;
+    for (size_t i = r->fit.first; t && i <= r->fit.last && i < t->n; i++) {
+        double v = log10(t->rows[i].value);
+        vmin = v < vmin ? v : vmin;
+        vmax = v > vmax ? v : vmax;
+    }
+    if (r->r2 >= min_r2 || !(vmax - vmin > FT_LINE_R2_MIN_SPREAD) || r->stderr_D < FT_LINE_R2_MAX_STDERR)
+        return FT_OK;
+    return ft_error(FT_E_INVALID, "the log-log fit over [%g, %g]%s has r2 = %.3f, below %.2f: the table is not a "
+                    "straight line there (D would be %.4f +- %.3f); choose another range (see the table with --plot)",
+                    r->range[0], r->range[1], unit, r->r2, min_r2, r->D, r->stderr_D);
 }
 
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
@@ -283,7 +371,12 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     ft_loglog *t = NULL;
     double lo = 0.0, hi = 0.0;
     int nscales = o->nscales > 0 ? o->nscales : (method == FT_LINE_BOX ? NSCALES_DEFAULT_BOX : NSCALES_DEFAULT);
+    if (o->ellipsoid != NULL && method == FT_LINE_BOX)
+        return ft_error(FT_E_INVALID, "box counting of longitude/latitude chains needs them projected to an "
+                        "equal-area CRS first (boxes of equal ground area)");
     rc = collect_chains(chains, n, &s);
+    if (rc == FT_OK && o->ellipsoid != NULL)
+        rc = to_ecef(&s, o->ellipsoid);
     if (rc == FT_OK)
         rc = set_statistics(&s);
     if (rc == FT_OK)
@@ -303,8 +396,16 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
                                 : ft_loglog_fit_auto(t, lo, hi, &o->fit, map, out);
     }
     if (rc == FT_OK)
+        rc = check_r2(*out, o->min_r2, o->ellipsoid ? " m" : "");
+    if (rc == FT_OK) {
         (*out)->method = method_names[method];
+        if (o->ellipsoid)
+            ft_dim_result_set_units(*out, "m");
+    } else if (*out) {
+        ft_dim_result_free(*out);
+        *out = NULL;
+    }
     ft_loglog_free(t);
-    free(s.chains);
+    chain_set_clear(&s);
     return rc;
 }

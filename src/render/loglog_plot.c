@@ -150,8 +150,8 @@ static void legend_make(cairo_t *cr, const ft_dim_result *r, const ft_plot_opts 
     legend_add(l, 0, "used");
     legend_add(l, 1, "not used");
     if (r->fit.n >= 2) {
-        snprintf(buf, sizeof buf, "D = %.3f \xc2\xb1 %.3f, r\xc2\xb2 = %.3f, range %.4g\xe2\x80\x93%.4g", r->D,
-                 r->stderr_D, r->r2, r->range[0], r->range[1]);
+        snprintf(buf, sizeof buf, "D = %.3f \xc2\xb1 %.3f, r\xc2\xb2 = %.3f, range %.4g\xe2\x80\x93%.4g%s%s", r->D,
+                 r->stderr_D, r->r2, r->range[0], r->range[1], r->units[0] ? " " : "", r->units);
         legend_add(l, 2, buf);
     }
     size_t shown = o->segments ? r->nsegments : 0;

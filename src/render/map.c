@@ -12,6 +12,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "fracterra/io.h"
 #include "fracterra/render.h"
 #include "render/render_internal.h"
 
@@ -153,15 +154,15 @@ static void draw_item(cairo_t *cr, const map_item *it, const map_frame *f)
             draw_feature(cr, it, &it->layer->features[i], f);
 }
 
-/* 1 if the WKT describes a geographic CRS (coordinates in degrees). */
+/* 1 if the CRS service says the WKT is geographic (coordinates in degrees). */
 static int crs_is_geographic(const char *wkt)
 {
-    if (wkt == NULL)
+    ft_crs_info crs;
+    if (ft_io_crs_info(wkt, &crs) != FT_OK) {
+        ft_clear_error();
         return 0;
-    while (*wkt == ' ' || *wkt == '\n' || *wkt == '\t')
-        wkt++;
-    return strncmp(wkt, "GEOGCS", 6) == 0 || strncmp(wkt, "GEOGCRS", 7) == 0 ||
-           strncmp(wkt, "GEODCRS", 7) == 0 || strncmp(wkt, "GEOGRAPHICCRS", 13) == 0;
+    }
+    return crs.geographic;
 }
 
 /* The largest 1, 2 or 5 times a power of ten not above x (x > 0). */

@@ -13,6 +13,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "fracterra/io.h"
 #include "fracterra/render.h"
 #include "internal.h"
 #include "render/render_internal.h"
@@ -32,7 +33,6 @@
 #define MARGIN 0.04          /* of the image width, around the terrain */
 #define AMBIENT 0.30
 #define HAZE 0.20
-#define DEGREE_SCALE 111120.0
 #define AUTO_RELIEF 6.0      /* automatic exaggeration: relief >= half-diagonal / AUTO_RELIEF */
 
 static const double sky_top[3] = {0.56, 0.72, 0.88}, sky_horizon[3] = {0.92, 0.94, 0.95};
@@ -94,24 +94,19 @@ static int check_args(const ft_grid *g, const char *path, const ft_perspective_o
     return FT_OK;
 }
 
-static int is_geographic(const char *wkt)
-{
-    if (wkt == NULL)
-        return 0;
-    while (*wkt == ' ' || *wkt == '\n')
-        wkt++;
-    return strncasecmp(wkt, "GEOGCRS", 7) == 0 || strncasecmp(wkt, "GEOGCS", 6) == 0 ||
-           strncasecmp(wkt, "GEODCRS", 7) == 0;
-}
-
 /* Ground units per unit of x and y, and of z before exaggeration. */
 static void horizontal_scale(const ft_grid *g, const ft_perspective_opts *o, double *sx, double *sy)
 {
-    int geo = is_geographic(g->crs_wkt);
-    double s = o->scale > 0.0 ? o->scale : (geo ? DEGREE_SCALE : 1.0);
-    double lat = g->gt[3] + 0.5 * (double)g->nx * g->gt[4] + 0.5 * (double)g->ny * g->gt[5];
-    *sx = geo && o->scale == 0.0 ? s * cos(lat * M_PI / 180.0) : s;
-    *sy = s;
+    ft_crs_info crs;
+    if (ft_io_crs_info(g->crs_wkt, &crs) != FT_OK) {
+        ft_clear_error();
+        crs.geographic = 0;
+    }
+    *sx = *sy = o->scale > 0.0 ? o->scale : 1.0;
+    if (crs.geographic && o->scale == 0.0) { /* ground metres of a degree at the grid's centre */
+        double lat = g->gt[3] + 0.5 * (double)g->nx * g->gt[4] + 0.5 * (double)g->ny * g->gt[5];
+        ft_ellipsoid_metres_per_degree(&crs.ellipsoid, fabs(lat) <= 90.0 ? lat : 0.0, sx, sy);
+    }
 }
 
 static double auto_exaggeration(double relief, double half_diagonal, double requested)

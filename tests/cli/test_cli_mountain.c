@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "fracterra/fracterra.h"
 #include "ft_test_assert.h"
@@ -209,8 +210,9 @@ static void test_text_seed(void **state)
     ft_layer_free(l);
 }
 
-/* A seed in degrees (GeoJSON without a crs member is WGS 84) works, with a warning naming the CRS issue. */
-static void test_geographic_seed_warns(void **state)
+/* A seed in degrees (GeoJSON without a crs member is WGS 84) is refused: spacing and shrinking are ground
+ * lengths. The error names the file and the CRS, and nothing is written. */
+static void test_geographic_seed_refused(void **state)
 {
     (void)state;
     const char *seed = ft_test_tmp_text(
@@ -218,10 +220,13 @@ static void test_geographic_seed_warns(void **state)
                           "\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[6.0,49.5],[6.01,49.5],[6.01,49.51],"
                           "[6.0,49.51],[6.0,49.5]]]}}]}");
     ft_run_result r;
-    assert_int_equal(ft_run(&r, "mountain", seed, ft_test_tmp("out.geojson"), "--method", "simple", NULL), 0);
-    assert_int_equal(r.status, 0);
-    assert_non_null(strstr(r.err, "fracterra: mountain: warning: "));
-    assert_non_null(strstr(r.err, "geographic CRS"));
+    const char *out = ft_test_tmp("out_geo.geojson");
+    assert_int_equal(ft_run(&r, "mountain", seed, out, "--method", "simple", NULL), 0);
+    assert_int_equal(r.status, 1);
+    assert_non_null(strstr(r.err, "fracterra: mountain: "));
+    assert_non_null(strstr(r.err, "geographic CRS (WGS 84)"));
+    assert_non_null(strstr(r.err, "reproject"));
+    assert_int_equal(access(out, F_OK), -1);
     ft_run_free(&r);
 }
 
@@ -289,7 +294,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mountain_end_to_end), cmocka_unit_test(test_dprime_reported_as_applied),
         cmocka_unit_test(test_same_seed_same_output),
-        cmocka_unit_test(test_text_seed),           cmocka_unit_test(test_geographic_seed_warns),
+        cmocka_unit_test(test_text_seed),           cmocka_unit_test(test_geographic_seed_refused),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_help),
     };

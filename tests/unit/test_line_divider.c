@@ -84,10 +84,10 @@ static void test_l_chain_circle_intersection_and_both_ends(void **state)
     assert_int_equal(ft_line_divider_walk(c, 4.0, 1, &len, &st), FT_OK);
     assert_int_equal(st, 1);
     assert_near(len, 7.0, 1e-12);
-    ft_line_divider_length(c, 4.0, 1, &len, &steps);
+    ft_line_divider_length(c, NULL, 4.0, 1, &len, &steps);
     assert_near(len, 0.5 * (8.0 - sqrt(7.0) + 7.0), 1e-12);
     assert_near(steps, 1.0, 0);
-    ft_line_divider_length(c, 4.0, 0, &len, &steps);
+    ft_line_divider_length(c, NULL, 4.0, 0, &len, &steps);
     assert_near(len, 8.0 - sqrt(7.0), 1e-12);
     for (int e = 0; e < 2; e++) {
         assert_int_equal(ft_line_divider_walk(c, 5.0, e, &len, &st), FT_OK);
@@ -144,13 +144,13 @@ static void test_equipaced_hand_cases(void **state)
     const double line[] = {0, 0, 10, 0}, l[] = {0, 0, 3, 0, 3, 4}, sq[] = {0, 0, 1, 0, 1, 1, 0, 1};
     ft_chain *a = chain_of(line, 2, 0), *b = chain_of(l, 3, 0), *c = chain_of(sq, 4, 1);
     double len, steps;
-    ft_line_equipaced_length(a, 3.0, &len, &steps);
+    ft_line_equipaced_length(a, NULL, 3.0, &len, &steps);
     assert_near(len, 10.0, 1e-12);
     assert_near(steps, 3.0, 0);
-    ft_line_equipaced_length(b, 2.0, &len, &steps);
+    ft_line_equipaced_length(b, NULL, 2.0, &len, &steps);
     assert_near(len, 5.0 + sqrt(2.0), 1e-12);
     assert_near(steps, 3.0, 0);
-    ft_line_equipaced_length(c, 1.5, &len, &steps);
+    ft_line_equipaced_length(c, NULL, 1.5, &len, &steps);
     assert_near(len, 2.0 * sqrt(1.25) + 1.0, 1e-12);
     assert_near(steps, 2.0, 0);
     ft_chain_free(a);
@@ -167,17 +167,17 @@ static void test_hybrid_hand_cases(void **state)
     const double p[] = {0, 0, 1, 0, 2, 0, 2, 2};
     ft_chain *c = chain_of(p, 4, 0);
     double len, steps;
-    ft_line_hybrid_length(c, 1.5, 1, &len, &steps);
+    ft_line_hybrid_length(c, NULL, 1.5, 1, &len, &steps);
     assert_near(len, 4.0, 1e-12);
     assert_near(steps, 4.0 / 1.5, 1e-12);
-    ft_line_hybrid_length(c, 2.5, 1, &len, &steps);
+    ft_line_hybrid_length(c, NULL, 2.5, 1, &len, &steps);
     assert_near(len, 2.0 * sqrt(2.0), 1e-12);
     /* ruler 2.1 from the start: (0,0): (2,2) is the first at >= 2.1 -> 2 sqrt(2); from the end: (2,2):
      * (1,0) is at sqrt(5) >= 2.1 -> sqrt(5), then (0,0) at 1 < 2.1 is the last fraction: mean of
      * 2 sqrt(2) and sqrt(5) + 1. */
-    ft_line_hybrid_length(c, 2.1, 1, &len, &steps);
+    ft_line_hybrid_length(c, NULL, 2.1, 1, &len, &steps);
     assert_near(len, 0.5 * (2.0 * sqrt(2.0) + sqrt(5.0) + 1.0), 1e-12);
-    ft_line_hybrid_length(c, 2.1, 0, &len, &steps);
+    ft_line_hybrid_length(c, NULL, 2.1, 0, &len, &steps);
     assert_near(len, 2.0 * sqrt(2.0), 1e-12);
     ft_chain_free(c);
 }

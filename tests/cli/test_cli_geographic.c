@@ -1,0 +1,361 @@
+/* fracterra — end-to-end tests of longitude/latitude input (docs/geographic.md): every command either
+ * measures in metres or refuses clearly. The twins in tests/data were made with ogr2ogr/gdalwarp from the
+ * projected files (tests/data/README.md), so a lon/lat file and its projected twin must agree.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fracterra/fracterra.h"
+#include "ft_test_util.h"
+
+#define NF_UTM FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
+#define NF_LONLAT FT_TEST_DATA "/gshhg_newfoundland_lonlat.geojson"
+#define US_ALBERS FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
+#define US_LONLAT FT_TEST_DATA "/dcw_us_states_small_lonlat.geojson"
+#define LUX_LONLAT FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
+#define LUX_UTM FT_TEST_DATA "/dem_luxembourg_utm32n.tif"
+
+/* The value of the table row whose scale is nearest s. */
+static double row_value(json_object *o, double s)
+{
+    json_object *t = ft_test_json_key(o, "table");
+    double best = INFINITY, v = NAN;
+    for (size_t i = 0; i < json_object_array_length(t); i++) {
+        json_object *row = ft_test_json_at(t, i);
+        double d = fabs(log(ft_test_json_num(row, "scale") / s));
+        if (d < best) {
+            best = d;
+            v = ft_test_json_num(row, "value");
+        }
+    }
+    return v;
+}
+
+/* Newfoundland (47-52 N) in lon/lat and in UTM 21N: divider D over 1-100 km within 0.01, the walked length
+ * at a 1 km ruler within 0.5%; scales in metres. */
+static void test_dim_line_twin(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("dim", "line", NF_LONLAT, "--min-scale", "1000", "--max-scale", "100000",
+                                      "--json");
+    json_object *p = FT_TEST_RUN_JSON("dim", "line", NF_UTM, "--min-scale", "1000", "--max-scale", "100000",
+                                      "--json");
+    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    double lg = row_value(g, 1000.0), lp = row_value(p, 1000.0);
+    print_message("  D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.3f%%)\n", dg, dp, lg, lp,
+                  100.0 * (lg / lp - 1.0));
+    assert_true(fabs(dg - dp) < 0.01);
+    assert_true(fabs(lg / lp - 1.0) < 0.005);
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    assert_string_equal(ft_test_json_str(p, "units"), "m");
+    json_object *geo = ft_test_json_key(g, "geographic");
+    assert_string_equal(ft_test_json_str(geo, "ellipsoid"), "WGS 84");
+    assert_null(ft_test_json_key(geo, "projection")); /* walked on the ellipsoid */
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* Box counting of a lon/lat layer runs in a local equal-area projection, named; the result is in metres and
+ * agrees with the Albers twin over the same box sizes. */
+static void test_dim_line_box_projection(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("dim", "line", US_LONLAT, "--method", "box", "--min-scale", "2000",
+                                      "--max-scale", "50000", "--json");
+    json_object *p = FT_TEST_RUN_JSON("dim", "line", US_ALBERS, "--method", "box", "--min-scale", "2000",
+                                      "--max-scale", "50000", "--json");
+    const char *proj = ft_test_json_str(ft_test_json_key(g, "geographic"), "projection");
+    assert_non_null(strstr(proj, "Lambert azimuthal equal-area centred on"));
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    print_message("  box D lon/lat (LAEA) %.4f, Albers %.4f\n", dg, dp);
+    assert_true(fabs(dg - dp) < 0.02);
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* The README's metre range on a short lon/lat line: exit 1, naming the file, the range and the length in m. */
+static void test_dim_line_rulers_too_long(void **state)
+{
+    (void)state;
+    const char *line = ft_test_tmp_text(
+        "short.geojson", "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+                         "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[6.0,50.0],[6.03,50.01],"
+                         "[6.07,50.0]]}}]}");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "short.geojson, divider: ruler", "dim", "line", line, "--min-scale", "1000",
+                           "--max-scale", "100000");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "m long and", "dim", "line", line, "--min-scale", "1000", "--max-scale",
+                           "100000", "--json");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "[1000, 100000] m", "dim", "line", line, "--min-scale", "1000",
+                           "--max-scale", "100000");
+}
+
+/* Polygon areas and box counts of the US states in lon/lat equal their Albers twin's (both equal-area). */
+static void test_dim_area_twin(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("dim", "area", US_LONLAT, "--json");
+    json_object *p = FT_TEST_RUN_JSON("dim", "area", US_ALBERS, "--json");
+    double ag = ft_test_json_num(g, "area"), ap = ft_test_json_num(p, "area");
+    print_message("  area lon/lat %.6g m2, Albers %.6g m2\n", ag, ap);
+    assert_true(fabs(ag / ap - 1.0) < 1e-4);
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    assert_non_null(strstr(ft_test_json_str(ft_test_json_key(g, "geographic"), "projection"), "equal-area"));
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* The Luxembourg DEM in lon/lat and its gdalwarp to UTM 32N: variogram D over 1.5-12 km within 0.02. */
+static void test_dim_surface_twin(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("dim", "surface", LUX_LONLAT, "--min-scale", "1500", "--max-scale", "12000",
+                                      "--json");
+    json_object *p = FT_TEST_RUN_JSON("dim", "surface", LUX_UTM, "--min-scale", "1500", "--max-scale", "12000",
+                                      "--json");
+    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    print_message("  variogram D lon/lat %.4f, UTM %.4f\n", dg, dp);
+    assert_true(fabs(dg - dp) < 0.02);
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    assert_non_null(strstr(ft_test_json_str(ft_test_json_key(g, "geographic"), "projection"), "Transverse Mercator"));
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* Clarke's model of the lon/lat DEM: wavelengths in metres and the harmonics' directions within 1 degree of
+ * the UTM twin's (the strongest three, matched by wavenumber); trend per metre of the same size. */
+static void test_model_fit_twin(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("model", "fit", LUX_LONLAT, "--json");
+    json_object *p = FT_TEST_RUN_JSON("model", "fit", LUX_UTM, "--json");
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    json_object *hg = ft_test_json_key(ft_test_json_key(g, "harmonics"), "list");
+    json_object *hp = ft_test_json_key(ft_test_json_key(p, "harmonics"), "list");
+    int matched = 0;
+    for (size_t i = 0; i < 3 && i < json_object_array_length(hg); i++) {
+        json_object *a = ft_test_json_at(hg, i);
+        for (size_t j = 0; j < json_object_array_length(hp); j++) {
+            json_object *b = ft_test_json_at(hp, j);
+            if (ft_test_json_int(a, "k") != ft_test_json_int(b, "k") || ft_test_json_int(a, "l") != ft_test_json_int(b, "l"))
+                continue;
+            double da = ft_test_json_num(a, "direction"), db = ft_test_json_num(b, "direction");
+            double wa = ft_test_json_num(a, "wavelength"), wb = ft_test_json_num(b, "wavelength");
+            print_message("  harmonic (%d,%d): direction %.2f / %.2f deg, wavelength %.0f / %.0f m\n",
+                          (int)ft_test_json_int(a, "k"), (int)ft_test_json_int(a, "l"), da, db, wa, wb);
+            assert_true(fabs(da - db) < 1.0);
+            assert_true(fabs(wa / wb - 1.0) < 0.04); /* the grids' extents differ by 1.4-3.5% (rotated warp) */
+            matched++;
+        }
+    }
+    assert_true(matched >= 2);
+    double b1g = ft_test_json_num(ft_test_json_key(g, "trend"), "beta1");
+    double b1p = ft_test_json_num(ft_test_json_key(p, "trend"), "beta1");
+    assert_true(fabs(b1g / b1p - 1.0) < 0.1); /* m of height per m east, not per degree */
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* dim map on lon/lat writes its D map in the local projection it measured in. */
+static void test_dim_map(void **state)
+{
+    (void)state;
+    const char *out = ft_test_tmp("dmap.tif");
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "dim", "map", LUX_LONLAT, out, "--window", "16", NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    ft_grid *g = NULL;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    assert_int_equal(ft_io_read_grid(out, &ro, &g), FT_OK);
+    ft_crs_info crs;
+    assert_int_equal(ft_io_crs_info(g->crs_wkt, &crs), FT_OK);
+    assert_false(crs.geographic);
+    assert_string_equal(crs.scale_unit, "m");
+    ft_grid_free(g);
+}
+
+/* Scattered lon/lat elevations: lags in metres. */
+static void test_dim_points(void **state)
+{
+    (void)state;
+    char *text = malloc(200000);
+    size_t n = (size_t)snprintf(text, 200000, "{\"type\":\"FeatureCollection\",\"features\":[");
+    uint32_t u = 7u;
+    for (int i = 0; i < 400; i++) {
+        u = u * 1664525u + 1013904223u;
+        double lon = 6.0 + 0.2 * (u >> 8) / 16777216.0;
+        u = u * 1664525u + 1013904223u;
+        double lat = 49.5 + 0.2 * (u >> 8) / 16777216.0;
+        double z = 300.0 + 200.0 * sin(lon * 40.0) * cos(lat * 30.0);
+        n += (size_t)snprintf(text + n, 200000 - n, "%s{\"type\":\"Feature\",\"properties\":{},\"geometry\":{"
+                              "\"type\":\"Point\",\"coordinates\":[%.6f,%.6f,%.3f]}}", i ? "," : "", lon, lat, z);
+    }
+    snprintf(text + n, 200000 - n, "]}");
+    const char *path = ft_test_tmp_text("pts.geojson", text);
+    free(text);
+    json_object *o = FT_TEST_RUN_JSON("dim", "points", path, "--json");
+    assert_string_equal(ft_test_json_str(o, "units"), "m");
+    assert_non_null(strstr(ft_test_json_str(ft_test_json_key(o, "geographic"), "projection"), "Transverse Mercator"));
+    json_object *t = ft_test_json_key(o, "table");
+    double s0 = ft_test_json_num(ft_test_json_at(t, 0), "scale");
+    assert_true(s0 > 100.0 && s0 < 10000.0); /* 400 points over ~14 x 22 km: lags of hundreds of metres */
+    json_object_put(o);
+}
+
+/* The line editors take metres on lon/lat input, edit in a local LAEA and write lon/lat back: weeding at
+ * 500 m leaves about as many vertices as on the Albers twin, and the output is in WGS 84 again. */
+static void test_line_editors(void **state)
+{
+    (void)state;
+    const char *out = ft_test_tmp("weeded.geojson"), *out2 = ft_test_tmp("weeded_albers.geojson");
+    json_object *g = FT_TEST_RUN_JSON("weed", US_LONLAT, out, "--min-segment", "500", "--json");
+    json_object *p = FT_TEST_RUN_JSON("weed", US_ALBERS, out2, "--min-segment", "500", "--json");
+    double vg = (double)ft_test_json_int(g, "vertices_out"), vp = (double)ft_test_json_int(p, "vertices_out");
+    print_message("  weed 500 m: %g vertices (lon/lat), %g (Albers)\n", vg, vp);
+    assert_true(fabs(vg / vp - 1.0) < 0.02);
+    assert_true(vg < 0.9 * (double)ft_test_json_int(g, "vertices_in"));
+    assert_non_null(ft_test_json_key(g, "geographic"));
+    ft_layer *l = ft_test_read_layer(out);
+    ft_crs_info crs;
+    assert_int_equal(ft_io_crs_info(l->crs_wkt, &crs), FT_OK);
+    assert_true(crs.geographic);
+    double x0, y0, x1, y1;
+    assert_int_equal(ft_layer_bbox(l, &x0, &y0, &x1, &y1), FT_OK);
+    assert_true(x0 > -115.0 && x1 < -70.0 && y0 > 30.0 && y1 < 45.0);
+    ft_layer_free(l);
+    json_object_put(g);
+    json_object_put(p);
+    static const char *const cmds[][6] = {
+        {"simplify", "--tolerance", "1000", NULL, NULL, NULL},
+        {"smooth", "--st", "5000", NULL, NULL, NULL},
+        {"enhance", "--sd", "1.3", "--st", "5000", NULL},
+        {"boundary", "--dim", "1.3", "--max", "5000", NULL},
+    };
+    for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        const char *o2 = ft_test_tmp("edited.geojson");
+        json_object *r = FT_TEST_RUN_JSON(cmds[i][0], US_LONLAT, o2, cmds[i][1], cmds[i][2], "--json",
+                                          cmds[i][3] ? cmds[i][3] : "--json", cmds[i][4] ? cmds[i][4] : "--json");
+        assert_non_null(strstr(ft_test_json_str(ft_test_json_key(r, "geographic"), "projection"), "equal-area"));
+        json_object_put(r);
+        unlink(o2);
+    }
+}
+
+/* Commands that cannot measure lon/lat say why and how to reproject, exit 1, write nothing. */
+static void test_refusals(void **state)
+{
+    (void)state;
+    const char *out = ft_test_tmp("recon.tif");
+    const char *pts = ft_test_tmp_text(
+        "pts.geojson", "{\"type\":\"FeatureCollection\",\"features\":["
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.0,49.5,300]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.1,49.5,320]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.0,49.6,310]}},"
+                       "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.1,49.6,330]}}]}");
+    FT_TEST_EXPECT_FAILURE(1, "reconstruct", "longitude/latitude (WGS 84)", "reconstruct", pts, out, "--cell",
+                           "100");
+    assert_int_equal(access(out, F_OK), -1);
+    /* voids of a lon/lat DEM are filled in its cells, with a warning giving their ground size */
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "reconstruct", LUX_LONLAT, out, NULL), 0);
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.err, "on the ground, and the voids are filled as if they were square"));
+    ft_run_free(&r);
+    FT_TEST_EXPECT_FAILURE(1, "mountain", "geographic CRS (WGS 84)", "mountain", US_LONLAT,
+                           ft_test_tmp("m.geojson"));
+}
+
+/* hillshade of a lon/lat DEM takes the ellipsoid's metres per degree of latitude at its centre as scale:
+ * the same image as --scale 111229 (the textbook length of a degree of latitude at 50 N), within one grey
+ * level, and not the image of --scale 1 (degrees taken as metres). */
+static void test_hillshade(void **state)
+{
+    (void)state;
+    const char *scales[3] = {NULL, "111229", "1"};
+    ft_grid *g[3] = {NULL, NULL, NULL};
+    for (int i = 0; i < 3; i++) {
+        const char *out = ft_test_tmp(i == 0 ? "s0.tif" : i == 1 ? "s1.tif" : "s2.tif");
+        ft_run_result r;
+        if (scales[i])
+            assert_int_equal(ft_run(&r, "hillshade", LUX_LONLAT, out, "--scale", scales[i], NULL), 0);
+        else
+            assert_int_equal(ft_run(&r, "hillshade", LUX_LONLAT, out, NULL), 0);
+        assert_int_equal(r.status, 0);
+        ft_run_free(&r);
+        ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+        assert_int_equal(ft_io_read_grid(out, &ro, &g[i]), FT_OK);
+    }
+    double d1 = 0.0, d2 = 0.0;
+    for (size_t k = 0; k < g[0]->nx * g[0]->ny; k++) {
+        d1 = fmax(d1, fabs(g[0]->z[k] - g[1]->z[k]));
+        d2 = fmax(d2, fabs(g[0]->z[k] - g[2]->z[k]));
+    }
+    print_message("  max grey difference: %g against --scale 111229, %g against --scale 1\n", d1, d2);
+    assert_true(d1 <= 1.0);
+    assert_true(d2 > 20.0);
+    for (int i = 0; i < 3; i++)
+        ft_grid_free(g[i]);
+}
+
+/* info says what the measuring commands will do, and a lon/lat grid's ground cells: 30" at 49.8 N are about
+ * 600 m x 927 m (a degree of longitude is 71 696 m at 50 N, of latitude 111 229 m: textbook values). */
+static void test_info(void **state)
+{
+    (void)state;
+    json_object *o = FT_TEST_RUN_JSON("info", LUX_LONLAT, "--json");
+    json_object *crs = ft_test_json_key(o, "crs");
+    assert_true(json_object_get_boolean(ft_test_json_key(crs, "geographic")));
+    assert_string_equal(ft_test_json_str(crs, "ellipsoid"), "WGS 84");
+    json_object *g = ft_test_json_key(o, "ground_cell_size");
+    assert_true(fabs(json_object_get_double(json_object_array_get_idx(g, 0)) / (71696.0 / 120.0) - 1.0) < 0.01);
+    assert_true(fabs(json_object_get_double(json_object_array_get_idx(g, 1)) / (111229.0 / 120.0) - 1.0) < 0.001);
+    json_object_put(o);
+}
+
+/* urban table of the lon/lat states: areas in square metres, equal to the Albers twin's. */
+static void test_urban_table(void **state)
+{
+    (void)state;
+    const char *t1 = ft_test_tmp("t1.json"), *t2 = ft_test_tmp("t2.json");
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "urban", "table", US_LONLAT, "--class", "code", "-o", t1, NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    assert_int_equal(ft_run(&r, "urban", "table", US_ALBERS, "--class", "code", "-o", t2, NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    json_object *a = json_object_from_file(t1), *b = json_object_from_file(t2);
+    assert_non_null(a);
+    assert_non_null(b);
+    double aa = ft_test_json_num(ft_test_json_at(ft_test_json_key(a, "rows"), 0), "area");
+    double ab = ft_test_json_num(ft_test_json_at(ft_test_json_key(b, "rows"), 0), "area");
+    assert_true(fabs(aa / ab - 1.0) < 1e-4);
+    json_object_put(a);
+    json_object_put(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_dim_line_twin),    cmocka_unit_test(test_dim_line_box_projection),
+        cmocka_unit_test(test_dim_line_rulers_too_long), cmocka_unit_test(test_dim_area_twin),
+        cmocka_unit_test(test_dim_surface_twin), cmocka_unit_test(test_model_fit_twin),
+        cmocka_unit_test(test_dim_map),          cmocka_unit_test(test_dim_points),
+        cmocka_unit_test(test_line_editors),     cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_hillshade),        cmocka_unit_test(test_info),
+        cmocka_unit_test(test_urban_table),
+    };
+    return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
+}
