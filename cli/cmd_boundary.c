@@ -90,7 +90,8 @@ static int run_boundary(const cli_command *cmd, int argc, char **argv)
         rc = check_args(cmd, &a);
     if (rc != CLI_CONTINUE)
         return rc;
-    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b}, {"repair", ft_line_op_remove_loops, NULL}};
+    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b, NULL, NULL},
+                          {"repair", ft_line_op_remove_loops, NULL, NULL, NULL}};
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, a.repair ? 2 : 1, prepare, &a.b,
                          json_object_new_object());
 }
