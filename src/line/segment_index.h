@@ -12,11 +12,11 @@
 #include "fracterra/core.h"
 
 /** Segment ids run over the chains in order: chain c's segment i (vertex i to i + 1, a ring's last one back
- *  to 0) is chain_first[c] + i. Cell (cx, cy) is filed in bucket k = ft_segment_grid_bucket(g, cx, cy),
- *  which holds ids[start[k] .. start[k + 1]) (other cells' segments too, when they hash alike). */
+ *  to 0) is chain_first[c] + i. Cell (cx, cy) is bucket k = ft_segment_grid_bucket(g, cx, cy) = cy nx + cx,
+ *  which holds ids[start[k] .. start[k + 1]). */
 typedef struct {
     double x0, y0, inv; /**< origin and 1 / cell side */
-    size_t nx, ny, nseg, nbuckets; /**< nbuckets: a power of 2 */
+    size_t nx, ny, nseg, nbuckets; /**< nbuckets = nx ny */
     size_t *start;
     uint32_t *ids, *seg_chain, *chain_first;
 } ft_segment_grid;
