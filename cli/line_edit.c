@@ -183,6 +183,7 @@ static json_object *report_json(const char *input, const char *output, const ft_
         add_size(g, "moves", r->guard.moves);
         add_size(g, "reduced", r->guard.reduced);
         add_size(g, "dropped", r->guard.dropped);
+        add_size(g, "redrawn", r->guard.redrawn);
         json_object_object_add(o, "crossing_guard", g);
     }
     if (r->repaired)
@@ -225,8 +226,8 @@ static void print_human(const char *input, const char *output, const ft_layer *l
         printf("%-19s %zu before repair\n", "self-intersections", r->before_repair);
     printf("%-19s %zu\n", "self-intersections", r->intersections);
     if (r->guarded)
-        printf("%-19s %zu moves, %zu halved or quartered, %zu dropped to avoid crossings\n", "crossing guard",
-               r->guard.moves, r->guard.reduced, r->guard.dropped);
+        printf("%-19s %zu moves: %zu redrawn on the other side, %zu halved or quartered, %zu dropped\n",
+               "crossing guard", r->guard.moves, r->guard.redrawn, r->guard.reduced, r->guard.dropped);
     printf("%-19s %s: %zu -> %zu vertices\n", "wrote", output, r->vertices_in, r->vertices_out);
 }
 

@@ -161,12 +161,22 @@ typedef struct {
     size_t moves;   /**< vertices the raw algorithm moves */
     size_t reduced; /**< of which moved only half or a quarter of the way */
     size_t dropped; /**< of which left at their base position */
+    size_t redrawn; /**< of which moved in full to the mirror position (FT_GUARD_MIRROR) */
 } ft_line_guard_stats;
+
+/** Guard modes of ft_line_run_passes and ft_line_apply_layer_passes. */
+enum {
+    FT_GUARD_OFF = 0,   /**< the raw positions */
+    FT_GUARD_REDUCE = 1, /**< all, half, a quarter of the move, or none */
+    FT_GUARD_MIRROR = 2  /**< first the full move, then its mirror through the base (2 base - raw: a midpoint
+                              displacement drawn to the other side, same length), then as REDUCE */
+};
 
 /** chains[c] holds the base positions and receives the result; raw[c] the raw ones (same vertex count and
  *  closedness). If the base geometry has no contact between segments (but shared end points), neither has
  *  the result. Serial and deterministic. stats (may be NULL) is added to. */
-int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, ft_line_guard_stats *stats);
+int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
+                        ft_line_guard_stats *stats);
 
 /** One pass of a vertex-moving operation: allocates *base and *raw (same vertex count). */
 typedef int (*ft_line_pass_fn)(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
@@ -175,8 +185,9 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
 /** A pass of roundness smoothing; ctx is a const ft_smooth_opts * (passes ignored). Duplicate consecutive
  *  vertices are left in: ft_line_run_passes removes them. */
 int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
-/** `passes` passes over the chain set chains[0..n) (replaced in place; on failure unchanged), guarded unless
- *  guard is 0 (then the raw positions are taken); consecutive duplicate vertices are removed after each. */
+/** `passes` passes over the chain set chains[0..n) (replaced in place; on failure unchanged), guarded in
+ *  mode `guard` (FT_GUARD_*; FT_GUARD_OFF takes the raw positions); consecutive duplicate vertices are removed
+ *  after each. */
 int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
                        ft_line_guard_stats *stats);
 /** ft_line_run_passes over a whole layer: every part, or on coverages (coverage != 0 and rings) every arc of

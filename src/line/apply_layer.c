@@ -311,7 +311,7 @@ int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ct
         return rc;
     chain_set s;
     rc = set_collect(l, coverage, &s);
-    ft_line_guard_stats st = {0, 0, 0};
+    ft_line_guard_stats st = {0, 0, 0, 0};
     if (rc == FT_OK)
         rc = ft_line_run_passes(s.chains, s.n, pass, ctx, passes, guard, &st);
     if (rc == FT_OK && coverage) {
@@ -332,6 +332,7 @@ int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ct
         stats->moves += st.moves;
         stats->reduced += st.reduced;
         stats->dropped += st.dropped;
+        stats->redrawn += st.redrawn;
     }
     return rc;
 }

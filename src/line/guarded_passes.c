@@ -61,7 +61,7 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
     for (size_t c = 0; c < n && rc == FT_OK; c++)
         rc = pass(chains[c], ctx, &base[c], &raw[c]);
     if (rc == FT_OK && guard)
-        rc = ft_line_guard_moves(base, (const ft_chain *const *)raw, n, stats);
+        rc = ft_line_guard_moves(base, (const ft_chain *const *)raw, n, guard, stats);
     if (rc == FT_OK) {
         ft_chain **keep = guard ? base : raw;
         for (size_t c = 0; c < n; c++) {

@@ -7,7 +7,8 @@
  * nothing: with A and C its neighbours' current positions, no other segment of any chain meets the new
  * segments A V, V C or the path V0 V (ft_segment_contact: a shared end point is allowed, an overlap is not)
  * or lies inside the triangles A V0 V and V0 V C (a small island the move would jump over); otherwise v
- * stays at V0. Each accepted move is a continuous motion that touches nothing, so the layer's topology
+ * stays at V0. In FT_GUARD_MIRROR mode (midpoint displacements: Zhang et al.'s boundary) the mirror move
+ * V0 - (raw - V0), the apex drawn on the other side with the same legs, is tried after the full move. Each accepted move is a continuous motion that touches nothing, so the layer's topology
  * (which side of which line every feature lies) is kept, not only its simplicity. The segments are found in the grid of
  * swept segments (segment_index.c), tested at their current positions.
  *
@@ -27,7 +28,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define TRIES 3 /* t = 1, 1/2, 1/4; then 0 */
 
 typedef struct {
     ft_chain *const *cur;
@@ -106,8 +106,9 @@ static int blocked(const guard *G, const double *a, const double *b0, const doub
     return 0;
 }
 
-/* Moves vertex i of chain c towards raw as far as the guard allows; returns the t used (1, 0.5, 0.25, 0). */
-static double guard_vertex(const guard *G, size_t c, size_t i, const ft_chain *raw)
+/* Moves vertex i of chain c towards raw as far as the guard allows; returns the t used (1, 0.5, 0.25, 0;
+ * -1: the mirror, in full). */
+static double guard_vertex(const guard *G, size_t c, size_t i, const ft_chain *raw, int mode)
 {
     ft_chain *ch = G->cur[c];
     size_t n = ch->n;
@@ -120,9 +121,13 @@ static double guard_vertex(const guard *G, size_t c, size_t i, const ft_chain *r
         a[0] = ch->x[ip], a[1] = ch->y[ip];
     if (has_next)
         cc[0] = ch->x[in], cc[1] = ch->y[in];
-    double bx = ch->x[i], by = ch->y[i], dx = raw->x[i] - bx, dy = raw->y[i] - by, t = 1.0;
-    for (int k = 0; k < TRIES; k++, t *= 0.5) {
-        double b[2] = {bx + t * dx, by + t * dy}, b0[2] = {bx, by};
+    double bx = ch->x[i], by = ch->y[i], dx = raw->x[i] - bx, dy = raw->y[i] - by, b0[2] = {bx, by};
+    static const double ts[] = {1.0, -1.0, 0.5, 0.25}; /* -1: the mirror, FT_GUARD_MIRROR only */
+    for (int k = 0; k < 4; k++) {
+        double t = ts[k];
+        if (t < 0.0 && mode != FT_GUARD_MIRROR)
+            continue;
+        double b[2] = {bx + t * dx, by + t * dy};
         if (!blocked(G, has_prev ? a : NULL, b0, b, has_next ? cc : NULL, sa, sb)) {
             ch->x[i] = b[0];
             ch->y[i] = b[1];
@@ -142,7 +147,8 @@ static int check_pair(const ft_chain *b, const ft_chain *r, size_t c)
     return FT_OK;
 }
 
-int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, ft_line_guard_stats *stats)
+int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
+                        ft_line_guard_stats *stats)
 {
     if ((chains == NULL || raw == NULL) && n > 0)
         return ft_error(FT_E_INVALID, "crossing guard: NULL chains");
@@ -156,16 +162,17 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
     if (rc != FT_OK)
         return rc;
     guard G = {chains, &g};
-    ft_line_guard_stats s = {0, 0, 0};
+    ft_line_guard_stats s = {0, 0, 0, 0};
     for (size_t c = 0; c < n; c++) {
         const ft_chain *r = raw[c];
         for (size_t i = 0; i < r->n; i++) {
             if (r->x[i] == chains[c]->x[i] && r->y[i] == chains[c]->y[i])
                 continue;
             s.moves++;
-            double t = guard_vertex(&G, c, i, r);
+            double t = guard_vertex(&G, c, i, r, mode);
             s.reduced += t > 0.0 && t < 1.0;
             s.dropped += t == 0.0;
+            s.redrawn += t < 0.0;
         }
     }
     ft_segment_grid_free(&g);
@@ -173,6 +180,7 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
         stats->moves += s.moves;
         stats->reduced += s.reduced;
         stats->dropped += s.dropped;
+        stats->redrawn += s.redrawn;
     }
     return FT_OK;
 }

@@ -140,7 +140,7 @@ static void check_enhanced(const char *name, const ft_layer *in, int polygons, i
         ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
         o.sd = sds[k];
         o.iterations = ITERATIONS;
-        ft_line_guard_stats st = {0, 0, 0};
+        ft_line_guard_stats st = {0, 0, 0, 0};
         assert_int_equal(ft_line_enhance_layer(l, &o, 1, NULL, &st), FT_OK);
         double seg_out = mean_segment(l);
         double d = divider_dim(l, 8.0 * seg_out, 0.5 * seg_in);
