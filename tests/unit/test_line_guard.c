@@ -3,7 +3,8 @@
  * the crossing guard leaves no self-intersection and no contact between features (checked with GEOS, not
  * with the guard's own contact test). Inputs: the 158-point Douglas-Peucker Newfoundland (GSHHG), four DCW
  * US states generalized as a coverage (Oklahoma and Colorado share a border), the 130 m contour of Maunga
- * Whau. FT_GUARD_MEASURE=1 prints every figure without asserting.
+ * Whau; a contour stack of the volcano DEM enhanced and smoothed stays disjoint. FT_GUARD_MEASURE=1 prints
+ * every figure without asserting.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -21,6 +22,7 @@
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 #define STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
 #define SEED_CONTOUR FT_TEST_DATA "/seed_contour_volcano.geojson"
+#define CONTOURS FT_TEST_DATA "/contours_volcano_10m.geojson"
 #define ITERATIONS 9
 
 static ft_layer *read_layer(const char *path)
@@ -71,8 +73,9 @@ static double divider_dim(const ft_layer *l, double lo, double hi)
 
 static GEOSGeometry *ring_geom(GEOSContextHandle_t h, const ft_chain *c, int polygon)
 {
-    GEOSCoordSequence *s = GEOSCoordSeq_create_r(h, (unsigned)c->n + 1, 2);
-    for (size_t i = 0; i <= c->n; i++) {
+    size_t m = c->n + (c->closed ? 1 : 0);
+    GEOSCoordSequence *s = GEOSCoordSeq_create_r(h, (unsigned)m, 2);
+    for (size_t i = 0; i < m; i++) {
         size_t k = i < c->n ? i : 0;
         GEOSCoordSeq_setXY_r(h, s, (unsigned)i, c->x[k], c->y[k]);
     }
@@ -181,6 +184,42 @@ static void test_states_coverage_uc1(void **state)
     ft_layer_free(l);
 }
 
+/* A real contour stack (gdal_contour of the volcano DEM every 10 m), enhanced (SD 1.7, 3 iterations) then
+ * smoothed twice, guarded: every contour simple and every pair of contours disjoint (GEOS). The raw
+ * algorithm's contacts are printed for comparison. */
+static size_t stack_faults(int allow_crossings, ft_line_guard_stats *st)
+{
+    ft_layer *l = read_layer(CONTOURS);
+    size_t before = geos_faults(l, 0);
+    assert_int_equal(before, 0);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.sd = 1.7;
+    o.iterations = 3;
+    o.allow_crossings = allow_crossings;
+    ft_smooth_opts so = FT_SMOOTH_OPTS_DEFAULT;
+    so.passes = 2;
+    so.allow_crossings = allow_crossings;
+    assert_int_equal(ft_line_enhance_layer(l, &o, 1, NULL, st), FT_OK);
+    size_t after_enhance = geos_faults(l, 0);
+    assert_int_equal(ft_line_smooth_layer(l, &so, 1, st), FT_OK);
+    size_t after_smooth = geos_faults(l, 0);
+    print_message("contour stack (%zu contours, %zu vertices), %s: GEOS faults %zu after enhance, %zu after "
+                  "smoothing\n",
+                  l->nparts, ft_layer_vertex_count(l), allow_crossings ? "raw" : "guarded", after_enhance,
+                  after_smooth);
+    ft_layer_free(l);
+    return after_enhance + after_smooth;
+}
+
+static void test_contour_stack_disjoint(void **state)
+{
+    (void)state;
+    ft_line_guard_stats raw = {0, 0, 0, 0}, st = {0, 0, 0, 0};
+    assert_true(stack_faults(1, &raw) > 0); /* the raw algorithm does make contours meet here */
+    assert_int_equal(stack_faults(0, &st), 0);
+    print_message("guard: %zu moves, %zu reduced, %zu dropped\n", st.moves, st.reduced, st.dropped);
+}
+
 static void test_volcano_contour_uc1(void **state)
 {
     (void)state;
@@ -195,6 +234,7 @@ int main(void)
         cmocka_unit_test(test_newfoundland_uc1),
         cmocka_unit_test(test_states_coverage_uc1),
         cmocka_unit_test(test_volcano_contour_uc1),
+        cmocka_unit_test(test_contour_stack_disjoint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
