@@ -15,6 +15,7 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include <geos_c.h>
 #include "fracterra/io.h"
 #include "fracterra/line.h"
@@ -228,6 +229,64 @@ static void test_volcano_contour_uc1(void **state)
     ft_layer_free(l);
 }
 
+/* Bad input: errors name the value. */
+static void expect_plan_error(const ft_chain *c, ft_dutton_opts o, const char *msg)
+{
+    ft_chain *out = (ft_chain *)1;
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_E_INVALID);
+    assert_null(out);
+    if (strstr(ft_last_error(), msg) == NULL)
+        print_error("message '%s' lacks '%s'\n", ft_last_error(), msg);
+    assert_non_null(strstr(ft_last_error(), msg));
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    const double xy[] = {0, 0, 10, 0, 10, 10, 0, 10};
+    ft_chain *c = ft_chain_from_arrays(xy, xy + 1, 4, 2, 1);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.uc = 0.5;
+    o.input_dim = 1.2;
+    o.sd = 1.9; /* target 1.2 + 0.5 (1.9 - 1.2) = 1.55 > 1.453, the most UC 0.5 reaches */
+    expect_plan_error(c, o, "a target dimension of 1.550 is out of reach with uc = 0.5: the enhanced chain's "
+                            "dimension stops rising at 1.45");
+    o.input_dim = 2.5;
+    expect_plan_error(c, o, "input_dim must be 0 (measured) or in [1,2], got 2.5");
+    o.input_dim = 0.0; /* a square: no divider dimension to measure */
+    o.sd = 1.3;
+    expect_plan_error(c, o, "uc < 1 needs the input's dimension D_in and it cannot be measured");
+    /* the guard itself: base and raw must match */
+    ft_chain *b = ft_chain_copy(c), *r = ft_chain_from_arrays(xy, xy + 1, 3, 2, 1);
+    assert_int_equal(ft_line_guard_moves(&b, (const ft_chain *const *)&r, 1, FT_GUARD_REDUCE, NULL), FT_E_INVALID);
+    assert_non_null(strstr(ft_last_error(), "chain 0 has 4 base and 3 raw vertices"));
+    ft_chain_free(b);
+    ft_chain_free(r);
+    ft_chain_free(c);
+}
+
+/* A move that would jump over a small island is refused, though its end position touches nothing. */
+static void test_no_jump_over_island(void **state)
+{
+    (void)state;
+    const double line[] = {0, 0, 5, 0, 10, 0}, raw_line[] = {0, 0, 5, 4, 10, 0};
+    const double island[] = {4.8, 1, 5.2, 1, 5, 1.4};
+    ft_chain *base[2] = {ft_chain_from_arrays(line, line + 1, 3, 2, 0),
+                         ft_chain_from_arrays(island, island + 1, 3, 2, 1)};
+    const ft_chain *raw[2] = {ft_chain_from_arrays(raw_line, raw_line + 1, 3, 2, 0), NULL};
+    raw[1] = ft_chain_copy(base[1]);
+    ft_line_guard_stats st = {0, 0, 0, 0};
+    assert_int_equal(ft_line_guard_moves(base, raw, 2, FT_GUARD_REDUCE, &st), FT_OK);
+    assert_int_equal(st.moves, 1);
+    /* t = 1 (y 4) and 1/2 (y 2) jump over the island (y 1 .. 1.4); 1/4 (y 1) would touch it: dropped */
+    assert_int_equal(st.dropped, 1);
+    assert_true(base[0]->y[1] == 0.0);
+    for (int k = 0; k < 2; k++) {
+        ft_chain_free(base[k]);
+        ft_chain_free((ft_chain *)raw[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -235,6 +294,8 @@ int main(void)
         cmocka_unit_test(test_states_coverage_uc1),
         cmocka_unit_test(test_volcano_contour_uc1),
         cmocka_unit_test(test_contour_stack_disjoint),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_no_jump_over_island),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
