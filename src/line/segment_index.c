@@ -85,32 +85,12 @@ static void swept_box(const ft_chain *b, const ft_chain *r, size_t i, size_t j, 
     box[3] = dmax(dmax(b->y[i], r->y[i]), dmax(b->y[j], r->y[j]));
 }
 
-static size_t clampi(double v, size_t n)
-{
-    if (!(v > 0.0))
-        return 0;
-    return v >= (double)(n - 1) ? n - 1 : (size_t)v;
-}
-
-size_t ft_segment_grid_bucket(const ft_segment_grid *g, size_t cx, size_t cy)
-{
-    return cy * g->nx + cx;
-}
-
-void ft_segment_grid_cells(const ft_segment_grid *g, const double box[4], size_t c[4])
-{
-    c[0] = clampi((box[0] - g->x0) * g->inv, g->nx);
-    c[1] = clampi((box[1] - g->y0) * g->inv, g->ny);
-    c[2] = clampi((box[2] - g->x0) * g->inv, g->nx);
-    c[3] = clampi((box[3] - g->y0) * g->inv, g->ny);
-}
-
 /* Origin, cell side and size of the grid from the swept boxes. */
 static int grid_frame(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n)
 {
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, side = 0.0;
     for (size_t c = 0; c < n; c++)
-        for (size_t i = 0; i < ft_chain_segments(base[c]); i++) {
+        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++) {
             double b[4];
             swept_box(base[c], raw[c], i, i + 1 < base[c]->n ? i + 1 : 0, b);
             x0 = dmin(x0, b[0]);
@@ -133,26 +113,38 @@ static int grid_frame(ft_segment_grid *g, const ft_chain *const *base, const ft_
     return FT_OK;
 }
 
-/* fill = 0: counts the segments of every cell into start[cell + 1]; fill = 1: files them. */
-static void file_segments(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
-                          size_t *next, int fill)
+/* The cell range of every segment's swept box, into k (4 per segment), and the count of every cell into
+ * start[cell + 1]. Returns the number of entries (cells met, summed over the segments). */
+static size_t range_and_count(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
+                              uint32_t *k)
 {
-    uint32_t id = 0;
+    size_t id = 0, total = 0;
     for (size_t c = 0; c < n; c++)
-        for (size_t i = 0; i < ft_chain_segments(base[c]); i++, id++) {
+        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++, id++) {
             double b[4];
-            size_t k[4];
+            size_t r[4];
             swept_box(base[c], raw[c], i, i + 1 < base[c]->n ? i + 1 : 0, b);
-            ft_segment_grid_cells(g, b, k);
-            for (size_t cy = k[1]; cy <= k[3]; cy++)
-                for (size_t cx = k[0]; cx <= k[2]; cx++) {
-                    size_t cell = ft_segment_grid_bucket(g, cx, cy);
-                    if (fill)
-                        g->ids[next[cell]++] = id;
-                    else
-                        g->start[cell + 1]++;
-                }
+            ft_segment_grid_cells(g, b, r);
+            for (int q = 0; q < 4; q++)
+                k[4 * id + q] = (uint32_t)r[q];
+            total += (r[2] - r[0] + 1) * (r[3] - r[1] + 1);
+            if (total >= UINT32_MAX)
+                return total; /* the caller refuses it; the counts are not used */
+            for (size_t cy = r[1]; cy <= r[3]; cy++)
+                for (size_t cx = r[0]; cx <= r[2]; cx++)
+                    g->start[cy * g->nx + cx + 1]++;
         }
+    return total;
+}
+
+static void file_segments(ft_segment_grid *g, const uint32_t *k, uint32_t *next)
+{
+    for (size_t id = 0; id < g->nseg; id++) {
+        const uint32_t *r = k + 4 * id;
+        for (size_t cy = r[1]; cy <= r[3]; cy++)
+            for (size_t cx = r[0]; cx <= r[2]; cx++)
+                g->ids[next[cy * g->nx + cx]++] = (uint32_t)id;
+    }
 }
 
 int ft_segment_grid_build(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n)
@@ -180,24 +172,35 @@ int ft_segment_grid_build(ft_segment_grid *g, const ft_chain *const *base, const
     uint32_t id = 0;
     for (size_t c = 0; c < n; c++) {
         g->chain_first[c] = id;
-        for (size_t i = 0; i < ft_chain_segments(base[c]); i++)
+        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++)
             g->seg_chain[id++] = (uint32_t)c;
     }
     g->chain_first[n] = id;
-    file_segments(g, base, raw, n, NULL, 0);
+    uint32_t *ranges = ft_malloc(4 * nseg * sizeof *ranges);
+    if (ranges == NULL) {
+        ft_segment_grid_free(g);
+        return FT_E_NOMEM;
+    }
+    if (range_and_count(g, base, raw, n, ranges) >= UINT32_MAX) {
+        free(ranges);
+        ft_segment_grid_free(g);
+        return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 cell entries (%zu segments)", nseg);
+    }
     for (size_t k = 0; k < ncells; k++)
         g->start[k + 1] += g->start[k];
-    size_t *next = ft_malloc(ncells * sizeof *next);
+    uint32_t *next = ft_malloc(ncells * sizeof *next);
     g->ids = ft_malloc((g->start[ncells] ? g->start[ncells] : 1) * sizeof *g->ids);
     if (next == NULL || g->ids == NULL) {
         free(next);
+        free(ranges);
         ft_segment_grid_free(g);
         return FT_E_NOMEM;
     }
     for (size_t k = 0; k < ncells; k++)
         next[k] = g->start[k];
-    file_segments(g, base, raw, n, next, 1);
+    file_segments(g, ranges, next);
     free(next);
+    free(ranges);
     return FT_OK;
 }
 

@@ -17,7 +17,7 @@
 typedef struct {
     double x0, y0, inv; /**< origin and 1 / cell side */
     size_t nx, ny, nseg, nbuckets; /**< nbuckets = nx ny */
-    size_t *start;
+    uint32_t *start; /**< nbuckets + 1 offsets into ids (at most 2^32 - 2 entries) */
     uint32_t *ids, *seg_chain, *chain_first;
 } ft_segment_grid;
 
@@ -26,9 +26,26 @@ typedef struct {
 int ft_segment_grid_build(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n);
 void ft_segment_grid_free(ft_segment_grid *g);
 /** The bucket of cell (cx, cy). */
-size_t ft_segment_grid_bucket(const ft_segment_grid *g, size_t cx, size_t cy);
+static inline size_t ft_segment_grid_bucket(const ft_segment_grid *g, size_t cx, size_t cy)
+{
+    return cy * g->nx + cx;
+}
+
+static inline size_t ft_segment_grid_clamp(double v, size_t n)
+{
+    if (!(v > 0.0))
+        return 0;
+    return v >= (double)(n - 1) ? n - 1 : (size_t)v;
+}
+
 /** The inclusive cell range c = {cx0, cy0, cx1, cy1} that box {x0, y0, x1, y1} meets (clamped to the grid). */
-void ft_segment_grid_cells(const ft_segment_grid *g, const double box[4], size_t c[4]);
+static inline void ft_segment_grid_cells(const ft_segment_grid *g, const double box[4], size_t c[4])
+{
+    c[0] = ft_segment_grid_clamp((box[0] - g->x0) * g->inv, g->nx);
+    c[1] = ft_segment_grid_clamp((box[1] - g->y0) * g->inv, g->ny);
+    c[2] = ft_segment_grid_clamp((box[2] - g->x0) * g->inv, g->nx);
+    c[3] = ft_segment_grid_clamp((box[3] - g->y0) * g->inv, g->ny);
+}
 
 /** 1 if the closed segments a b and c d meet anywhere but at a shared end point (two segments from a
  *  shared end point meet only if they overlap: collinear, the same way). */
