@@ -178,7 +178,8 @@ enum {
 int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
                         ft_line_guard_stats *stats);
 
-/** One pass of a vertex-moving operation: allocates *base and *raw (same vertex count). */
+/** One pass of a vertex-moving operation: allocates *base and *raw (same vertex count); base may be NULL
+ *  (unguarded: only raw is wanted). */
 typedef int (*ft_line_pass_fn)(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
 /** A pass of Dutton's enhancement; ctx is a const ft_dutton_plan *. */
 int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);

@@ -159,12 +159,18 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
         ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
-    base->x[k] = in->x[i];
-    base->y[k] = in->y[i];
+    if (base) {
+        base->x[k] = in->x[i];
+        base->y[k] = in->y[i];
+    }
     k++;
     if (i < nseg && split[i]) {
-        out->x[k] = base->x[k] = 0.5 * (in->x[i] + in->x[in_]);
-        out->y[k] = base->y[k] = 0.5 * (in->y[i] + in->y[in_]);
+        out->x[k] = 0.5 * (in->x[i] + in->x[in_]);
+        out->y[k] = 0.5 * (in->y[i] + in->y[in_]);
+        if (base) {
+            base->x[k] = out->x[k];
+            base->y[k] = out->y[k];
+        }
         k++;
     }
     return k;
@@ -211,27 +217,32 @@ static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **ba
         extra += split[i];
     int rc = FT_OK;
     ft_chain *c = n > SIZE_MAX / 2 ? NULL : ft_chain_create(n + extra, in->closed);
-    ft_chain *b = c == NULL ? NULL : ft_chain_create(n + extra, in->closed);
-    if (b == NULL) {
+    ft_chain *b = c == NULL || base == NULL ? NULL : ft_chain_create(n + extra, in->closed);
+    if (c == NULL || (base != NULL && b == NULL)) {
         rc = n > SIZE_MAX / 2 ? ft_error(FT_E_NOMEM, "enhance: %zu vertices overflow", n) : FT_E_NOMEM;
         ft_chain_free(c);
         c = NULL;
     } else {
         emit_all(in, split, nseg, pp, c, b, counts, nthreads);
-        c->n = b->n = n + extra;
+        c->n = n + extra;
+        if (b)
+            b->n = n + extra;
     }
     free(split);
     free(counts);
     *out = c;
-    *base = b;
+    if (base)
+        *base = b;
     return rc;
 }
 
 int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
-    if (base == NULL || raw == NULL)
+    if (raw == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL output pointer");
-    *base = *raw = NULL;
+    *raw = NULL;
+    if (base)
+        *base = NULL;
     const ft_dutton_plan *p = ctx;
     if (p == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL plan");

@@ -59,7 +59,7 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
     ft_chain **base = ft_calloc(n ? n : 1, sizeof *base), **raw = ft_calloc(n ? n : 1, sizeof *raw);
     int rc = base == NULL || raw == NULL ? FT_E_NOMEM : FT_OK;
     for (size_t c = 0; c < n && rc == FT_OK; c++)
-        rc = pass(chains[c], ctx, &base[c], &raw[c]);
+        rc = pass(chains[c], ctx, guard ? &base[c] : NULL, &raw[c]);
     if (rc == FT_OK && guard)
         rc = ft_line_guard_moves(base, (const ft_chain *const *)raw, n, guard, stats);
     if (rc == FT_OK) {

@@ -34,14 +34,15 @@ static int check_opts(const ft_smooth_opts *o)
     return ft_edit_check_window(o->st, o->sm);
 }
 
-/* One pass: base has each cut vertex twice at V, raw the two cuts; the driver removes repeated vertices. */
+/* One pass: base (if wanted) has each cut vertex twice at V, raw the two cuts; the driver removes repeated
+ * vertices. */
 static int smooth_pass(const ft_chain *in, double r, ft_edit_window w, ft_chain **base, ft_chain **raw)
 {
     size_t n = in->n;
     if (n > SIZE_MAX / 2)
         return ft_error(FT_E_NOMEM, "smooth: %zu vertices overflow", n);
-    ft_chain *c = ft_chain_create(2 * n, in->closed), *b = ft_chain_create(2 * n, in->closed);
-    if (c == NULL || b == NULL) {
+    ft_chain *c = ft_chain_create(2 * n, in->closed), *b = base ? ft_chain_create(2 * n, in->closed) : NULL;
+    if (c == NULL || (base && b == NULL)) {
         ft_chain_free(c);
         ft_chain_free(b);
         return FT_E_NOMEM;
@@ -52,15 +53,19 @@ static int smooth_pass(const ft_chain *in, double r, ft_edit_window w, ft_chain 
         int interior = in->closed || (i > 0 && i + 1 < n);
         size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
         double vx = in->x[i], vy = in->y[i];
-        b->x[k] = vx;
-        b->y[k] = vy;
+        if (b) {
+            b->x[k] = vx;
+            b->y[k] = vy;
+        }
         if (interior && ft_edit_in_window(w, ft_edit_dist2(in, ip, i)) &&
             ft_edit_in_window(w, ft_edit_dist2(in, i, in_))) {
             c->x[k] = vx + h * (in->x[ip] - vx);
             c->y[k] = vy + h * (in->y[ip] - vy);
             k++;
-            b->x[k] = vx;
-            b->y[k] = vy;
+            if (b) {
+                b->x[k] = vx;
+                b->y[k] = vy;
+            }
             c->x[k] = vx + h * (in->x[in_] - vx);
             c->y[k] = vy + h * (in->y[in_] - vy);
         } else {
@@ -69,17 +74,22 @@ static int smooth_pass(const ft_chain *in, double r, ft_edit_window w, ft_chain 
         }
         k++;
     }
-    c->n = b->n = k;
-    *base = b;
+    c->n = k;
+    if (b) {
+        b->n = k;
+        *base = b;
+    }
     *raw = c;
     return FT_OK;
 }
 
 int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
-    if (base == NULL || raw == NULL)
+    if (raw == NULL)
         return ft_error(FT_E_INVALID, "smooth: NULL output pointer");
-    *base = *raw = NULL;
+    *raw = NULL;
+    if (base)
+        *base = NULL;
     const ft_smooth_opts *o = ctx;
     ft_chain *dummy = NULL;
     int rc = ft_edit_check_chain("smooth", in, &dummy);

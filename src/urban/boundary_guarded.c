@@ -72,34 +72,45 @@ static int in_window(const level_ctx *L, const ft_chain *c, size_t i, size_t j)
 static int boundary_level(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
     const level_ctx *L = ctx;
-    *base = *raw = NULL;
+    *raw = NULL;
+    if (base)
+        *base = NULL;
     size_t nseg = ft_chain_segments(in), add = 0;
     for (size_t i = 0; i < nseg; i++)
         add += (size_t)in_window(L, in, i, i + 1 < in->n ? i + 1 : 0);
     if (in->n + add > FT_BOUNDARY_MAX_VERTICES)
         return ft_error(FT_E_INVALID, "boundary: a chain would have more than %zu vertices; raise min",
                         (size_t)FT_BOUNDARY_MAX_VERTICES);
-    ft_chain *b = ft_chain_create(in->n + add, in->closed), *r = ft_chain_create(in->n + add, in->closed);
-    if (b == NULL || r == NULL) {
+    ft_chain *b = base ? ft_chain_create(in->n + add, in->closed) : NULL, *r = ft_chain_create(in->n + add, in->closed);
+    if ((base && b == NULL) || r == NULL) {
         ft_chain_free(b);
         ft_chain_free(r);
         return FT_E_NOMEM;
     }
     size_t k = 0;
     for (size_t i = 0; i < in->n; i++) {
-        b->x[k] = r->x[k] = in->x[i];
-        b->y[k] = r->y[k] = in->y[i];
+        r->x[k] = in->x[i];
+        r->y[k] = in->y[i];
+        if (b) {
+            b->x[k] = in->x[i];
+            b->y[k] = in->y[i];
+        }
         k++;
         size_t j = i + 1 < in->n ? i + 1 : 0;
         if (i < nseg && in_window(L, in, i, j)) {
-            b->x[k] = 0.5 * (in->x[i] + in->x[j]);
-            b->y[k] = 0.5 * (in->y[i] + in->y[j]);
+            if (b) {
+                b->x[k] = 0.5 * (in->x[i] + in->x[j]);
+                b->y[k] = 0.5 * (in->y[i] + in->y[j]);
+            }
             apex(L, in->x[i], in->y[i], in->x[j], in->y[j], &r->x[k], &r->y[k]);
             k++;
         }
     }
-    b->n = r->n = k;
-    *base = b;
+    r->n = k;
+    if (b) {
+        b->n = k;
+        *base = b;
+    }
     *raw = r;
     return FT_OK;
 }
