@@ -3,7 +3,8 @@
  * segment between --min and --max becomes two legs whose apex sits at (r/2) tan a off its midpoint (cos a =
  * 2^(1/D - 1)), on a random side, jittered within a small square, and so on down to --min; longer segments
  * (walls of regular parcels) are kept. The read-edit-write driver is line_edit's (coverage topology on
- * polygon layers, atomic output, report), the step ft_urban_op_boundary.
+ * polygon layers, atomic output, report), the step ft_urban_boundary_layer (guarded against crossings unless
+ * --allow-crossings).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -30,6 +31,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 'r': return cli_parse_double(cmd, "--jitter", arg, 0.0, 1.0, CLI_CLOSED, &a->b.jitter);
     case 'S': return terrain_parse_seed(cmd, arg, &a->b.seed);
     case 'R': a->repair = 1; return CLI_CONTINUE;
+    case 'X': a->b.allow_crossings = 1; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
@@ -71,7 +73,22 @@ static int prepare(const ft_layer *l, int coverage, void *ctx, json_object *para
     json_object_object_add(params, "chord_avg", cli_json_double(avg));
     json_object_object_add(params, "jitter", cli_json_double(b->jitter));
     json_object_object_add(params, "seed", json_object_new_uint64(b->seed));
+    json_object_object_add(params, "allow_crossings", json_object_new_boolean(b->allow_crossings));
     return FT_OK;
+}
+
+/* The subdivide step: the whole layer at once (ft_urban_boundary_layer), with the options prepare resolved. */
+static int boundary_layer_step(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats)
+{
+    ft_boundary_info info;
+    int rc = ft_urban_boundary_layer(l, ctx, coverage, &info);
+    if (rc == FT_OK) {
+        stats->moves += info.guard.moves;
+        stats->reduced += info.guard.reduced;
+        stats->dropped += info.guard.dropped;
+        stats->redrawn += info.guard.redrawn;
+    }
+    return rc;
 }
 
 static int run_boundary(const cli_command *cmd, int argc, char **argv)
@@ -80,6 +97,7 @@ static int run_boundary(const cli_command *cmd, int argc, char **argv)
         {"dim", required_argument, NULL, 'd'},    {"min", required_argument, NULL, 'm'},
         {"max", required_argument, NULL, 'M'},    {"jitter", required_argument, NULL, 'r'},
         {"seed", required_argument, NULL, 'S'},   {"repair", no_argument, NULL, 'R'},
+        {"allow-crossings", no_argument, NULL, 'X'},
         LINE_IO_LONGOPTS,                         CLI_OPT_HELP,
         CLI_OPT_END,
     };
@@ -90,7 +108,8 @@ static int run_boundary(const cli_command *cmd, int argc, char **argv)
         rc = check_args(cmd, &a);
     if (rc != CLI_CONTINUE)
         return rc;
-    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b}, {"repair", ft_line_op_remove_loops, NULL}};
+    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b, boundary_layer_step, &a.b},
+                          {"repair", ft_line_op_remove_loops, NULL, NULL, NULL}};
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, a.repair ? 2 : 1, prepare, &a.b,
                          json_object_new_object());
 }
@@ -98,14 +117,17 @@ static int run_boundary(const cli_command *cmd, int argc, char **argv)
 const cli_command cli_cmd_boundary = {
     "boundary",
     "simulate a boundary with detail of a given dimension (midpoint-subdivision generator)",
-    "fracterra boundary INPUT OUTPUT --dim D [--min LEN] [--max LEN] [--jitter R] [--seed N] [--repair]\n"
-    "                                 [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER] [--json]",
+    "fracterra boundary INPUT OUTPUT --dim D [--min LEN] [--max LEN] [--jitter R] [--seed N] [--allow-crossings]\n"
+    "                                 [--repair] [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER] [--json]",
     "Adds detail of dimension D to the lines and polygon boundaries of INPUT with the midpoint-subdivision\n"
     "generator of Zhang, Yu & Fan (2008, \xc2\xa7" "2): a segment of length r becomes two legs whose apex sits\n"
     "at L = (r/2) tan a off its midpoint, cos a = 2^(1/D - 1) (Eq. 9), on a side drawn at random, moved by\n"
     "up to R L along each axis (Eq. 10); the legs are split in turn while longer than --min. Segments longer\n"
     "than --max are kept as they are (the walls of regular parcels); input vertices never move. The same\n"
-    "seed gives the same output, byte for byte. Method: docs/urban-boundary.md.\n" LINE_IO_COVERAGE_HELP "\n"
+    "seed gives the same output, byte for byte. By default the segments are split level by level and an apex\n"
+    "whose legs would cross or touch another segment of the layer is moved half, a quarter or none of the\n"
+    "way from the midpoint (the report counts them), so the output is simple; --allow-crossings runs the\n"
+    "paper's depth-first generator unguarded. Method: docs/urban-boundary.md.\n" LINE_IO_COVERAGE_HELP "\n"
     "Options:\n"
     "  -d, --dim D          the dimension of the detail, in (1,2), e.g. one measured by 'dim area' (required)\n"
     "      --min LEN        segments no longer than LEN are not split (map units); default: a tenth of --max\n"
@@ -114,11 +136,13 @@ const cli_command cli_cmd_boundary = {
     "      --jitter R       apex moved by up to R L along x and y, R in [0, limit(D)): 0.707 up to D 1.4,\n"
     "                       0.68 at 1.5, 0.54 at 1.7, 0.45 at 1.9; default 0: the exact generator\n"
     "      --seed N         random sides and jitter; default 1 (printed in the JSON)\n"
-    "      --repair         then remove the loops where a chain (on a coverage, an arc) crosses itself: the\n"
-    "                       legs of neighbouring segments may cross at high D\n" LINE_IO_HELP
+    "      --allow-crossings  the unguarded depth-first generator: legs of neighbouring segments may cross\n"
+    "                       at high D\n"
+    "      --repair         then remove the loops where a chain (on a coverage, an arc) crosses itself\n"
+    "                       (needed only with --allow-crossings)\n" LINE_IO_HELP
     "JSON: {\"input\", \"output\", \"layer\", \"features\", \"parts\", \"coverage\", \"dim\", \"angle\" (a, degrees),\n"
     "\"min\", \"max\", \"chord_avg\", \"jitter\", \"seed\", \"stages\", \"vertices_in\", \"vertices_out\",\n"
-    "\"self_intersections\" (with --repair also \"self_intersections_before_repair\")}.\n\n"
+    "\"self_intersections\", \"crossing_guard\" (with --repair also \"self_intersections_before_repair\")}.\n\n"
     "Example:\n"
     "  fracterra boundary city-1997.gpkg city-detail.gpkg --dim 1.23 --min 5 --seed 7\n",
     run_boundary,

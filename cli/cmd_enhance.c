@@ -11,14 +11,34 @@
 #define MAX_ITERATIONS 16
 #define MAX_PASSES 16
 
-enum { OPT_TARGET_DIM = 0x300 }; /* long-only option codes, clear of line_edit.h's */
+enum { /* long-only option codes, clear of line_edit.h's */
+    OPT_TARGET_DIM = 0x300,
+    OPT_INPUT_DIM,
+    OPT_LITERAL_SD,
+    OPT_ALLOW_CROSSINGS
+};
 
 typedef struct {
     line_io io;
     ft_dutton_opts dutton;
     ft_smooth_opts smooth;
     int weed, repair, roundness_given;
+    json_object *params; /* the report's parameters: the plan is added once the layer is read */
 } enhance_args;
+
+/* The fractalize step: the whole layer at once (one plan, one crossing guard), the plan into the report. */
+static int enhance_layer_step(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats)
+{
+    enhance_args *a = ctx;
+    ft_dutton_plan plan;
+    int rc = ft_line_enhance_layer(l, &a->dutton, coverage, &plan, stats);
+    if (rc != FT_OK)
+        return rc;
+    json_object_object_add(a->params, "apex_deg", cli_json_double(plan.apex * 180.0 / 3.14159265358979323846));
+    json_object_object_add(a->params, "target_dim", cli_json_double(plan.target_dim)); /* null: literal/uc <= 0 */
+    json_object_object_add(a->params, "input_dim", cli_json_double(plan.input_dim));   /* null: not used */
+    return FT_OK;
+}
 
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
 {
@@ -31,9 +51,13 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 't': return cli_parse_double(cmd, "--st", arg, 0.0, INFINITY, CLI_OPEN_LO | CLI_ALLOW_INF, &a->dutton.st);
     case 'm': return cli_parse_double(cmd, "--sm", arg, 0.0, INFINITY, CLI_CLOSED, &a->dutton.sm);
     case 'i': return cli_parse_int(cmd, "--iterations", arg, 0, MAX_ITERATIONS, &a->dutton.iterations);
-    case OPT_TARGET_DIM: /* calibrated mode: the apex angle from the dimension wanted, --sd ignored */
+    case OPT_TARGET_DIM: /* the dimension wanted, whatever --uc; --sd ignored */
         return cli_parse_double(cmd, "--target-dim", arg, 1.0, ft_dutton_steady_dimension(FT_DUTTON_APEX_MIN),
                                 CLI_CLOSED, &a->dutton.target_dim);
+    case OPT_INPUT_DIM:
+        return cli_parse_double(cmd, "--input-dim", arg, 1.0, 2.0, CLI_CLOSED, &a->dutton.input_dim);
+    case OPT_LITERAL_SD: a->dutton.literal_sd = 1; return CLI_CONTINUE;
+    case OPT_ALLOW_CROSSINGS: a->dutton.allow_crossings = a->smooth.allow_crossings = 1; return CLI_CONTINUE;
     case 's': return cli_parse_int(cmd, "--smooth", arg, 0, MAX_PASSES, &a->smooth.passes);
     case 'r':
         a->roundness_given = 1;
@@ -66,11 +90,8 @@ static json_object *params_json(const enhance_args *a)
     json_object_object_add(p, "st", cli_json_double(a->dutton.st)); /* null: no limit */
     json_object_object_add(p, "sm", cli_json_double(a->dutton.sm));
     json_object_object_add(p, "iterations", json_object_new_int(a->dutton.iterations));
-    if (a->dutton.target_dim != 0.0) {
-        json_object_object_add(p, "target_dim", cli_json_double(a->dutton.target_dim));
-        json_object_object_add(p, "apex_deg", cli_json_double(ft_dutton_apex_for_dimension(a->dutton.target_dim) *
-                                                              180.0 / 3.14159265358979323846));
-    }
+    json_object_object_add(p, "literal_sd", json_object_new_boolean(a->dutton.literal_sd));
+    json_object_object_add(p, "allow_crossings", json_object_new_boolean(a->dutton.allow_crossings));
     json_object_object_add(p, "weed", json_object_new_boolean(a->weed));
     json_object_object_add(p, "smooth", json_object_new_int(a->smooth.passes));
     json_object_object_add(p, "roundness", cli_json_double(a->smooth.roundness));
@@ -86,10 +107,12 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
         {"iterations", required_argument, NULL, 'i'}, {"smooth", required_argument, NULL, 's'},
         {"roundness", required_argument, NULL, 'r'}, {"weed", no_argument, NULL, 'W'},
         {"repair", no_argument, NULL, 'R'},          {"target-dim", required_argument, NULL, OPT_TARGET_DIM},
+        {"input-dim", required_argument, NULL, OPT_INPUT_DIM}, {"literal-sd", no_argument, NULL, OPT_LITERAL_SD},
+        {"allow-crossings", no_argument, NULL, OPT_ALLOW_CROSSINGS},
         LINE_IO_LONGOPTS,
         CLI_OPT_HELP,                                CLI_OPT_END,
     };
-    enhance_args a = {LINE_IO_DEFAULT, FT_DUTTON_OPTS_DEFAULT, FT_SMOOTH_OPTS_DEFAULT, 0, 0, 0};
+    enhance_args a = {LINE_IO_DEFAULT, FT_DUTTON_OPTS_DEFAULT, FT_SMOOTH_OPTS_DEFAULT, 0, 0, 0, NULL};
     a.smooth.passes = 0;
     int first = 0;
     int rc = line_edit_parse(cmd, argc, argv, longopts, "d:u:t:m:i:s:r:" LINE_IO_SHORTOPTS, on_option, &a, &first);
@@ -100,35 +123,47 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
     line_step steps[4];
     size_t n = 0;
     if (a.dutton.iterations > 0)
-        steps[n++] = (line_step){"fractalize", ft_line_op_enhance, &a.dutton};
+        steps[n++] = (line_step){"fractalize", ft_line_op_enhance, &a.dutton, enhance_layer_step, &a};
     if (a.weed)
-        steps[n++] = (line_step){"weed", ft_line_op_weed, &a.dutton.sm};
+        steps[n++] = (line_step){"weed", ft_line_op_weed, &a.dutton.sm, NULL, NULL};
     if (a.smooth.passes > 0)
-        steps[n++] = (line_step){"smooth", ft_line_op_smooth, &a.smooth};
+        steps[n++] = (line_step){"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth};
     if (a.repair)
-        steps[n++] = (line_step){"repair", ft_line_op_remove_loops, NULL};
-    return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, n, NULL, NULL, params_json(&a));
+        steps[n++] = (line_step){"repair", ft_line_op_remove_loops, NULL, NULL, NULL};
+    a.params = params_json(&a);
+    return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, n, NULL, NULL, a.params);
 }
 
 const cli_command cli_cmd_enhance = {
     "enhance",
     "Dutton's fractal enhancement of generalized lines and polygon boundaries",
-    "fracterra enhance INPUT OUTPUT [--sd D | --target-dim D] [--uc U] [--st LEN] [--sm LEN] [--iterations N]\n"
-    "                                [--weed] [--smooth K] [--roundness R] [--repair] [--no-coverage] [--layer NAME]\n"
-    "                                [--where SQL] [-f DRIVER] [--json]",
+    "fracterra enhance INPUT OUTPUT [--sd D [--literal-sd] | --target-dim D] [--uc U] [--input-dim D] [--st LEN]\n"
+    "                                [--sm LEN] [--iterations N] [--weed] [--smooth K] [--roundness R] [--repair]\n"
+    "                                [--allow-crossings] [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER]\n"
+    "                                [--json]",
     "Puts self-similar detail back into generalized lines (Dutton 1981, docs/line-enhance.md): at each\n"
-    "iteration every interior vertex V splits its two segments at their midpoints M1, M2 and moves so that\n"
-    "the angle M1-V-M2 is the one the sinuosity dimension SD implies, keeping the ratio of the legs; UC\n"
-    "scales that move. Only vertices whose two segments are shorter than ST and not shorter than SM are\n"
-    "altered; end points of open lines never move. Then, in this order: --weed drops vertices so that no\n"
-    "segment is shorter than SM, --smooth cuts corners K times, --repair removes the loops that\n"
-    "self-intersections make. The report gives the vertices after each step and the self-intersections\n"
-    "left (within each chain; negative UC and narrow features make them).\n" LINE_IO_COVERAGE_HELP "\n"
+    "iteration every interior vertex V splits its two segments at their midpoints M1, M2 and moves towards\n"
+    "the apex of a triangle on M1 M2 with a fixed apex angle, keeping the ratio of the legs; UC scales that\n"
+    "move. SD is the dimension you get: the apex angle is calibrated so that the divider dimension over the\n"
+    "scales the enhancement generates is\n"
+    "    D_target = D_in + UC (SD - D_in)       (UC in (0,1]; SD itself at UC = 1),\n"
+    "D_in the input layer's walking-divider dimension over its automatic range (or --input-dim); UC = 0\n"
+    "moves nothing, negative UC (exaggeration) and --literal-sd use Dutton's literal angle for SD. Only\n"
+    "vertices whose two segments are shorter than ST and not shorter than SM are altered; end points of open\n"
+    "lines never move. No move makes a line cross or touch itself or another feature of the layer: a move\n"
+    "that would is halved, quartered, or not made (the report counts them). Then, in this order: --weed\n"
+    "drops vertices so that no segment is shorter than SM, --smooth cuts corners K times (guarded too),\n"
+    "--repair removes the loops of self-intersections (only --allow-crossings makes new ones). The report\n"
+    "gives the vertices after each step, the target and D_in, and the self-intersections left.\n"
+    LINE_IO_COVERAGE_HELP "\n"
     "Options:\n"
-    "  -d, --sd D           sinuosity dimension in [1,2] (1 keeps junctions straight, 2 right angles); default 1.3\n"
-    "      --target-dim D   calibrated mode: the apex angle whose steady-state divider dimension is D, in\n"
-    "                       [1,1.777] (SD's own angle gives less: SD 1.3 measures 1.12); --sd is ignored;\n"
-    "                       exact for --uc 1 (docs/line-enhance.md)\n"
+    "  -d, --sd D           sinuosity dimension in [1,2]: the divider dimension of the result at UC = 1;\n"
+    "                       default 1.3. At most 1.777 (UC = 1), 1.614 (UC = 0.7), 1.453 (UC = 0.5)\n"
+    "      --literal-sd     Dutton's literal reading: the apex angle pi - 2a, cos a = 2^(1/SD - 1), no\n"
+    "                       calibration (it measures less than SD: SD 1.3 gives 1.12)\n"
+    "      --target-dim D   the divider dimension wanted, whatever UC (--sd and D_in are then not used)\n"
+    "      --input-dim D    D_in for UC < 1 instead of measuring it\n"
+    "      --allow-crossings  the raw algorithm: every move made in full, even where lines then cross\n"
     "  -u, --uc U           uniformity coefficient in [-1,1]: the fraction of the move (negative: the opposite\n"
     "                       way, exaggerating); default 1\n"
     "  -t, --st LEN         straightness tolerance: only segments shorter than LEN are altered; default inf\n"

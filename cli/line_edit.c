@@ -116,9 +116,15 @@ int line_simplify_tolerance_for(const ft_layer *l, size_t target, int coverage, 
 /* What an edit did, for the report. */
 typedef struct {
     size_t vertices_in, vertices_out, intersections, before_repair;
-    int coverage, repaired;
+    int coverage, repaired, guarded;
+    ft_line_guard_stats guard;
     json_object *stages;
 } edit_report;
+
+int line_smooth_layer_step(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats)
+{
+    return ft_line_smooth_layer(l, ctx, coverage, stats);
+}
 
 static void add_stage(json_object *stages, const char *name, size_t vertices)
 {
@@ -138,7 +144,13 @@ static int apply_steps(ft_layer *l, const line_step *steps, size_t nsteps, edit_
                 return rc;
             r->repaired = 1;
         }
-        int rc = ft_line_apply_layer(l, steps[i].op, steps[i].opts, r->coverage);
+        int rc;
+        if (steps[i].layer != NULL) {
+            rc = steps[i].layer(l, steps[i].ctx, r->coverage, &r->guard);
+            r->guarded = 1;
+        } else {
+            rc = ft_line_apply_layer(l, steps[i].op, steps[i].opts, r->coverage);
+        }
         if (rc != FT_OK)
             return rc;
         add_stage(r->stages, steps[i].name, ft_layer_vertex_count(l));
@@ -167,6 +179,14 @@ static json_object *report_json(const char *input, const char *output, const ft_
     add_size(o, "vertices_in", r->vertices_in);
     add_size(o, "vertices_out", r->vertices_out);
     add_size(o, "self_intersections", r->intersections);
+    if (r->guarded) {
+        json_object *g = json_object_new_object();
+        add_size(g, "moves", r->guard.moves);
+        add_size(g, "reduced", r->guard.reduced);
+        add_size(g, "dropped", r->guard.dropped);
+        add_size(g, "redrawn", r->guard.redrawn);
+        json_object_object_add(o, "crossing_guard", g);
+    }
     if (r->repaired)
         add_size(o, "self_intersections_before_repair", r->before_repair);
     return o;
@@ -206,6 +226,9 @@ static void print_human(const char *input, const char *output, const ft_layer *l
     if (r->repaired)
         printf("%-19s %zu before repair\n", "self-intersections", r->before_repair);
     printf("%-19s %zu\n", "self-intersections", r->intersections);
+    if (r->guarded)
+        printf("%-19s %zu moves: %zu redrawn on the other side, %zu halved or quartered, %zu dropped\n",
+               "crossing guard", r->guard.moves, r->guard.redrawn, r->guard.reduced, r->guard.dropped);
     printf("%-19s %s: %zu -> %zu vertices\n", "wrote", output, r->vertices_in, r->vertices_out);
 }
 

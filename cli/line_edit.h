@@ -46,12 +46,21 @@ int line_io_option(int opt, const char *arg, line_io *io);
 int line_edit_parse(const cli_command *cmd, int argc, char **argv, const struct option *longopts,
                     const char *shortopts, cli_opt_fn fn, void *ctx, int *first);
 
-/* One step of an edit. */
+/* A step applied to the whole layer at once (e.g. ft_line_enhance_layer, so that the crossing guard sees
+ * every feature); adds what its guard did to *stats. FT_OK or an error code (error set). */
+typedef int (*line_layer_fn)(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats);
+
+/* One step of an edit: op applied chain by chain through ft_line_apply_layer, or layer (if not NULL). */
 typedef struct {
     const char *name; /**< "fractalize", "weed", "smooth", "simplify", "repair" */
     ft_line_op op;    /**< ft_line_op_enhance, ft_line_op_weed, ... (line.h) */
     const void *opts;
+    line_layer_fn layer;
+    void *ctx;
 } line_step;
+
+/** The layer step of smoothing: ctx is an ft_smooth_opts *. */
+int line_smooth_layer_step(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats);
 
 /* Called once the input is read, before the steps (e.g. to choose a tolerance from the data); may add
  * members to params. FT_OK or an error code (error set). */
@@ -59,7 +68,8 @@ typedef int (*line_prepare_fn)(const ft_layer *l, int coverage, void *ctx, json_
 
 /** Reads input, applies the steps in order, writes output and reports (JSON: "input", "output", "layer",
  *  "features", "parts", "coverage", the members of params (owned) echoing the parameters, "stages",
- *  "vertices_in", "vertices_out", "self_intersections"; with a repair step also
+ *  "vertices_in", "vertices_out", "self_intersections", "crossing_guard" (moves, reduced, dropped: what the
+ *  guard of the layer steps did; absent without one); with a repair step also
  *  "self_intersections_before_repair"). Returns the exit code; on failure nothing is written. */
 int line_edit_run(const cli_command *cmd, const char *input, const char *output, const line_io *io,
                   const line_step *steps, size_t nsteps, line_prepare_fn prepare, void *ctx, json_object *params);

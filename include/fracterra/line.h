@@ -87,19 +87,46 @@ int ft_line_box_count(const ft_chain *const *chains, size_t n, double size, doub
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
-    double sd;       /**< sinuosity dimension in [1, 2]; default 1.3 */
-    double uc;       /**< uniformity coefficient in [-1, 1]; default 1 */
+    double sd;       /**< sinuosity dimension in [1, 2]: the divider dimension the enhanced chain measures over
+                          the scales the enhancement generates when uc = 1 (unless literal_sd); default 1.3 */
+    double uc;       /**< uniformity coefficient in [-1, 1]; default 1. For uc in (0, 1] the target dimension
+                          is D_in + uc (sd - D_in), D_in the input's divider dimension (input_dim); uc = 0
+                          moves nothing; uc < 0 (exaggeration) uses the literal apex angle of sd */
     double st;       /**< straightness tolerance: vertices are altered only if both segments are shorter;
                           default INFINITY */
     double sm;       /**< smoothness tolerance: ... and not shorter than this; default 0 */
     int iterations;  /**< default 1 */
-    double target_dim; /**< calibrated mode: 0 (default) = off, the apex angle comes from sd by the literal
-                            relation; else the dimension wanted, in [1, ft_dutton_steady_dimension(
-                            FT_DUTTON_APEX_MIN)] (about 1.777): sd is ignored and the apex angle is
-                            ft_dutton_apex_for_dimension(target_dim), so that with uc = 1 the enhanced chain's
-                            divider dimension is target_dim (docs/line-enhance.md) */
+    double target_dim; /**< 0 (default): the target comes from sd and uc as above; else the divider dimension
+                            wanted, whatever uc (sd and input_dim are ignored), up to ft_dutton_max_dimension(uc) */
+    double input_dim;  /**< D_in for uc in (0, 1): 0 (default) = measured, the walking divider over the input's
+                            automatic range (ft_line_dim, all chains together); else given */
+    int literal_sd;    /**< 1: Dutton's literal reading, the apex angle pi - 2a with cos a = 2^(1/sd - 1), no
+                            calibration (it measures well below sd: 1.12 for 1.3); default 0 */
+    int allow_crossings; /**< 1: the raw algorithm; 0 (default): a move that would make a segment cross or
+                              touch another one of the chain (or layer) is halved, then dropped */
 } ft_dutton_opts;
-#define FT_DUTTON_OPTS_DEFAULT {1.3, 1.0, INFINITY, 0.0, 1, 0.0}
+#define FT_DUTTON_OPTS_DEFAULT {1.3, 1.0, INFINITY, 0.0, 1, 0.0, 0.0, 0, 0}
+
+/** What an enhancement will do, resolved once for a chain or a whole layer (ft_dutton_plan_make). */
+typedef struct {
+    double apex;       /**< the apex angle used, radians */
+    double target_dim; /**< the divider dimension aimed at over the generated scales; NaN if literal_sd, uc <= 0 */
+    double input_dim;  /**< D_in used by the uc < 1 rule; NaN if not used */
+    double uc, st, sm;
+} ft_dutton_plan;
+
+/** Resolves opts against the input chains (measures D_in if needed). FT_E_INVALID if the target cannot be
+ *  reached (above ft_dutton_max_dimension(uc)) or D_in cannot be measured. */
+int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *opts, ft_dutton_plan *plan);
+/** The UC rule: D_in + uc (sd - D_in). */
+double ft_dutton_target_dimension(double sd, double uc, double input_dim);
+/** The steady-state divider dimension of the enhancement with apex `apex` and uniformity uc in (0, 1]; NaN
+ *  outside. uc = 1 is ft_dutton_steady_dimension. */
+double ft_dutton_steady_dimension_uc(double apex, double uc);
+/** The largest dimension calibrated mode reaches with uniformity uc (at FT_DUTTON_APEX_MIN). */
+double ft_dutton_max_dimension(double uc);
+/** The apex angle whose steady-state dimension with uniformity uc is target_dim; NaN if out of reach. */
+double ft_dutton_apex_for_target(double target_dim, double uc);
 
 /** The apex angle (radians) that a sinuosity dimension implies: pi - 2a with cos a = 2^(1/sd - 1). */
 double ft_dutton_apex_angle(double sd);
@@ -124,8 +151,10 @@ typedef struct {
     int passes;        /**< corner-cutting passes; default 1 */
     double roundness;  /**< R in (0, 1]: V is replaced by V + R(M1 - V) and V + R(M2 - V); default 0.5 */
     double st, sm;     /**< only segments within [sm, st] are cut; defaults INFINITY and 0 */
+    int allow_crossings; /**< 1: the raw algorithm; 0 (default): cuts that would make a segment cross or touch
+                              another are reduced (move_guard.c) */
 } ft_smooth_opts;
-#define FT_SMOOTH_OPTS_DEFAULT {1, 0.5, INFINITY, 0.0}
+#define FT_SMOOTH_OPTS_DEFAULT {1, 0.5, INFINITY, 0.0, 0}
 
 /** Roundness smoothing (corner cutting; R = 0.5 is Chaikin's quarter points). */
 int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out);
@@ -138,6 +167,59 @@ int ft_line_simplify(const ft_chain *in, double tolerance, ft_chain **out);
 int ft_line_count_self_intersections(const ft_chain *c, size_t *count);
 /** Removes the loops that self-intersections make (keeps the part of the chain that does not loop back). */
 int ft_line_remove_loops(const ft_chain *in, ft_chain **out);
+
+/* ------------------------------------------------------------------------------------------------
+ * The crossing guard (move_guard.c, segment_index.c): operations that move vertices work in passes; each pass
+ * proposes a base chain (no displacement: the input's geometry with the new vertices on it) and a raw chain
+ * (the algorithm's positions), vertex for vertex; the guard moves every vertex as far towards raw (all, half,
+ * a quarter, or not at all) as keeps every segment clear of every other segment of the chain set.
+ * --------------------------------------------------------------------------------------------- */
+
+/** What the guard did (counts add up over passes and chains). */
+typedef struct {
+    size_t moves;   /**< vertices the raw algorithm moves */
+    size_t reduced; /**< of which moved only half or a quarter of the way */
+    size_t dropped; /**< of which left at their base position */
+    size_t redrawn; /**< of which moved in full to the mirror position (FT_GUARD_MIRROR) */
+} ft_line_guard_stats;
+
+/** Guard modes of ft_line_run_passes and ft_line_apply_layer_passes. */
+enum {
+    FT_GUARD_OFF = 0,   /**< the raw positions */
+    FT_GUARD_REDUCE = 1, /**< all, half, a quarter of the move, or none */
+    FT_GUARD_MIRROR = 2  /**< first the full move, then its mirror through the base (2 base - raw: a midpoint
+                              displacement drawn to the other side, same length), then as REDUCE */
+};
+
+/** chains[c] holds the base positions and receives the result; raw[c] the raw ones (same vertex count and
+ *  closedness). If the base geometry has no contact between segments (but shared end points), neither has
+ *  the result. Serial and deterministic. stats (may be NULL) is added to. */
+int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
+                        ft_line_guard_stats *stats);
+
+/** One pass of a vertex-moving operation: allocates *base and *raw (same vertex count); base may be NULL
+ *  (unguarded: only raw is wanted). */
+typedef int (*ft_line_pass_fn)(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
+/** A pass of Dutton's enhancement; ctx is a const ft_dutton_plan *. */
+int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
+/** A pass of roundness smoothing; ctx is a const ft_smooth_opts * (passes ignored). Duplicate consecutive
+ *  vertices are left in: ft_line_run_passes removes them. */
+int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
+/** `passes` passes over the chain set chains[0..n) (replaced in place; on failure unchanged), guarded in
+ *  mode `guard` (FT_GUARD_*; FT_GUARD_OFF takes the raw positions); consecutive duplicate vertices are removed
+ *  after each. */
+int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
+                       ft_line_guard_stats *stats);
+/** ft_line_run_passes over a whole layer: every part, or on coverages (coverage != 0 and rings) every arc of
+ *  the arc-node topology once and the line parts, all in one chain set, so no part crosses another. */
+int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ctx, int passes, int coverage,
+                               int guard, ft_line_guard_stats *stats);
+/** Dutton's enhancement of a layer: one plan for the whole layer (D_in measured over all its parts), then
+ *  opts->iterations guarded passes (unless opts->allow_crossings). plan and stats may be NULL. */
+int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage, ft_dutton_plan *plan,
+                          ft_line_guard_stats *stats);
+/** Roundness smoothing of a layer, guarded unless opts->allow_crossings. stats may be NULL. */
+int ft_line_smooth_layer(ft_layer *l, const ft_smooth_opts *opts, int coverage, ft_line_guard_stats *stats);
 
 /** A chain operation, for the layer-level driver: reads in, allocates *out. */
 typedef int (*ft_line_op)(const ft_chain *in, const void *opts, ft_chain **out);

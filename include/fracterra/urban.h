@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "core.h"
+#include "line.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -176,8 +177,11 @@ typedef struct {
     uint64_t seed;   /**< default 1 */
     uint64_t stream; /**< an extra stream id mixed into every segment's key (give separate layers
                           separate ids if they must differ); default 0 */
+    int allow_crossings; /**< ft_urban_boundary_layer only: 0 (default) generates level by level through the
+                              crossing guard (boundary_guarded.c): no leg crosses or touches another segment
+                              of the layer; 1: the raw depth-first generator (boundary.c) */
 } ft_boundary_opts;
-#define FT_BOUNDARY_OPTS_DEFAULT {0.0, 0.0, 0.0, 0.0, 1, 0}
+#define FT_BOUNDARY_OPTS_DEFAULT {0.0, 0.0, 0.0, 0.0, 1, 0, 0}
 
 /** A suggested min when no target scale is known: this fraction of the average chord length. */
 #define FT_BOUNDARY_MIN_FRACTION 0.1
@@ -216,12 +220,15 @@ typedef struct {
     size_t vertices_in, vertices_out;
     double max_used;  /**< the max applied (the layer's average chord if o->max was 0) */
     size_t segments_kept; /**< input segments longer than max, kept unchanged (over every part) */
+    ft_line_guard_stats guard; /**< apexes the crossing guard moved only part of the way or not at all */
 } ft_boundary_info;
 
 /** Runs the generator on every part of the layer in place: with max = 0 the layer's average chord
  *  (ft_urban_layer_chord_avg) is the max of every part; with coverage != 0 and rings in the layer, on the
- *  arc-node topology through ft_line_apply_layer, so adjacent polygons keep identical shared boundaries.
- *  On failure the layer is unchanged. info may be NULL. */
+ *  arc-node topology, so adjacent polygons keep identical shared boundaries. Unless o->allow_crossings, level
+ *  by level through the crossing guard (every segment in the window split at once, each apex reduced if its
+ *  legs would cross: the output is simple and crosses no other part). On failure the layer is unchanged.
+ *  info may be NULL. */
 int ft_urban_boundary_layer(ft_layer *l, const ft_boundary_opts *o, int coverage, ft_boundary_info *info);
 
 #ifdef __cplusplus

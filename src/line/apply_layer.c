@@ -222,8 +222,6 @@ static int apply_coverage(ft_layer *l, ft_line_op op, const void *opts)
     return rc;
 }
 
-/* ---- entry ---------------------------------------------------------------------------------------- */
-
 static int has_rings(const ft_layer *l)
 {
     for (size_t p = 0; p < l->nparts; p++)
@@ -231,6 +229,149 @@ static int has_rings(const ft_layer *l)
             return 1;
     return 0;
 }
+
+/* ---- pass-wise operations over one chain set (guarded_passes.c) ------------------------------------ */
+
+/* The chain set of a layer: the arcs of its topology (coverage) then every other part, or every part.
+ * who[k] = arc index (coverage, k < narcs) or part index. */
+typedef struct {
+    ft_chain **chains;
+    size_t n, narcs, *who;
+} chain_set;
+
+static void set_free(chain_set *s)
+{
+    free_chains(s->chains, s->n);
+    free(s->who);
+}
+
+static int set_collect(const ft_layer *l, int coverage, chain_set *s)
+{
+    const ft_topology *t = coverage ? l->topology : NULL;
+    size_t cap = l->nparts + (t ? t->narcs : 0);
+    *s = (chain_set){ft_calloc(cap ? cap : 1, sizeof(ft_chain *)), 0, 0, ft_malloc((cap ? cap : 1) * sizeof(size_t))};
+    if (s->chains == NULL || s->who == NULL)
+        return FT_E_NOMEM;
+    for (size_t a = 0; t && a < t->narcs; a++) {
+        if ((s->chains[s->n] = ft_chain_copy(t->arcs[a])) == NULL)
+            return FT_E_NOMEM;
+        s->who[s->n++] = a;
+    }
+    s->narcs = s->n;
+    for (size_t p = 0; p < l->nparts; p++) {
+        if (l->parts[p].chain == NULL || (t && is_ring(&l->parts[p])))
+            continue;
+        if ((s->chains[s->n] = ft_chain_copy(l->parts[p].chain)) == NULL)
+            return FT_E_NOMEM;
+        s->who[s->n++] = p;
+    }
+    return FT_OK;
+}
+
+/* Coverage: the edited arcs back into the topology, the rings rebuilt, the other parts replaced. */
+static int set_commit_coverage(ft_layer *l, chain_set *s)
+{
+    ft_topology *t = l->topology;
+    ft_chain **edited = ft_calloc(t->narcs ? t->narcs : 1, sizeof *edited);
+    ft_chain **fresh = ft_calloc(l->nparts ? l->nparts : 1, sizeof *fresh);
+    int rc = edited == NULL || fresh == NULL ? FT_E_NOMEM : FT_OK;
+    for (size_t k = 0; k < s->n && rc == FT_OK; k++) {
+        ft_chain **slot = k < s->narcs ? &edited[s->who[k]] : &fresh[s->who[k]];
+        *slot = s->chains[k];
+        s->chains[k] = NULL;
+        size_t a = s->who[k];
+        if (k < s->narcs && !t->arcs[a]->closed && (edited[a]->closed || !same_ends(t->arcs[a], edited[a])))
+            rc = ft_error(FT_E_INVALID, "arc %zu: the operation moved the arc's end points (nodes)", a);
+    }
+    if (rc == FT_OK) {
+        for (size_t a = 0; a < t->narcs; a++) {
+            ft_chain *old = t->arcs[a];
+            t->arcs[a] = edited[a];
+            edited[a] = old;
+        }
+        rc = ft_layer_apply_topology(l);
+    }
+    if (rc == FT_OK)
+        replace_parts(l, fresh);
+    free_chains(edited, edited ? t->narcs : 0);
+    free_chains(fresh, fresh ? l->nparts : 0);
+    return rc;
+}
+
+int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ctx, int passes, int coverage,
+                               int guard, ft_line_guard_stats *stats)
+{
+    if (l == NULL || pass == NULL)
+        return ft_error(FT_E_INVALID, "apply to layer: NULL layer or pass");
+    int rc = ft_layer_check_finite(l);
+    if (rc != FT_OK)
+        return rc;
+    coverage = coverage && has_rings(l);
+    if (coverage && (rc = ft_layer_build_topology(l, 0.0)) != FT_OK)
+        return rc;
+    chain_set s;
+    rc = set_collect(l, coverage, &s);
+    ft_line_guard_stats st = {0, 0, 0, 0};
+    if (rc == FT_OK)
+        rc = ft_line_run_passes(s.chains, s.n, pass, ctx, passes, guard, &st);
+    if (rc == FT_OK && coverage) {
+        rc = set_commit_coverage(l, &s);
+    } else if (rc == FT_OK) {
+        for (size_t k = 0; k < s.n; k++) {
+            ft_chain_free(l->parts[s.who[k]].chain);
+            l->parts[s.who[k]].chain = s.chains[k];
+            s.chains[k] = NULL;
+        }
+    }
+    set_free(&s);
+    if (coverage) {
+        ft_topology_free(l->topology);
+        l->topology = NULL;
+    }
+    if (rc == FT_OK && stats) {
+        stats->moves += st.moves;
+        stats->reduced += st.reduced;
+        stats->dropped += st.dropped;
+        stats->redrawn += st.redrawn;
+    }
+    return rc;
+}
+
+int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage, ft_dutton_plan *plan,
+                          ft_line_guard_stats *stats)
+{
+    if (l == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL layer");
+    int rc = ft_layer_check_finite(l);
+    if (rc != FT_OK)
+        return rc;
+    const ft_chain **parts = ft_malloc((l->nparts ? l->nparts : 1) * sizeof *parts);
+    if (parts == NULL)
+        return FT_E_NOMEM;
+    size_t n = 0;
+    for (size_t p = 0; p < l->nparts; p++)
+        if (l->parts[p].chain != NULL)
+            parts[n++] = l->parts[p].chain;
+    ft_dutton_plan pl;
+    rc = ft_dutton_plan_make(parts, n, opts, &pl);
+    free(parts);
+    if (rc == FT_OK)
+        rc = ft_line_apply_layer_passes(l, ft_line_pass_enhance, &pl, opts->iterations, coverage,
+                                        !opts->allow_crossings, stats);
+    if (rc == FT_OK && plan)
+        *plan = pl;
+    return rc;
+}
+
+int ft_line_smooth_layer(ft_layer *l, const ft_smooth_opts *opts, int coverage, ft_line_guard_stats *stats)
+{
+    if (opts == NULL)
+        return ft_error(FT_E_INVALID, "smooth: NULL options");
+    return ft_line_apply_layer_passes(l, ft_line_pass_smooth, opts, opts->passes, coverage, !opts->allow_crossings,
+                                      stats);
+}
+
+/* ---- entry ---------------------------------------------------------------------------------------- */
 
 int ft_line_apply_layer(ft_layer *l, ft_line_op op, const void *opts, int coverage)
 {

@@ -16,8 +16,11 @@
  *     V's proportions, |M1 V*| / |V* M2| = |PV| / |VN|, and which lies on V's side of M1 M2.
  *     Negative UC moves V the opposite way by the same amount (Dutton's exaggeration).
  * So one iteration with ST = inf and SM = 0 turns an open chain of n vertices into 2n - 1 (a ring: 2n).
- * Calibrated mode (opts->target_dim != 0) takes theta from ft_dutton_apex_for_dimension instead of SD: the
- * literal relation gives a measured dimension well below SD (dutton_calibrate.c derives why and by how much).
+ * By default theta is calibrated (dutton_calibrate.c) so that the chain's divider D over the scales the
+ * enhancement generates is the target D_in + UC (SD - D_in) (SD itself at UC = 1), D_in the input's divider
+ * dimension; literal_sd takes theta from SD by the relation above, which measures well below SD (1.12 for
+ * 1.3). A pass proposes base positions (the input's vertices and midpoints) and raw ones (the moved
+ * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing.
  *
  * Where V* is (Dutton: "solving trigonometric identities involving the law of sines, law of cosines").
  * Let a = |PV|, c = |VN|, b = |M1 M2| = |PN| / 2 and p = |M1 V*|, q = |V* M2| with p / q = a / c.
@@ -47,6 +50,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #define PI 3.14159265358979323846
@@ -60,35 +64,73 @@ double ft_dutton_apex_angle(double sd)
     return PI - 2.0 * acos(pow(2.0, 1.0 / sd - 1.0));
 }
 
-/* Calibrated mode (target_dim != 0) ignores sd; its target must be one ft_dutton_apex_for_dimension reaches. */
-static int check_angle_opts(const ft_dutton_opts *o)
-{
-    if (o->target_dim != 0.0) {
-        if (!isnan(ft_dutton_apex_for_dimension(o->target_dim))) /* cached: one bisection per target */
-            return FT_OK;
-        double dmax = ft_dutton_steady_dimension(FT_DUTTON_APEX_MIN);
-        return ft_error(FT_E_INVALID,
-                        "target_dim must be 0 (off) or in [1,%.3f], got %g: the enhanced chain's dimension stops "
-                        "rising below a 60 degree apex angle, where it overlaps itself",
-                        floor(dmax * 1000.0) / 1000.0, o->target_dim);
-    }
-    if (!(o->sd >= 1.0 && o->sd <= 2.0))
-        return ft_error(FT_E_INVALID, "sd must be in [1,2], got %g", o->sd);
-    return FT_OK;
-}
-
 static int check_opts(const ft_dutton_opts *o)
 {
     if (o == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL options");
-    int rc = check_angle_opts(o);
-    if (rc != FT_OK)
-        return rc;
+    if (!(o->sd >= 1.0 && o->sd <= 2.0))
+        return ft_error(FT_E_INVALID, "sd must be in [1,2], got %g", o->sd);
     if (!(o->uc >= -1.0 && o->uc <= 1.0))
         return ft_error(FT_E_INVALID, "uc must be in [-1,1], got %g", o->uc);
+    if (o->target_dim != 0.0 && !(o->target_dim >= 1.0 && o->target_dim <= 2.0))
+        return ft_error(FT_E_INVALID, "target_dim must be 0 (from sd) or in [1,2], got %g", o->target_dim);
+    if (o->input_dim != 0.0 && !(o->input_dim >= 1.0 && o->input_dim <= 2.0))
+        return ft_error(FT_E_INVALID, "input_dim must be 0 (measured) or in [1,2], got %g", o->input_dim);
     if (o->iterations < 1 || o->iterations > MAX_ITERATIONS)
         return ft_error(FT_E_INVALID, "iterations must be in [1,%d], got %d", MAX_ITERATIONS, o->iterations);
     return ft_edit_check_window(o->st, o->sm);
+}
+
+/* D_in: the divider dimension of the input chains over their automatic range. */
+static int measure_input_dim(const ft_chain *const *chains, size_t n, double *d)
+{
+    ft_line_dim_opts lo = FT_LINE_DIM_OPTS_DEFAULT;
+    ft_dim_result *r = NULL;
+    int rc = ft_line_dim(chains, n, FT_LINE_DIVIDER, &lo, &r);
+    if (rc != FT_OK) {
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", ft_last_error());
+        return ft_error(FT_E_INVALID,
+                        "enhance: uc < 1 needs the input's dimension D_in and it cannot be measured (%s); give "
+                        "input_dim (--input-dim), a target_dim, or uc = 1",
+                        msg);
+    }
+    *d = fmin(fmax(r->D, 1.0), 2.0);
+    ft_dim_result_free(r);
+    return FT_OK;
+}
+
+int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *o, ft_dutton_plan *p)
+{
+    if (p == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL plan");
+    int rc = check_opts(o);
+    if (rc != FT_OK)
+        return rc;
+    *p = (ft_dutton_plan){ft_dutton_apex_angle(o->sd), NAN, NAN, o->uc, o->st, o->sm};
+    if (o->literal_sd || o->uc <= 0.0)
+        return FT_OK; /* literal reading; uc = 0 moves nothing, uc < 0 exaggerates: no dimension target */
+    double target = o->target_dim;
+    if (target == 0.0 && o->uc == 1.0) {
+        target = o->sd;
+    } else if (target == 0.0) {
+        double din = o->input_dim;
+        if (din == 0.0 && (rc = measure_input_dim(chains, n, &din)) != FT_OK)
+            return rc;
+        p->input_dim = din;
+        target = ft_dutton_target_dimension(o->sd, o->uc, din);
+    }
+    double apex = ft_dutton_apex_for_target(target, o->uc);
+    if (isnan(apex)) {
+        double dmax = ft_dutton_max_dimension(o->uc);
+        return ft_error(FT_E_INVALID,
+                        "enhance: a target dimension of %.3f is out of reach with uc = %g: the enhanced chain's "
+                        "dimension stops rising at %.3f (a 60 degree apex angle, where it overlaps itself)",
+                        target, o->uc, floor(dmax * 1000.0) / 1000.0);
+    }
+    p->apex = apex;
+    p->target_dim = target;
+    return FT_OK;
 }
 
 typedef struct {
@@ -107,7 +149,7 @@ static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsig
 
 /* Writes vertex i (moved or not) at out[k], then its segment's midpoint at out[k + 1] if split. */
 static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
-                          size_t i, ft_chain *out, size_t k)
+                          size_t i, ft_chain *out, ft_chain *base, size_t k)
 {
     size_t n = in->n;
     int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
@@ -117,10 +159,18 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
         ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
+    if (base) {
+        base->x[k] = in->x[i];
+        base->y[k] = in->y[i];
+    }
     k++;
     if (i < nseg && split[i]) {
         out->x[k] = 0.5 * (in->x[i] + in->x[in_]);
         out->y[k] = 0.5 * (in->y[i] + in->y[in_]);
+        if (base) {
+            base->x[k] = out->x[k];
+            base->y[k] = out->y[k];
+        }
         k++;
     }
     return k;
@@ -129,7 +179,7 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
 /* Vertices [lo, hi) are written from out position lo + (splits before lo): each thread counts the splits
  * of its block, waits for the others, and writes its block after the blocks before it. */
 static void emit_all(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
-                     ft_chain *out, size_t *counts, int nthreads)
+                     ft_chain *out, ft_chain *base, size_t *counts, int nthreads)
 {
     size_t n = in->n;
 #pragma omp parallel num_threads(nthreads) if (n >= PARALLEL_MIN)
@@ -146,11 +196,11 @@ static void emit_all(const ft_chain *in, const unsigned char *split, size_t nseg
         for (size_t j = 0; j < t; j++)
             k += counts[j];
         for (size_t i = lo; i < hi; i++)
-            k = emit_vertex(in, split, nseg, pp, i, out, k);
+            k = emit_vertex(in, split, nseg, pp, i, out, base, k);
     }
 }
 
-static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **out)
+static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **base, ft_chain **out)
 {
     size_t n = in->n, nseg = ft_chain_segments(in);
     unsigned char *split = ft_malloc(nseg);
@@ -167,39 +217,58 @@ static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **ou
         extra += split[i];
     int rc = FT_OK;
     ft_chain *c = n > SIZE_MAX / 2 ? NULL : ft_chain_create(n + extra, in->closed);
-    if (c == NULL) {
+    ft_chain *b = c == NULL || base == NULL ? NULL : ft_chain_create(n + extra, in->closed);
+    if (c == NULL || (base != NULL && b == NULL)) {
         rc = n > SIZE_MAX / 2 ? ft_error(FT_E_NOMEM, "enhance: %zu vertices overflow", n) : FT_E_NOMEM;
+        ft_chain_free(c);
+        c = NULL;
     } else {
-        emit_all(in, split, nseg, pp, c, counts, nthreads);
+        emit_all(in, split, nseg, pp, c, b, counts, nthreads);
         c->n = n + extra;
+        if (b)
+            b->n = n + extra;
     }
     free(split);
     free(counts);
     *out = c;
+    if (base)
+        *base = b;
     return rc;
+}
+
+int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
+{
+    if (raw == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL output pointer");
+    *raw = NULL;
+    if (base)
+        *base = NULL;
+    const ft_dutton_plan *p = ctx;
+    if (p == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL plan");
+    ft_chain *dummy = NULL;
+    int rc = ft_edit_check_chain("enhance", in, &dummy);
+    if (rc != FT_OK)
+        return rc;
+    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm)};
+    return enhance_pass(in, &pp, base, raw);
 }
 
 int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out)
 {
     int rc = ft_edit_check_chain("enhance", in, out);
+    ft_dutton_plan plan;
     if (rc == FT_OK)
-        rc = check_opts(opts);
-    if (rc != FT_OK)
-        return rc;
-    double theta = opts->target_dim != 0.0 ? ft_dutton_apex_for_dimension(opts->target_dim)
-                                           : ft_dutton_apex_angle(opts->sd);
-    pass_params pp = {cos(theta), sin(theta), opts->uc, ft_edit_window_make(opts->st, opts->sm)};
-    ft_chain *cur = NULL;
-    for (int it = 0; it < opts->iterations && rc == FT_OK; it++) {
-        ft_chain *next = NULL;
-        rc = enhance_pass(cur ? cur : in, &pp, &next);
-        ft_chain_free(cur);
-        cur = next;
-    }
+        rc = ft_dutton_plan_make(&in, 1, opts, &plan);
+    ft_chain *c = rc == FT_OK ? ft_chain_copy(in) : NULL;
+    if (rc == FT_OK && c == NULL)
+        rc = FT_E_NOMEM;
+    if (rc == FT_OK)
+        rc = ft_line_run_passes(&c, 1, ft_line_pass_enhance, &plan, opts->iterations, !opts->allow_crossings, NULL);
     if (rc != FT_OK) {
-        ft_chain_free(cur);
+        ft_chain_free(c);
         return rc;
     }
-    *out = cur;
+    *out = c;
     return FT_OK;
 }

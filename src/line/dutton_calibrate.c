@@ -49,6 +49,7 @@
 #include "line/dutton_internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #define PI 3.14159265358979323846
 #define CELL_DEPTH 12        /* passes followed from the canonical cell */
@@ -100,6 +101,100 @@ static double bisect_apex(double target_dim)
             hi = mid;
     }
     return 0.5 * (lo + hi);
+}
+
+/* ---- UC < 1 (item 6) --------------------------------------------------------------------------- */
+
+#define UC_RING 12   /* vertices of the star ring the steady state is measured on */
+#define UC_PASSES 10 /* passes: 12 * 2^10 vertices */
+
+static double ring_length(const double *x, const double *y, size_t n)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < n; i++)
+        s += hypot(x[(i + 1) % n] - x[i], y[(i + 1) % n] - y[i]);
+    return s;
+}
+
+/* One pass on a ring of n vertices (a, b) into 2n (c, d): every vertex moved, every segment split. */
+static void ring_pass(const double *ax, const double *ay, size_t n, double cos_t, double sin_t, double uc, double *cx,
+                      double *cy)
+{
+    for (size_t i = 0; i < n; i++) {
+        size_t ip = (i + n - 1) % n, in = (i + 1) % n;
+        ft_dutton_move(ax[ip], ay[ip], ax[i], ay[i], ax[in], ay[in], cos_t, sin_t, uc, &cx[2 * i], &cy[2 * i]);
+        cx[2 * i + 1] = 0.5 * (ax[i] + ax[in]);
+        cy[2 * i + 1] = 0.5 * (ay[i] + ay[in]);
+    }
+}
+
+static double steady_dimension_ring(double apex, double uc)
+{
+    const size_t nmax = (size_t)UC_RING << UC_PASSES;
+    double *buf = malloc(4 * nmax * sizeof *buf);
+    if (buf == NULL)
+        return NAN;
+    double *x = buf, *y = buf + nmax, *nx = buf + 2 * nmax, *ny = buf + 3 * nmax;
+    const double two_pi = 2.0 * PI;
+    for (size_t i = 0; i < UC_RING; i++) { /* a star: radii 1 and 0.6 alternate */
+        double r = i % 2 ? 0.6 : 1.0, a = two_pi * (double)i / UC_RING;
+        x[i] = r * cos(a);
+        y[i] = r * sin(a);
+    }
+    size_t n = UC_RING;
+    double len[UC_PASSES + 1];
+    len[0] = ring_length(x, y, n);
+    for (int k = 1; k <= UC_PASSES; k++) {
+        ring_pass(x, y, n, cos(apex), sin(apex), uc, nx, ny);
+        n *= 2;
+        double *t = x;
+        x = nx;
+        nx = t;
+        t = y;
+        y = ny;
+        ny = t;
+        len[k] = ring_length(x, y, n);
+    }
+    free(buf);
+    double f = sqrt(len[UC_PASSES] / len[UC_PASSES - 2]);
+    return log(2.0) / log(2.0 / f);
+}
+
+double ft_dutton_steady_dimension_uc(double apex, double uc)
+{
+    if (!(apex >= FT_DUTTON_APEX_MIN && apex <= PI) || !(uc > 0.0 && uc <= 1.0))
+        return NAN;
+    return uc == 1.0 ? ft_dutton_steady_dimension(apex) : steady_dimension_ring(apex, uc);
+}
+
+double ft_dutton_max_dimension(double uc)
+{
+    return ft_dutton_steady_dimension_uc(FT_DUTTON_APEX_MIN, uc);
+}
+
+double ft_dutton_apex_for_target(double target_dim, double uc)
+{
+    if (uc == 1.0)
+        return ft_dutton_apex_for_dimension(target_dim);
+    double dmax = ft_dutton_max_dimension(uc);
+    if (isnan(dmax) || !(target_dim >= 1.0 && target_dim <= dmax))
+        return NAN;
+    if (target_dim == 1.0)
+        return PI;
+    double lo = FT_DUTTON_APEX_MIN, hi = PI;
+    while (hi - lo > 1e-9) { /* the ring's D is smooth in the angle; 1e-9 rad is far below its noise */
+        double mid = 0.5 * (lo + hi);
+        if (steady_dimension_ring(mid, uc) > target_dim)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+double ft_dutton_target_dimension(double sd, double uc, double input_dim)
+{
+    return input_dim + uc * (sd - input_dim);
 }
 
 double ft_dutton_apex_for_dimension(double target_dim)

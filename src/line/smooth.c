@@ -7,7 +7,9 @@
  * so R = 0.5 gives Chaikin's quarter points (3V + P) / 4 and (3V + N) / 4, and R = 1 the midpoint polygon
  * (where the two cuts of one segment meet, the point is kept once). As in the enhancement, only vertices
  * whose two segments are in the window SM <= L < ST are cut, so a segment outside it keeps both of its
- * vertices; the end points of an open chain are kept. K passes repeat the cut.
+ * vertices; the end points of an open chain are kept. K passes repeat the cut. Unless allow_crossings, each
+ * pass goes through the crossing guard (move_guard.c): a cut that would make a segment cross or touch another
+ * is halved, then not made.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -32,41 +34,70 @@ static int check_opts(const ft_smooth_opts *o)
     return ft_edit_check_window(o->st, o->sm);
 }
 
-/* Appends (x, y) unless it repeats the last vertex written. */
-static void put(ft_chain *c, double x, double y)
-{
-    if (c->n > 0 && c->x[c->n - 1] == x && c->y[c->n - 1] == y)
-        return;
-    c->x[c->n] = x;
-    c->y[c->n] = y;
-    c->n++;
-}
-
-static int smooth_pass(const ft_chain *in, double r, ft_edit_window w, ft_chain **out)
+/* One pass: base (if wanted) has each cut vertex twice at V, raw the two cuts; the driver removes repeated
+ * vertices. */
+static int smooth_pass(const ft_chain *in, double r, ft_edit_window w, ft_chain **base, ft_chain **raw)
 {
     size_t n = in->n;
     if (n > SIZE_MAX / 2)
         return ft_error(FT_E_NOMEM, "smooth: %zu vertices overflow", n);
-    ft_chain *c = ft_chain_create(2 * n, in->closed);
-    if (c == NULL)
+    ft_chain *c = ft_chain_create(2 * n, in->closed), *b = base ? ft_chain_create(2 * n, in->closed) : NULL;
+    if (c == NULL || (base && b == NULL)) {
+        ft_chain_free(c);
+        ft_chain_free(b);
         return FT_E_NOMEM;
+    }
     double h = 0.5 * r; /* V + R (M - V) = V + (R / 2) (neighbour - V) */
+    size_t k = 0;
     for (size_t i = 0; i < n; i++) {
         int interior = in->closed || (i > 0 && i + 1 < n);
         size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
         double vx = in->x[i], vy = in->y[i];
+        if (b) {
+            b->x[k] = vx;
+            b->y[k] = vy;
+        }
         if (interior && ft_edit_in_window(w, ft_edit_dist2(in, ip, i)) &&
             ft_edit_in_window(w, ft_edit_dist2(in, i, in_))) {
-            put(c, vx + h * (in->x[ip] - vx), vy + h * (in->y[ip] - vy));
-            put(c, vx + h * (in->x[in_] - vx), vy + h * (in->y[in_] - vy));
+            c->x[k] = vx + h * (in->x[ip] - vx);
+            c->y[k] = vy + h * (in->y[ip] - vy);
+            k++;
+            if (b) {
+                b->x[k] = vx;
+                b->y[k] = vy;
+            }
+            c->x[k] = vx + h * (in->x[in_] - vx);
+            c->y[k] = vy + h * (in->y[in_] - vy);
         } else {
-            put(c, vx, vy);
+            c->x[k] = vx;
+            c->y[k] = vy;
         }
+        k++;
     }
-    if (c->closed && c->n > 1 && c->x[c->n - 1] == c->x[0] && c->y[c->n - 1] == c->y[0])
-        c->n--;
-    *out = c;
+    c->n = k;
+    if (b) {
+        b->n = k;
+        *base = b;
+    }
+    *raw = c;
     return FT_OK;
+}
+
+int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
+{
+    if (raw == NULL)
+        return ft_error(FT_E_INVALID, "smooth: NULL output pointer");
+    *raw = NULL;
+    if (base)
+        *base = NULL;
+    const ft_smooth_opts *o = ctx;
+    ft_chain *dummy = NULL;
+    int rc = ft_edit_check_chain("smooth", in, &dummy);
+    if (rc == FT_OK)
+        rc = check_opts(o);
+    if (rc != FT_OK)
+        return rc;
+    return smooth_pass(in, o->roundness, ft_edit_window_make(o->st, o->sm), base, raw);
 }
 
 int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out)
@@ -74,20 +105,15 @@ int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **ou
     int rc = ft_edit_check_chain("smooth", in, out);
     if (rc == FT_OK)
         rc = check_opts(opts);
-    if (rc != FT_OK)
-        return rc;
-    ft_edit_window w = ft_edit_window_make(opts->st, opts->sm);
-    ft_chain *cur = NULL;
-    for (int k = 0; k < opts->passes && rc == FT_OK; k++) {
-        ft_chain *next = NULL;
-        rc = smooth_pass(cur ? cur : in, opts->roundness, w, &next);
-        ft_chain_free(cur);
-        cur = next;
-    }
+    ft_chain *c = rc == FT_OK ? ft_chain_copy(in) : NULL;
+    if (rc == FT_OK && c == NULL)
+        rc = FT_E_NOMEM;
+    if (rc == FT_OK)
+        rc = ft_line_run_passes(&c, 1, ft_line_pass_smooth, opts, opts->passes, !opts->allow_crossings, NULL);
     if (rc != FT_OK) {
-        ft_chain_free(cur);
+        ft_chain_free(c);
         return rc;
     }
-    *out = cur;
+    *out = c;
     return FT_OK;
 }

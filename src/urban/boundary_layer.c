@@ -83,8 +83,9 @@ int ft_urban_boundary_layer(ft_layer *l, const ft_boundary_opts *o, int coverage
                             "less than min (%g): lower min or set max", avg, o->min);
         run.max = avg;
     }
-    ft_boundary_info done = {ft_layer_vertex_count(l), 0, run.max, count_kept(l, run.max)};
-    rc = ft_line_apply_layer(l, ft_urban_op_boundary, &run, coverage);
+    ft_boundary_info done = {ft_layer_vertex_count(l), 0, run.max, count_kept(l, run.max), {0, 0, 0, 0}};
+    rc = o->allow_crossings ? ft_line_apply_layer(l, ft_urban_op_boundary, &run, coverage)
+                            : ft_urban_boundary_guarded(l, o, run.max, coverage, &done.guard);
     if (rc != FT_OK)
         return rc;
     done.vertices_out = ft_layer_vertex_count(l);

@@ -21,6 +21,13 @@
  *  value. */
 int ft_urban_boundary_check(const ft_boundary_opts *o);
 
+/* ---- boundary_guarded.c ---------------------------------------------------------------------------- */
+
+/** The generator level by level through the crossing guard, on every part (or arc, on a coverage) of l,
+ *  with the resolved max. */
+int ft_urban_boundary_guarded(ft_layer *l, const ft_boundary_opts *o, double max, int coverage,
+                              ft_line_guard_stats *stats);
+
 /* ---- polygon_set.c --------------------------------------------------------------------------------- */
 
 /** The rings of the selected polygon features of a layer, grouped by polygon. */

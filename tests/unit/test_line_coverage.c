@@ -120,6 +120,7 @@ static void test_enhance_coverage_shared_edges_identical(void **state)
     o.sd = 1.5;
     o.uc = 0.8;
     o.iterations = 3;
+    o.literal_sd = 1;
     assert_int_equal(ft_line_apply_layer(l, ft_line_op_enhance, &o, 1), FT_OK);
     assert_null(l->topology);
     assert_true(ft_layer_vertex_count(l) > 6 * nv0);

@@ -59,6 +59,8 @@ static ft_chain *enhance(const ft_chain *in, double sd, double uc, double st, do
     o.st = st;
     o.sm = sm;
     o.iterations = iterations;
+    o.literal_sd = 1;      /* these tests check Dutton's literal geometry, */
+    o.allow_crossings = 1; /* move by move */
     ft_chain *out = NULL;
     int rc = ft_line_enhance(in, &o, &out);
     if (rc != FT_OK)

@@ -113,6 +113,7 @@ static ft_chain *enhance_to(const ft_chain *in, double target, int iterations)
     ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
     o.target_dim = target;
     o.iterations = iterations;
+    o.allow_crossings = 1; /* the calibration of the raw algorithm */
     ft_chain *out = NULL;
     int rc = ft_line_enhance(in, &o, &out);
     if (rc != FT_OK)
@@ -212,9 +213,11 @@ static void test_calibrated_angle_and_wiring(void **state)
 
     ft_dutton_opts lit = FT_DUTTON_OPTS_DEFAULT, cal = FT_DUTTON_OPTS_DEFAULT;
     lit.sd = 1.4;
+    lit.literal_sd = 1;
     lit.iterations = cal.iterations = 3;
+    lit.allow_crossings = cal.allow_crossings = 1;
     cal.target_dim = ft_dutton_steady_dimension(ft_dutton_apex_angle(1.4));
-    cal.sd = 7.0; /* ignored */
+    cal.sd = 1.9; /* ignored */
     ft_chain *a = NULL, *b = NULL;
     assert_int_equal(ft_line_enhance(in, &lit, &a), FT_OK);
     assert_int_equal(ft_line_enhance(in, &cal, &b), FT_OK);
@@ -311,8 +314,10 @@ static void expect_error(double target, const char *msg)
 static void test_bad_target(void **state)
 {
     (void)state;
-    expect_error(1.9, "target_dim must be 0 (off) or in [1,1.777], got 1.9");
-    expect_error(2.0, "got 2: the enhanced chain's dimension stops rising below a 60 degree apex angle");
+    expect_error(1.9, "a target dimension of 1.900 is out of reach with uc = 1: the enhanced chain's dimension "
+                      "stops rising at 1.777");
+    expect_error(2.0, "a target dimension of 2.000 is out of reach");
+    expect_error(2.5, "target_dim must be 0 (from sd) or in [1,2], got 2.5");
     expect_error(0.5, "got 0.5");
     expect_error(-1.3, "got -1.3");
     expect_error(NAN, "got nan");

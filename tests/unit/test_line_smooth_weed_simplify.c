@@ -332,6 +332,7 @@ static void test_negative_uc_loops_repaired(void **state)
     o.sd = 1.2;
     o.uc = -1.0;
     o.iterations = 2;
+    o.allow_crossings = 1; /* the raw algorithm, which loops */
     assert_int_equal(ft_line_enhance(in, &o, &e), FT_OK);
     size_t before = crossings(e);
     print_message("fjord enhanced with UC = -1: %zu vertices, %zu crossings\n", e->n, before);
