@@ -167,6 +167,7 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     o.max_scale = a.dim.max_scale;
     o.nscales = a.dim.nscales;
     o.fit_whole_range = a.dim.min_scale > 0.0 && a.dim.max_scale > 0.0;
+    o.fit.regime = a.dim.regime;
     o.pairs = surface_pairs(a.pairs, g);
     o.seed = a.seed;
     o.progress = cli_progress();

@@ -42,7 +42,7 @@
 #define HI_FRACTION_WALK 0.25      /* hi = this x the bbox diagonal: divider, equipaced, hybrid */
 #define HI_FRACTION_BOX (1.0 / 48) /* ... box counting */
 
-static const char *const method_names[] = {"divider", "equipaced", "hybrid", "box"};
+static const char *const method_names[] = {"divider", "equipaced", "hybrid", "box", "box-min"};
 #define N_METHODS (sizeof method_names / sizeof method_names[0])
 
 const char *ft_line_method_name(ft_line_method m)
@@ -59,7 +59,8 @@ int ft_line_method_parse(const char *name, ft_line_method *m)
             *m = (ft_line_method)i;
             return FT_OK;
         }
-    return ft_error(FT_E_INVALID, "unknown line dimension method '%s' (divider, equipaced, hybrid or box)", name);
+    return ft_error(FT_E_INVALID, "unknown line dimension method '%s' (divider, equipaced, hybrid, box or box-min)",
+                    name);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -77,7 +78,7 @@ typedef struct {
 static int check_opts(ft_line_method method, const ft_line_dim_opts *o)
 {
     if ((unsigned)method >= N_METHODS)
-        return ft_error(FT_E_INVALID, "line dimension method must be 0..3, got %d", (int)method);
+        return ft_error(FT_E_INVALID, "line dimension method must be 0..4, got %d", (int)method);
     if (!(o->min_scale >= 0.0) || !isfinite(o->min_scale))
         return ft_error(FT_E_INVALID, "min_scale must be finite and >= 0 (0 = automatic), got %g", o->min_scale);
     if (!(o->max_scale >= 0.0) || !isfinite(o->max_scale))
@@ -192,7 +193,7 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
                        double *hi)
 {
     double diag = hypot(s->xmax - s->xmin, s->ymax - s->ymin);
-    int box = method == FT_LINE_BOX;
+    int box = method == FT_LINE_BOX || method == FT_LINE_BOX_MIN;
     double lo_auto = (box ? LO_SEGMENTS_BOX : LO_SEGMENTS_WALK) * s->median_seg;
     double hi_auto = (box ? HI_FRACTION_BOX : HI_FRACTION_WALK) * diag;
     *lo = o->min_scale > 0.0 ? o->min_scale : lo_auto;
@@ -211,10 +212,15 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
 static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_opts *o, double r, double *value,
                    double *count)
 {
-    if (method == FT_LINE_BOX) {
-        uint64_t boxes = 0;
-        int rc = ft_line_box_count_min(s->chains, s->n, r, o->box_offsets, s->xmin, s->ymin, &boxes);
-        *value = *count = (double)boxes;
+    if (method == FT_LINE_BOX || method == FT_LINE_BOX_MIN) {
+        uint64_t fewest = 0;
+        double mean = 0.0;
+        /* the mean samples the origins at the centres of k x k strata of the cell (stratified sampling of
+         * a random origin); the fewest keeps the literature's origins at multiples of r / k from the corner */
+        double half = method == FT_LINE_BOX ? 0.5 * r / o->box_offsets : 0.0;
+        int rc = ft_line_box_count_offsets(s->chains, s->n, r, o->box_offsets, s->xmin - half, s->ymin - half,
+                                           &fewest, &mean);
+        *value = *count = method == FT_LINE_BOX ? mean : (double)fewest;
         return rc;
     }
     double len = 0.0, steps = 0.0;
@@ -282,7 +288,8 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     chain_set s = {0};
     ft_loglog *t = NULL;
     double lo = 0.0, hi = 0.0;
-    int nscales = o->nscales > 0 ? o->nscales : (method == FT_LINE_BOX ? NSCALES_DEFAULT_BOX : NSCALES_DEFAULT);
+    int box = method == FT_LINE_BOX || method == FT_LINE_BOX_MIN;
+    int nscales = o->nscales > 0 ? o->nscales : (box ? NSCALES_DEFAULT_BOX : NSCALES_DEFAULT);
     rc = collect_chains(chains, n, &s);
     if (rc == FT_OK)
         rc = set_statistics(&s);
@@ -298,7 +305,7 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     }
     if (rc == FT_OK) {
         const ft_dim_map map_len = FT_DIM_MAP_DIVIDER, map_box = FT_DIM_MAP_BOXCOUNT_LINE;
-        const ft_dim_map *map = method == FT_LINE_BOX ? &map_box : &map_len;
+        const ft_dim_map *map = box ? &map_box : &map_len;
         rc = o->fit_whole_range ? ft_loglog_fit_range(t, lo, hi, map, out)
                                 : ft_loglog_fit_auto(t, lo, hi, &o->fit, map, out);
     }

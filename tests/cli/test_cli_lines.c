@@ -208,9 +208,9 @@ static void test_dim_straight_line_all_methods(void **state)
     assert_int_equal(ft_test_json_int(o, "chains"), 1);
     assert_int_equal(ft_test_json_int(o, "vertices"), 1001);
     json_object *results = ft_test_json_key(o, "results");
-    assert_int_equal(json_object_array_length(results), 4);
-    const char *names[] = {"divider", "equipaced", "hybrid", "box"};
-    for (size_t i = 0; i < 4; i++) {
+    assert_int_equal(json_object_array_length(results), 5);
+    const char *names[] = {"divider", "equipaced", "hybrid", "box", "box-min"};
+    for (size_t i = 0; i < 5; i++) {
         json_object *r = ft_test_json_at(results, i);
         assert_result_shape(r);
         assert_string_equal(ft_test_json_str(r, "method"), names[i]);
@@ -271,7 +271,7 @@ static void test_dim_by_field_and_fid(void **state)
     f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 2);
     assert_true(json_object_is_type(ft_test_json_key(ft_test_json_at(f, 0), "id"), json_type_int));
-    assert_int_equal(json_object_array_length(ft_test_json_key(ft_test_json_at(f, 1), "results")), 4);
+    assert_int_equal(json_object_array_length(ft_test_json_key(ft_test_json_at(f, 1), "results")), 5);
     json_object_put(o);
 }
 
