@@ -489,7 +489,7 @@ int ft_dim_result_warn(ft_dim_result *r, const char *fmt, ...)
 /** The first warning of r containing substr, or NULL (substr NULL: the first warning). */
 const char *ft_dim_result_find_warning(const ft_dim_result *r, const char *substr);
 /** The curvature test of rows [first, last] of a checked table (docs/loglog.md): fits log10 value =
- *  c + s u + q u^2 (u = log10 scale - its mean) and sets *dD = |map->b| * 2 q (u_last - u_first), the
+ *  c + s u + q u^2 (u = log10 scale - its mean) and sets *dD = map->b * 2 q (u_last - u_first), the
  *  change of D across the rows, and *t = q / se(q) from the rows' own residual scatter. Returns 1 if the
  *  rows are curved (|dD| > opts->curve_dD and |t| above the two-sided t quantile at opts->curve_alpha),
  *  0 if straight or untestable (fewer than 4 rows), a negative FT_E_* code on bad input. */

@@ -69,7 +69,7 @@ static void quad_stats(const double *x, const double *y, size_t f, size_t l, dou
         sse += r * r;
     }
     double var_q = sse / *df * (M * s2) / det;
-    *dD = fabs(b) * 2.0 * q * (x[l] - x[f]);
+    *dD = b * 2.0 * q * (x[l] - x[f]);
     *tq = var_q > 0.0 ? q / sqrt(var_q) : (q != 0.0 ? copysign(INFINITY, q) : 0.0);
 }
 
@@ -166,6 +166,63 @@ static int end_outlier(const ft_ll_data *d, const ft_loglog_opts *o, size_t f, s
     return fabs(re) / se > gsl_cdf_tdist_Qinv(0.5 * o->curve_alpha, df);
 }
 
+/* Sums of a run for O(1) line fits of its sub-runs. */
+typedef struct {
+    double n, x, y, xx, xy, yy;
+} sums;
+
+static double sums_sse(const sums *a)
+{
+    double sxx = a->xx - a->x * a->x / a->n, sxy = a->xy - a->x * a->y / a->n, syy = a->yy - a->y * a->y / a->n;
+    double sse = sxx > 0.0 ? syy - sxy * sxy / sxx : syy;
+    return sse > 0.0 ? sse : 0.0;
+}
+
+static double sums_slope(const sums *a)
+{
+    double sxx = a->xx - a->x * a->x / a->n, sxy = a->xy - a->x * a->y / a->n;
+    return sxx > 0.0 ? sxy / sxx : 0.0;
+}
+
+/* 1 if rows [f, l] hold a break: two lines, split between rows j and j + 1 with at least a quarter of the
+ * rows (and 3) on each side, fit significantly better than one (F test of the two extra parameters at
+ * curve_alpha; Draper & Smith ch. 6) and their slopes differ by more than curve_dD in D. A kink that the
+ * quadratic term does not follow (a regime's end taken into a longer run) is found this way. */
+static int has_break(const ft_ll_data *d, const ft_loglog_opts *o, size_t f, size_t l)
+{
+    size_t m = l - f + 1, side = m / 4 > 3 ? m / 4 : 3;
+    if (m < 2 * side || m < 8)
+        return 0;
+    double x0 = d->lx[f], y0 = d->ly[f];
+    sums all = {0, 0, 0, 0, 0, 0};
+    for (size_t i = f; i <= l; i++) {
+        double x = d->lx[i] - x0, y = d->ly[i] - y0;
+        all = (sums){all.n + 1, all.x + x, all.y + y, all.xx + x * x, all.xy + x * y, all.yy + y * y};
+    }
+    double sse1 = sums_sse(&all), best = INFINITY, ds = 0.0;
+    sums left = {0, 0, 0, 0, 0, 0};
+    for (size_t j = f; j + side <= l; j++) {
+        double x = d->lx[j] - x0, y = d->ly[j] - y0;
+        left = (sums){left.n + 1, left.x + x, left.y + y, left.xx + x * x, left.xy + x * y, left.yy + y * y};
+        if (j - f + 1 < side)
+            continue;
+        sums right = {all.n - left.n, all.x - left.x, all.y - left.y, all.xx - left.xx, all.xy - left.xy,
+                      all.yy - left.yy};
+        double sse2 = sums_sse(&left) + sums_sse(&right);
+        if (sse2 < best) {
+            best = sse2;
+            ds = sums_slope(&left) - sums_slope(&right);
+        }
+    }
+    if (!(fabs(d->map.b) * fabs(ds) > o->curve_dD))
+        return 0;
+    double df = (double)m - 4.0;
+    if (!(best > 0.0))
+        return sse1 > 0.0;
+    double F = (sse1 - best) / 2.0 / (best / df);
+    return F > gsl_cdf_fdist_Qinv(o->curve_alpha, 2.0, df);
+}
+
 static size_t min_rows(const ft_loglog_opts *o)
 {
     return o->min_points > 3 ? o->min_points : 3;
@@ -177,7 +234,7 @@ static int regime_ok(const ft_ll_data *d, const ft_loglog_opts *o, size_t f, siz
     double dD, tq;
     if (l - f + 1 < min_rows(o) || d->lx[l] - d->lx[f] < log10(o->min_span) - 1e-9)
         return 0;
-    return !ft_ll_curved(d, o, f, l, &dD, &tq);
+    return !ft_ll_curved(d, o, f, l, &dD, &tq) && !has_break(d, o, f, l);
 }
 
 typedef struct {

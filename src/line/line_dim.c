@@ -274,6 +274,32 @@ static int build_table(const chain_set *s, ft_line_method method, const ft_line_
     return FT_OK;
 }
 
+/* 1 if coordinate v (stride-free array of n) only grows or only falls, strictly. */
+static int monotone(const double *v, size_t n)
+{
+    int up = 1, down = 1;
+    for (size_t i = 1; i < n && (up || down); i++) {
+        up &= v[i] > v[i - 1];
+        down &= v[i] < v[i - 1];
+    }
+    return up || down;
+}
+
+/* 1 if every open chain is the graph of a function of x or of y (x or y strictly monotone along it) and
+ * the set has at least 16 vertices: the chains look like profiles (elevation against distance), whose
+ * divider or box dimension does not measure their roughness (self-affine, not self-similar). */
+static int looks_like_profile(const chain_set *s)
+{
+    size_t nv = 0;
+    for (size_t c = 0; c < s->n; c++) {
+        const ft_chain *ch = s->chains[c];
+        if (ch->closed || !(monotone(ch->x, ch->n) || monotone(ch->y, ch->n)))
+            return 0;
+        nv += ch->n;
+    }
+    return nv >= 16;
+}
+
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out)
 {
@@ -311,6 +337,15 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     }
     if (rc == FT_OK)
         (*out)->method = method_names[method];
+    if (rc == FT_OK && looks_like_profile(&s))
+        rc = ft_dim_result_warn(*out, "profile: every chain is a graph over one axis (x or y only grows or only "
+                                "falls along it): if it is a profile (elevation against distance), the %s does not "
+                                "measure its roughness (a self-affine graph of D = 2 - H reads near 1 or far off); "
+                                "use `fracterra dim profile`", method_names[method]);
+    if (rc != FT_OK && *out != NULL) {
+        ft_dim_result_free(*out);
+        *out = NULL;
+    }
     ft_loglog_free(t);
     free(s.chains);
     return rc;
