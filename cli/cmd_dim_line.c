@@ -358,8 +358,10 @@ const cli_command cli_cmd_dim_line = {
     "                          [--plot FILE] [--json]",
     "Measures the fractal dimension D of the chains (lines, polygon rings) of INPUT, any OGR vector layer\n"
     "or a GMT text file (.gmt, .xy, .txt). The quantity is measured at scales in a geometric series,\n"
-    "summed over the chains, and D is read from the straightest run of the log-log plot (iterative least\n"
-    "squares, docs/loglog.md); the whole table is reported so the fit can be judged.\n\n"
+    "summed over the chains, and D is read from the widest regime (straight run, by a curvature test) of\n"
+    "the log-log plot (docs/loglog.md); every regime, the breaks between them, warnings (curved fit, few\n"
+    "boxes or steps, a band under a decade, a chain that looks like a profile: use `dim profile`) and the\n"
+    "whole table are reported so the fit can be judged. A D outside [1, 2] is an error (exit 1).\n\n"
     "Methods (docs/line-dimension.md):\n"
     "  divider    walking divider (Richardson): length L(r) ~ r^(1-D), walks from both ends averaged\n"
     "  equipaced  equipaced polygon: the chain resampled at arc-length spacing s, L(s) ~ s^(1-D)\n"
