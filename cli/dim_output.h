@@ -5,7 +5,9 @@
  *
  * A command collects its results in a cli_dim_report: one group for the whole input, or one group per
  * feature (or value of --by FIELD), each holding one result per method. The JSON is then
- *   one group, one method:       { extra..., group info..., "method", "D", "r2", "stderr", "range", "table" }
+ *   one group, one method:       { extra..., group info..., "method", "D", "r2", "stderr", "range", "segmentation",
+ *                                  "max_err", "choice", "regime", "regimes", "breaks", "units", "warnings",
+ *                                  "table" }
  *   one group, several methods:  { extra..., group info..., "results": [ {...}, ... ] }
  *   feature groups:              { extra..., "features": [ {"id": ..., group info..., result or "results"} ] }
  *
