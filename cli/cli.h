@@ -46,6 +46,7 @@ extern const cli_command cli_cmd_boundary;
 /* The subcommands of `fracterra dim` (cmd_dim_<name>.c), listed in cmd_dim.c's table. */
 extern const cli_command cli_cmd_dim_line;
 extern const cli_command cli_cmd_dim_surface;
+extern const cli_command cli_cmd_dim_profile;
 extern const cli_command cli_cmd_dim_map;
 extern const cli_command cli_cmd_dim_area;
 extern const cli_command cli_cmd_dim_points;

@@ -11,6 +11,7 @@
 static const cli_command *const subcommands[] = {
     &cli_cmd_dim_line,
     &cli_cmd_dim_surface,
+    &cli_cmd_dim_profile,
     &cli_cmd_dim_map,
     &cli_cmd_dim_area,
     &cli_cmd_dim_points,
@@ -30,6 +31,7 @@ const cli_command cli_cmd_dim = {
     "Subcommands:\n"
     "  line   lines and polygon boundaries of a vector layer or GMT text file\n"
     "  surface an elevation grid: variogram, yokoya, pentland, spectrum, prism, cubes\n"
+    "  profile an elevation profile (3-D line, DEM row or transect): madogram, variogram\n"
     "  map    a local D (roughness) map of an elevation grid, written as a raster\n"
     "  area   polygons (boundary or area box counting) of a layer, per class; classified rasters\n"
     "  points scattered elevations (CSV, XYZ, point layers): Yokoya, Pentland\n\n"

@@ -66,6 +66,7 @@ static void set_scales(const area_args *a, ft_area_dim_opts *o)
     o->max_cell = a->dim.max_scale;
     o->nscales = a->dim.nscales;
     o->fit_whole_range = o->ncells > 0 || (a->dim.min_scale > 0.0 && a->dim.max_scale > 0.0);
+    o->fit.regime = a->dim.regime;
     o->progress = cli_progress();
 }
 

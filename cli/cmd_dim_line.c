@@ -18,7 +18,7 @@
 #include <string.h>
 #include <strings.h>
 
-#define NMETHODS 4
+#define NMETHODS 5
 
 typedef struct {
     cli_dim_opts dim;
@@ -67,8 +67,9 @@ static int parse_methods(const char *text, ft_line_method *ms)
 
 static void axis_labels(ft_line_method m, const char **x, const char **y)
 {
-    *x = m == FT_LINE_BOX ? "box side" : m == FT_LINE_EQUIPACED ? "spacing" : "ruler";
-    *y = m == FT_LINE_BOX ? "boxes crossed" : "length";
+    int box = m == FT_LINE_BOX || m == FT_LINE_BOX_MIN;
+    *x = box ? "box side" : m == FT_LINE_EQUIPACED ? "spacing" : "ruler";
+    *y = box ? (m == FT_LINE_BOX ? "boxes crossed (mean over offsets)" : "boxes crossed (fewest)") : "length";
 }
 
 /* ---- groups ---- */
@@ -255,7 +256,7 @@ static int measure(const line_input *in, const line_group *g, const ft_line_meth
     for (int i = 0; rc == FT_OK && i < nm; i++) {
         ft_dim_result *r = NULL;
         ft_line_dim_opts o = *opts;
-        int box = ms[i] == FT_LINE_BOX && in->box_layer != NULL;
+        int box = (ms[i] == FT_LINE_BOX || ms[i] == FT_LINE_BOX_MIN) && in->box_layer != NULL;
         o.ellipsoid = in->crs->geographic && !box ? &in->crs->ellipsoid : NULL;
         rc = ft_line_dim(box ? box_chains : chains, box ? nb : n, ms[i], &o, &r);
         if (rc != FT_OK) { /* the message names the line */
@@ -285,6 +286,7 @@ static int measure_all(const cli_command *cmd, const line_input *in, const char 
     o.nscales = a->dim.nscales;
     o.fit_whole_range = a->dim.min_scale > 0.0 && a->dim.max_scale > 0.0;
     o.min_r2 = FT_LINE_R2_FLOOR;
+    o.fit.regime = a->dim.regime;
     o.progress = cli_progress();
     if (a->by == NULL)
         return measure(in, NULL, ms, nm, &o, rep, path) == FT_OK ? CLI_OK : cli_fail(cmd);
@@ -370,7 +372,7 @@ static int run_dim_line(const cli_command *cmd, int argc, char **argv)
     ft_crs_info crs;
     rc = cli_geo_crs(cmd, path, l->crs_wkt, &crs);
     for (int i = 0; rc == CLI_CONTINUE && crs.geographic && i < nm; i++)
-        if (ms[i] == FT_LINE_BOX)
+        if ((ms[i] == FT_LINE_BOX || ms[i] == FT_LINE_BOX_MIN) && box_layer == NULL)
             rc = cli_geo_layer_local(cmd, l, FT_LOCAL_LAEA, &box_layer);
     if (rc != CLI_CONTINUE) {
         ft_layer_free(l);
@@ -395,13 +397,17 @@ const cli_command cli_cmd_dim_line = {
     "                          [--plot FILE] [--json]",
     "Measures the fractal dimension D of the chains (lines, polygon rings) of INPUT, any OGR vector layer\n"
     "or a GMT text file (.gmt, .xy, .txt). The quantity is measured at scales in a geometric series,\n"
-    "summed over the chains, and D is read from the straightest run of the log-log plot (iterative least\n"
-    "squares, docs/loglog.md); the whole table is reported so the fit can be judged.\n\n"
+    "summed over the chains, and D is read from the widest regime (straight run, by a curvature test) of\n"
+    "the log-log plot (docs/loglog.md); every regime, the breaks between them, warnings (curved fit, few\n"
+    "boxes or steps, a band under a decade, a chain that looks like a profile: use `dim profile`) and the\n"
+    "whole table are reported so the fit can be judged. A D outside [1, 2] is an error (exit 1).\n\n"
     "Methods (docs/line-dimension.md):\n"
     "  divider    walking divider (Richardson): length L(r) ~ r^(1-D), walks from both ends averaged\n"
     "  equipaced  equipaced polygon: the chain resampled at arc-length spacing s, L(s) ~ s^(1-D)\n"
     "  hybrid     hybrid walk (Clarke & Schweizer): divider on the vertices, with interpolation\n"
-    "  box        box counting: grid cells crossed N(s) ~ s^-D, least count over grid offsets\n"
+    "  box        box counting: grid cells crossed N(s) ~ s^-D, mean count over 4 x 4 grid offsets\n"
+    "  box-min    the same with the fewest count over the offsets (the literature's; biased upward\n"
+    "             where the largest boxes hold few counts)\n"
     "  all        every method above: {\"results\": [...]}\n\n"
     "Options:\n"
     "  -m, --method M       divider (default), equipaced, hybrid, box, a list such as divider,box, or all\n"

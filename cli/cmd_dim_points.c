@@ -253,6 +253,7 @@ static int run_dim_points(const cli_command *cmd, int argc, char **argv)
     a.est.min_lag = a.dim.min_scale;
     a.est.max_lag = a.dim.max_scale;
     a.est.nlags = a.dim.nscales;
+    a.est.fit.regime = a.dim.regime;
     const char *path = argv[first];
     if (a.dim.plot && ft_io_check_writable(a.dim.plot) != FT_OK)
         return cli_fail(cmd);

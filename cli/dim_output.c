@@ -46,6 +46,7 @@ int cli_dim_option(const cli_command *cmd, int opt, const char *arg, cli_dim_opt
     case CLI_DIM_OPT_SCALES: return cli_parse_int(cmd, "--scales", arg, 3, CLI_DIM_MAX_SCALES, &o->nscales);
     case CLI_DIM_OPT_SEGMENTS: o->segments = 1; return CLI_CONTINUE;
     case CLI_DIM_OPT_PLOT: o->plot = arg; return CLI_CONTINUE;
+    case CLI_DIM_OPT_REGIME: return cli_parse_int(cmd, "--regime", arg, 1, CLI_DIM_MAX_SCALES, &o->regime);
     case 'j': o->json = 1; return CLI_CONTINUE;
     default: return CLI_DIM_NOT_SHARED;
     }
@@ -61,6 +62,9 @@ int cli_dim_check(const cli_command *cmd, const cli_dim_opts *o)
 {
     if (o->min_scale > 0.0 && o->max_scale > 0.0 && o->min_scale >= o->max_scale)
         return cli_usage_error(cmd, "--min-scale %g must be below --max-scale %g", o->min_scale, o->max_scale);
+    if (o->regime > 0 && o->min_scale > 0.0 && o->max_scale > 0.0)
+        return cli_usage_error(cmd, "--regime picks a regime of the automatic fit; it cannot be combined with a "
+                               "range (--min-scale and --max-scale)");
     if (o->plot && !has_plot_extension(o->plot))
         return cli_usage_error(cmd, "--plot file must end in .svg, .png or .pdf, got '%s'", o->plot);
     return CLI_CONTINUE;
@@ -318,6 +322,32 @@ static json_object *json_segments(const ft_dim_result *r)
     return a;
 }
 
+static json_object *json_regimes(const ft_dim_result *r)
+{
+    json_object *a = json_object_new_array();
+    for (size_t i = 0; i < r->nregimes; i++) {
+        const ft_loglog_segment *s = &r->regimes[i];
+        json_object *o = json_object_new_object();
+        json_object_object_add(o, "min_scale", cli_json_double(s->scale_lo));
+        json_object_object_add(o, "max_scale", cli_json_double(s->scale_hi));
+        json_object_object_add(o, "D", cli_json_double(s->D));
+        json_object_object_add(o, "se", cli_json_double(s->stderr_D));
+        json_object_object_add(o, "r2", cli_json_double(s->r2));
+        json_object_object_add(o, "rows", json_object_new_int64((int64_t)s->n));
+        json_object_object_add(o, "chosen", json_object_new_boolean(i == r->regime));
+        json_object_array_add(a, o);
+    }
+    return a;
+}
+
+static json_object *json_breaks(const ft_dim_result *r)
+{
+    json_object *a = json_object_new_array();
+    for (size_t i = 0; r->breaks && i + 1 < r->nregimes; i++)
+        json_object_array_add(a, cli_json_double(r->breaks[i]));
+    return a;
+}
+
 /* The members of one result (DESIGN.md "JSON results") added to o. */
 static void add_result(json_object *o, const dim_item *it, int segments)
 {
@@ -329,6 +359,11 @@ static void add_result(json_object *o, const dim_item *it, int segments)
     json_object_object_add(o, "range", json_range(r->range[0], r->range[1]));
     json_object_object_add(o, "segmentation", json_object_new_string(r->segmentation ? r->segmentation : ""));
     json_object_object_add(o, "max_err", cli_json_double(r->max_err));
+    json_object_object_add(o, "choice", json_object_new_string(r->choice ? r->choice : ""));
+    json_object_object_add(o, "regime", r->regime == FT_LOGLOG_NONE ? NULL
+                                                                     : json_object_new_int64((int64_t)r->regime + 1));
+    json_object_object_add(o, "regimes", json_regimes(r));
+    json_object_object_add(o, "breaks", json_breaks(r));
     if (r->units[0] != '\0')
         json_object_object_add(o, "units", json_object_new_string(r->units));
     json_object *w = json_object_new_array();
@@ -405,6 +440,16 @@ static void print_summary(const dim_item *it)
     printf("%-10s D = %.4f \xc2\xb1 %.4f   r\xc2\xb2 = %.4f   range %.6g .. %.6g%s%s (%zu of %zu scales)\n",
            r->method ? r->method : "", r->D, r->stderr_D, r->r2, r->range[0], r->range[1], r->units[0] ? " " : "",
            r->units, used_rows(r->table), r->table ? r->table->n : 0);
+    if (r->choice)
+        printf("%-10s D from: %s\n", "", r->choice);
+    for (size_t i = 0; i < r->nregimes; i++) {
+        const ft_loglog_segment *s = &r->regimes[i];
+        printf("%-10s regime %zu%s: scales %.6g .. %.6g%s%s  D = %.4f \xc2\xb1 %.4f  r\xc2\xb2 = %.4f\n", "", i + 1,
+               i == r->regime ? " (D)" : "", s->scale_lo, s->scale_hi, r->units[0] ? " " : "", r->units, s->D,
+               s->stderr_D, s->r2);
+        if (i + 1 < r->nregimes && r->breaks)
+            printf("%-10s break at %.6g%s%s\n", "", r->breaks[i], r->units[0] ? " " : "", r->units);
+    }
     if (it->plot)
         printf("%-10s plot %s\n", "", it->plot);
 }

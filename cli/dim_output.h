@@ -5,7 +5,9 @@
  *
  * A command collects its results in a cli_dim_report: one group for the whole input, or one group per
  * feature (or value of --by FIELD), each holding one result per method. The JSON is then
- *   one group, one method:       { extra..., group info..., "method", "D", "r2", "stderr", "range", "table" }
+ *   one group, one method:       { extra..., group info..., "method", "D", "r2", "stderr", "range", "segmentation",
+ *                                  "max_err", "choice", "regime", "regimes", "breaks", "units", "warnings",
+ *                                  "table" }
  *   one group, several methods:  { extra..., group info..., "results": [ {...}, ... ] }
  *   feature groups:              { extra..., "features": [ {"id": ..., group info..., result or "results"} ] }
  *
@@ -23,8 +25,9 @@ typedef struct {
     int segments;                /**< --segments: report (and plot) every linear segment of the log-log table */
     const char *plot;            /**< --plot FILE (.svg, .png, .pdf) or NULL */
     int json;                    /**< --json */
+    int regime;                  /**< --regime N: D from the N-th regime (by increasing scale); 0 = the widest */
 } cli_dim_opts;
-#define CLI_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, NULL, 0}
+#define CLI_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, NULL, 0, 0}
 
 /* getopt values of the shared options (--json is 'j'). */
 enum {
@@ -33,13 +36,14 @@ enum {
     CLI_DIM_OPT_SCALES,
     CLI_DIM_OPT_SEGMENTS,
     CLI_DIM_OPT_PLOT,
+    CLI_DIM_OPT_REGIME,
 };
 #define CLI_DIM_LONGOPTS                                                                                     \
     {"min-scale", required_argument, NULL, CLI_DIM_OPT_MIN_SCALE},                                           \
         {"max-scale", required_argument, NULL, CLI_DIM_OPT_MAX_SCALE},                                       \
         {"scales", required_argument, NULL, CLI_DIM_OPT_SCALES},                                             \
         {"segments", no_argument, NULL, CLI_DIM_OPT_SEGMENTS}, {"plot", required_argument, NULL, CLI_DIM_OPT_PLOT}, \
-        {"json", no_argument, NULL, 'j'}
+        {"regime", required_argument, NULL, CLI_DIM_OPT_REGIME}, {"json", no_argument, NULL, 'j'}
 #define CLI_DIM_SHORTOPTS "j"
 #define CLI_DIM_MAX_SCALES 1000
 /* Their help text, for the commands' own. */
@@ -48,9 +52,11 @@ enum {
     "                       (measured on the ellipsoid or in a local projection); default: from the data\n"     \
     "      --max-scale S    largest scale, same unit; default: from the extent\n"                               \
     "      --scales N       scales in the geometric series between them (3..1000); default: the method's\n"     \
+    "      --regime N       D from the N-th regime (straight run, by increasing scale); default: the widest\n"  \
     "      --segments       also report every straight segment of the log-log plot (minimax polyline)\n"       \
     "      --plot FILE      draw the log-log plot to FILE.svg, .png or .pdf (several results: FILE-ID-METHOD.ext)\n" \
-    "  -j, --json           print one JSON object: method, D, r2, stderr, range, table (and segments)\n"
+    "  -j, --json           print one JSON object: method, D, r2, stderr, range, units, regimes, breaks,\n"     \
+    "                       warnings, table (and segments)\n"
 
 /* Returned by cli_dim_option for an option that is not one of the shared ones. */
 #define CLI_DIM_NOT_SHARED (-100)

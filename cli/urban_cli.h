@@ -22,16 +22,18 @@ typedef struct {
     double cells[URBAN_MAX_CELLS];
 } urban_box_args;
 
-enum { URBAN_OPT_WHAT = 0x300, URBAN_OPT_CELL, URBAN_OPT_OFFSETS };
+enum { URBAN_OPT_WHAT = 0x300, URBAN_OPT_CELL, URBAN_OPT_OFFSETS, URBAN_OPT_FEWEST };
 #define URBAN_BOX_LONGOPTS                                                                                   \
     {"what", required_argument, NULL, URBAN_OPT_WHAT}, {"cell", required_argument, NULL, URBAN_OPT_CELL},    \
-        {"offsets", required_argument, NULL, URBAN_OPT_OFFSETS}
+        {"offsets", required_argument, NULL, URBAN_OPT_OFFSETS}, {"fewest-boxes", no_argument, NULL, URBAN_OPT_FEWEST}
 #define URBAN_BOX_HELP                                                                                       \
     "      --what W         boundary (default: boxes crossed by the rings) or area (boxes touching the\n"       \
     "                       polygons' interior)\n"                                                              \
     "      --cell SIZE      count exactly these box sides (map units); repeat it or give a list 10,20,40.\n"    \
     "                       D is then fitted over all of them. Default: a geometric series (see below)\n"       \
-    "      --offsets K      grid origins per axis, the fewest count kept (1..16); default 4\n"
+    "      --offsets K      grid origins per axis, their mean count kept (1..16); default 4\n"                \
+    "      --fewest-boxes   keep the fewest count over the origins instead (the literature's; biased upward\n" \
+    "                       where the largest boxes hold few counts)\n"
 
 /* Returned by urban_box_option for an option that is not one of the shared ones. */
 #define URBAN_NOT_SHARED (-102)

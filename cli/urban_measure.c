@@ -51,6 +51,7 @@ int urban_box_option(const cli_command *cmd, int opt, const char *arg, urban_box
         return CLI_CONTINUE;
     case URBAN_OPT_CELL: return add_cells(cmd, arg, a);
     case URBAN_OPT_OFFSETS: return cli_parse_int(cmd, "--offsets", arg, 1, 16, &a->dim.offsets);
+    case URBAN_OPT_FEWEST: a->dim.fewest = 1; return CLI_CONTINUE;
     default: return URBAN_NOT_SHARED;
     }
 }

@@ -411,8 +411,10 @@ typedef struct {
                                                                 beta = 2H + 1, D = (5 - beta) / 2 */
 
 typedef enum {
-    FT_LOGLOG_ILS = 0,    /**< iterative least squares: the longest run within tol of its LS line */
-    FT_LOGLOG_MINIMAX = 1 /**< minimax polyline: the longest segment within width of its minimax line */
+    FT_LOGLOG_ILS = 0,     /**< iterative least squares: the longest run within tol of its LS line */
+    FT_LOGLOG_MINIMAX = 1, /**< minimax polyline: the longest segment within width of its minimax line */
+    FT_LOGLOG_REGIMES = 2  /**< straight runs judged by the curvature test (loglog_regimes.c): the table
+                                split into regimes and breaks; D from the widest regime (or opts.regime) */
 } ft_loglog_method;
 
 typedef struct {
@@ -428,9 +430,17 @@ typedef struct {
     double min_span;   /**< fewest scale factor scale_hi / scale_lo a chosen run spans; >= 1 (1 = any);
                             default 4: a step of a staircase table is never taken for the trend */
     double bounds_tol; /**< how far outside [map.d_min, map.d_max] the D of a chosen run may lie; >= 0;
-                            default 0.05 */
+                            default 0.025. A final D outside by less is reported as the bound (with a
+                            warning), by more it is an error (never a D outside its domain) */
+    double curve_dD;   /**< curvature test: a run is curved when the quadratic term of its log-log fit
+                            changes D by more than curve_dD across the run AND that term is significant
+                            (below); > 0; default 0.05. Neighbouring regimes differ by more than it */
+    double curve_alpha; /**< level of the two-sided t test of the quadratic term against the run's own
+                             residual scatter; in (0, 1); default 0.01 */
+    int regime;        /**< FT_LOGLOG_REGIMES: 0 = the widest qualifying regime gives D; k >= 1 = the k-th
+                            regime by increasing scale */
 } ft_loglog_opts;
-#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_ILS, 0.02, 0.04, 3.0, 3, 50, 4.0, 0.05}
+#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_REGIMES, 0.02, 0.04, 3.0, 3, 50, 4.0, 0.025, 0.05, 0.01, 0}
 
 /** One linear segment of a log-log table. */
 typedef struct {
@@ -478,6 +488,14 @@ typedef struct {
     size_t nwarnings;
     char units[32];           /**< unit of the scales ("m", "ft", "cell", "1/m" ...); "" = not known.
                                    Set by the estimator or its caller (ft_dim_result_set_units) */
+    ft_loglog_segment *regimes; /**< owned; the straight runs (regimes) of the searched rows by increasing
+                                     scale, each passing the curvature test (docs/loglog.md) */
+    size_t nregimes;
+    size_t regime;            /**< index in regimes of the one that gave D, or FT_LOGLOG_NONE */
+    double *breaks;           /**< owned; nregimes - 1 scales where neighbouring regimes meet (the crossing
+                                   of their least-squares lines) */
+    const char *choice;       /**< static: why these rows give D ("widest regime", "regime asked for",
+                                   "range asked for", "longest ILS run", ...) */
 } ft_dim_result;
 
 void ft_dim_result_free(ft_dim_result *r);
@@ -489,6 +507,13 @@ int ft_dim_result_warn(ft_dim_result *r, const char *fmt, ...)
     ;
 /** The first warning of r containing substr, or NULL (substr NULL: the first warning). */
 const char *ft_dim_result_find_warning(const ft_dim_result *r, const char *substr);
+/** The curvature test of rows [first, last] of a checked table (docs/loglog.md): fits log10 value =
+ *  c + s u + q u^2 (u = log10 scale - its mean) and sets *dD = map->b * 2 q (u_last - u_first), the
+ *  change of D across the rows, and *t = q / se(q) from the rows' own residual scatter. Returns 1 if the
+ *  rows are curved (|dD| > opts->curve_dD and |t| above the two-sided t quantile at opts->curve_alpha),
+ *  0 if straight or untestable (fewer than 4 rows), a negative FT_E_* code on bad input. */
+int ft_loglog_curved(const ft_loglog *t, size_t first, size_t last, const ft_loglog_opts *opts,
+                     const ft_dim_map *map, double *dD, double *tq);
 /** Sets r->units (truncated to fit); units NULL clears it. */
 void ft_dim_result_set_units(ft_dim_result *r, const char *units);
 void ft_loglog_segments_free(ft_loglog_segment *s);

@@ -76,6 +76,10 @@ int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_la
 
 /** GMT-style text: `x y` per line (extra columns ignored), `>` lines separate segments, `#` comments.
  *  A segment whose last vertex equals its first becomes a ring. "-" reads stdin / writes stdout. */
+/** The vertices (x, y, z) of the first line (LineString, or first part of a MultiLineString) of a vector
+ *  layer (NULL = the first layer), for a profile along a 3-D line. A 2-D line is FT_E_FORMAT, fewer than 3
+ *  vertices FT_E_EMPTY, a NaN/Inf coordinate FT_E_NUMERIC. x, y and z are allocated (free them). */
+int ft_io_read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n);
 int ft_io_read_text_chains(const char *path, ft_layer **out);
 int ft_io_write_text_chains(const char *path, const ft_layer *layer);
 

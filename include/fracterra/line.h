@@ -28,7 +28,9 @@ typedef enum {
     FT_LINE_DIVIDER = 0,   /**< walking divider (Richardson): length against ruler, D = 1 - slope */
     FT_LINE_EQUIPACED = 1, /**< equipaced polygon: resample at arc-length spacing s, length against s */
     FT_LINE_HYBRID = 2,    /**< hybrid walk (Clarke & Schweizer): divider restricted to vertices */
-    FT_LINE_BOX = 3        /**< box counting: exact cells crossed, min over grid offsets, D = -slope */
+    FT_LINE_BOX = 3,       /**< box counting: exact cells crossed, mean over grid offsets, D = -slope */
+    FT_LINE_BOX_MIN = 4    /**< box counting, fewest cells over grid offsets (biased upward where the
+                                largest boxes hold few counts; kept for comparison with the literature) */
 } ft_line_method;
 
 typedef struct {
@@ -67,7 +69,7 @@ typedef struct {
  *  length and extent in the same unit. */
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out);
-/** The method's name as used by the CLI and the JSON ("divider", "equipaced", "hybrid", "box"). */
+/** The method's name as used by the CLI and the JSON ("divider", "equipaced", "hybrid", "box", "box-min"). */
 const char *ft_line_method_name(ft_line_method m);
 /** Parses a method name; FT_E_INVALID naming it otherwise. */
 int ft_line_method_parse(const char *name, ft_line_method *m);

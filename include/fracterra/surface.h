@@ -257,6 +257,47 @@ typedef struct {
 
 int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opts, ft_points **out);
 
+/* ------------------------------------------------------------------------------------------------
+ * Profiles: elevation z along a line at a regular spacing (a transect, a raster row, a 3-D line), whose
+ * graph is self-affine: D = 2 - H. Gneiting, Sevcikova & Percival (2012), "Estimators of fractal
+ * dimension: assessing the roughness of time series and spatial data", Statistical Science 27(2):
+ * the power variation of order p at lag l, V_p(l) = 1 / (2 (n - l)) sum_i |z_{i+l} - z_i|^p, and
+ * D = 2 - (log V_p(2) - log V_p(1)) / (p log 2) (their Eq. 8 and 9): p = 2 the variogram estimator,
+ * p = 1 the madogram (docs/profile.md).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    FT_PROFILE_VARIOGRAM = 0, /**< p = 2 */
+    FT_PROFILE_MADOGRAM = 1   /**< p = 1: more robust to outliers and to non-Gaussian increments */
+} ft_profile_method;
+
+/** "variogram" or "madogram"; "?" otherwise. */
+const char *ft_profile_method_name(ft_profile_method m);
+/** Parses a method name (case-insensitive); FT_E_INVALID naming it otherwise. */
+int ft_profile_method_parse(const char *name, ft_profile_method *m);
+
+/** Dimension of a profile of n >= 3 finite elevations at a regular spacing > 0 (ground units): the
+ *  log-log table of V_p at lags 1 and 2 (scale = lag x spacing, value = V_p, count = pairs), D by the
+ *  estimator of Gneiting et al. A D outside [1, 2] is an error; a constant profile is FT_E_NUMERIC. */
+int ft_profile_dim(const double *z, size_t n, double spacing, ft_profile_method m, ft_dim_result **out);
+
+/** Row `row` of a grid as a profile: its n = nx values at the spacing |gt[1]| (x cell size). Nodata in
+ *  the row is an error naming the first such column. *z is allocated (free it). */
+int ft_profile_from_grid_row(const ft_grid *g, size_t row, double **z, size_t *n, double *spacing);
+
+/** The transect from (x0, y0) to (x1, y1) (ground coordinates) across a grid, sampled by bilinear
+ *  interpolation of the cell centres at the spacing of the smaller cell side (the last sample at the
+ *  end point's distance rounded down). Both ends must lie within the cell centres' hull; a sample next
+ *  to nodata is an error naming the point. *z is allocated (free it). */
+int ft_profile_transect(const ft_grid *g, double x0, double y0, double x1, double y1, double **z, size_t *n,
+                        double *spacing);
+
+/** A 3-D line (x, y, z of n >= 3 vertices) as a profile: z linearly interpolated at a regular spacing
+ *  along the horizontal length, the spacing the median horizontal segment (spacing <= 0) or the one
+ *  given. *zout is allocated (free it). */
+int ft_profile_resample(const double *x, const double *y, const double *z, size_t n, double spacing,
+                        double **zout, size_t *nout, double *step);
+
 #ifdef __cplusplus
 }
 #endif

@@ -34,8 +34,9 @@ extern "C" {
  *    inside or wholly outside, so its centre decides. A cell that only touches a polygon along its edge
  *    or at a corner is not counted (a filled square aligned with the grid covers exactly (side / r)²
  *    cells); overlapping polygons count their cells once.
- * At each box side r the count is the fewest over offsets x offsets grid origins shifted by multiples of
- * r / offsets from the lower-left corner of the polygons' bounding box.
+ * At each box side r the count is the mean (default; unbiased for a randomly placed grid) or the fewest
+ * (fewest = 1; biased upward where the largest boxes hold few counts) over offsets x offsets grid origins
+ * shifted by multiples of r / offsets from the lower-left corner of the polygons' bounding box.
  * The log-log table (one row per size) is fitted by the shared module (ft_loglog_fit_auto within the
  * size range, or ft_loglog_fit_range over all of it), so the result carries the whole table.
  * --------------------------------------------------------------------------------------------- */
@@ -61,11 +62,12 @@ typedef struct {
     int offsets;         /**< grid origins per axis (offsets x offsets), [1, 16]; default 4 */
     ft_loglog_opts fit;  /**< segmentation of the log-log table */
     int fit_whole_range; /**< 1: fit every size, no segmentation; default 0 */
+    int fewest;          /**< 1: the fewest count over the origins; 0 (default): their mean */
     ft_progress_fn progress;
     void *progress_arg;
 } ft_area_dim_opts;
 #define FT_AREA_DIM_OPTS_DEFAULT \
-    {FT_AREA_BOUNDARY, NULL, 0, 0.0, 0.0, 0, 4, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+    {FT_AREA_BOUNDARY, NULL, 0, 0.0, 0.0, 0, 4, FT_LOGLOG_OPTS_DEFAULT, 0, 0, NULL, NULL}
 
 /** Box-counting dimension of the polygons of features[0 .. nfeatures) of the layer (features == NULL: every
  *  feature; nfeatures is then ignored). Every selected feature must be a polygon (FT_GEOM_POLYGON) or

@@ -68,15 +68,3 @@ char *ft_ll_whole_range_warning(const ft_ll_data *d, const ft_loglog_opts *o, do
                  "such a power law over this range", d->map.d_min, d->map.d_max);
     return ft_strdup(msg);
 }
-
-char *ft_ll_bounds_warning(const ft_dim_map *m, double D, double tol)
-{
-    if (ft_ll_in_bounds(m, D, tol))
-        return NULL;
-    char msg[256];
-    snprintf(msg, sizeof msg,
-             "D = %.4f lies outside [%g, %g], the interval of this estimator: the rows in range do not follow "
-             "such a power law",
-             D, m->d_min, m->d_max);
-    return ft_strdup(msg);
-}

@@ -19,9 +19,9 @@ int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
 {
     ft_loglog_opts defaults = FT_LOGLOG_OPTS_DEFAULT;
     *o = opts ? *opts : defaults;
-    if (o->method != FT_LOGLOG_ILS && o->method != FT_LOGLOG_MINIMAX)
-        return ft_error(FT_E_INVALID, "log-log segmentation: unknown method %d (0 = ILS, 1 = minimax)",
-                        (int)o->method);
+    if (o->method != FT_LOGLOG_ILS && o->method != FT_LOGLOG_MINIMAX && o->method != FT_LOGLOG_REGIMES)
+        return ft_error(FT_E_INVALID, "log-log segmentation: unknown method %d (0 = ILS, 1 = minimax, "
+                        "2 = regimes)", (int)o->method);
     if (!isfinite(o->tol) || !(o->tol > 0.0))
         return ft_error(FT_E_INVALID, "log-log segmentation: tol must be > 0 (log10 units), got %g", o->tol);
     if (!isfinite(o->width) || !(o->width > 0.0))
@@ -37,6 +37,14 @@ int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
                         o->min_span);
     if (!isfinite(o->bounds_tol) || !(o->bounds_tol >= 0.0))
         return ft_error(FT_E_INVALID, "log-log segmentation: bounds_tol must be >= 0, got %g", o->bounds_tol);
+    if (!isfinite(o->curve_dD) || !(o->curve_dD > 0.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: curve_dD must be > 0, got %g", o->curve_dD);
+    if (!(o->curve_alpha > 0.0 && o->curve_alpha < 1.0))
+        return ft_error(FT_E_INVALID, "log-log segmentation: curve_alpha must be in (0, 1), got %g",
+                        o->curve_alpha);
+    if (o->regime < 0)
+        return ft_error(FT_E_INVALID, "log-log segmentation: regime must be >= 0 (0 = the widest), got %d",
+                        o->regime);
     return FT_OK;
 }
 
@@ -74,6 +82,8 @@ void ft_dim_result_free(ft_dim_result *r)
         return;
     ft_loglog_free(r->table);
     free(r->segments);
+    free(r->regimes);
+    free(r->breaks);
     for (size_t i = 0; i < r->nwarnings; i++)
         free(r->warnings[i]);
     free(r->warnings);
@@ -139,6 +149,7 @@ static int result_new(const ft_ll_data *d, const char *name, ft_dim_result **out
     r->method = r->segmentation = name;
     r->map = d->map;
     r->best = FT_LOGLOG_NONE;
+    r->regime = FT_LOGLOG_NONE;
     r->noise = ft_loglog_noise(d->t, d->a, d->b);
     *out = r;
     return FT_OK;
@@ -185,12 +196,81 @@ static int check_out(ft_dim_result **out)
     return FT_OK;
 }
 
-/* Sets r's warning for a D outside the map's bounds by more than tol (none inside them). */
-static int warn_bounds(ft_dim_result *r, double tol)
+/* The regimes of d's window into r (once). */
+static int find_regimes(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
 {
-    if (ft_ll_in_bounds(&r->map, r->D, tol))
+    if (r->regimes != NULL || r->nregimes > 0)
         return FT_OK;
-    return add_warning(r, ft_ll_bounds_warning(&r->map, r->D, tol));
+    return ft_ll_regimes(d, o, &r->regimes, &r->nregimes, &r->breaks);
+}
+
+/* Warns when the count behind the value at the largest used scale is below FT_LL_FEW_COUNTS. */
+static int warn_few_counts(ft_dim_result *r)
+{
+    const ft_loglog_row *row = &r->table->rows[r->fit.last];
+    if (!(row->count > 0.0) || row->count >= FT_LL_FEW_COUNTS)
+        return FT_OK;
+    return ft_dim_result_warn(r, "few counts: %g boxes, steps or pairs behind the value at the largest scale "
+                              "used (%g), fewer than %d: so few counts bias the slope; lower the largest "
+                              "scale (--max-scale)", row->count, row->scale, FT_LL_FEW_COUNTS);
+}
+
+/* An error for a D outside its domain by more than slack, naming the reason; a D outside it by less is
+ * reported as the bound, with a warning. */
+static int check_domain(ft_dim_result *r, double slack)
+{
+    const ft_dim_map *m = &r->map;
+    if (!ft_ll_bounded(m) || (r->D >= m->d_min && r->D <= m->d_max))
+        return FT_OK;
+    double bound = r->D < m->d_min ? m->d_min : m->d_max;
+    if (fabs(r->D - bound) < 5e-5) { /* rounding: prints as the bound */
+        r->D = bound;
+        return FT_OK;
+    }
+    if (fabs(r->D - bound) <= slack + 1e-12) {
+        int rc = ft_dim_result_warn(r, "D = %.4f estimated, %g reported: the estimate lies outside [%g, %g] by "
+                                    "no more than %g", r->D, bound, m->d_min, m->d_max, slack);
+        r->D = bound;
+        return rc;
+    }
+    double span = r->range[1] / r->range[0];
+    return ft_error(FT_E_NUMERIC,
+                    "D = %.4f lies outside [%g, %g], the interval of this estimator, over scales %g to %g "
+                    "(%zu rows, a factor %.3g): not a result; %s%s",
+                    r->D, m->d_min, m->d_max, r->range[0], r->range[1], r->fit.n, span,
+                    r->D < m->d_min ? "the data are smoother than any fractal over these scales (degenerate for "
+                                      "this estimator)"
+                                    : "the data are rougher than any fractal over these scales (noise, or too few "
+                                      "scales)",
+                    span < 10.0 ? "; the band is narrower than a decade: widen it (more data, a larger grid or "
+                                  "other scale limits)"
+                                : "; look at the table's regimes (--plot) or give another range");
+}
+
+/* What every fit ends with, whatever chose its rows: the regimes of the window, which of them gave D, the
+ * warnings of docs/loglog.md (curved rows, few counts, a band under a decade, fewer than 5 scales) and
+ * the domain of D. */
+static int conclude(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o)
+{
+    int rc = find_regimes(r, d, o);
+    for (size_t k = 0; rc == FT_OK && k < r->nregimes; k++)
+        if (r->regimes[k].first == r->fit.first && r->regimes[k].last == r->fit.last)
+            r->regime = k;
+    double dD, tq;
+    if (rc == FT_OK && ft_ll_curved(d, o, r->fit.first, r->fit.last, &dD, &tq))
+        rc = ft_dim_result_warn(r, "curved: the log-log plot curves over the fitted scales %g to %g (D changes "
+                                "by %+.3f across them, quadratic term t = %.1f): no single dimension holds "
+                                "there; see \"regimes\" or --plot", r->range[0], r->range[1], dD, tq);
+    if (rc == FT_OK)
+        rc = warn_few_counts(r);
+    if (rc == FT_OK && r->range[1] / r->range[0] < 10.0)
+        rc = ft_dim_result_warn(r, "narrow band: the fit spans a factor %.3g of scales (%g to %g), less than a "
+                                "decade", r->range[1] / r->range[0], r->range[0], r->range[1]);
+    if (rc == FT_OK && r->fit.n < 5)
+        rc = ft_dim_result_warn(r, "few scales: the fit uses %zu scales, fewer than 5", r->fit.n);
+    if (rc == FT_OK)
+        rc = check_domain(r, o->bounds_tol);
+    return rc;
 }
 
 int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_map *map, ft_dim_result **out)
@@ -206,8 +286,10 @@ int ft_loglog_fit_range(const ft_loglog *t, double lo, double hi, const ft_dim_m
         rc = result_new(&d, "range", &r);
     if (rc == FT_OK)
         rc = result_fit(r, &d, d.a, d.b);
-    if (rc == FT_OK)
-        rc = warn_bounds(r, defaults.bounds_tol);
+    if (rc == FT_OK) {
+        r->choice = "range asked for";
+        rc = conclude(r, &d, &defaults);
+    }
     return finish(rc, &d, r, out);
 }
 
@@ -218,6 +300,7 @@ static int fit_whole(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts
     if (rc != FT_OK)
         return rc;
     r->segmentation = FT_LOGLOG_WHOLE_RANGE;
+    r->choice = "whole range (no straight run qualifies)";
     return add_warning(r, ft_ll_whole_range_warning(d, o, r->D));
 }
 
@@ -227,8 +310,10 @@ static int fit_ils(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *
 {
     size_t first, last;
     int rc = ft_ll_ils(d, o, &first, &last, &r->tol, chosen);
-    if (rc == FT_OK && *chosen)
+    if (rc == FT_OK && *chosen) {
         rc = result_fit(r, d, first, last);
+        r->choice = "longest iterative least-squares run";
+    }
     return rc;
 }
 
@@ -251,6 +336,8 @@ int ft_loglog_segment_ils(const ft_loglog *t, const ft_loglog_opts *opts, const 
         rc = fit_ils(r, &d, &o, &chosen);
     if (rc == FT_OK && !chosen)
         rc = fit_whole(r, &d, &o);
+    if (rc == FT_OK)
+        rc = conclude(r, &d, &o);
     return finish(rc, &d, r, out);
 }
 
@@ -311,6 +398,7 @@ static int fit_minimax(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_op
         return FT_OK;
     *chosen = 1;
     s = &r->segments[k];
+    r->choice = "longest minimax segment";
     return result_fit(r, d, s->first, s->last);
 }
 
@@ -321,6 +409,50 @@ static size_t matching_segment(const ft_dim_result *r)
         if (r->segments[k].first == r->fit.first && r->segments[k].last == r->fit.last)
             return k;
     return FT_LOGLOG_NONE;
+}
+
+/* 1 if regime p is a better headline than q: wider in log scale, then more rows, then smaller stderr. */
+static int wider(const ft_ll_data *d, const ft_loglog_segment *p, const ft_loglog_segment *q)
+{
+    double wp = d->lx[p->last] - d->lx[p->first], wq = d->lx[q->last] - d->lx[q->first];
+    if (fabs(wp - wq) > 1e-9)
+        return wp > wq;
+    if (p->n != q->n)
+        return p->n > q->n;
+    return p->stderr_D < q->stderr_D;
+}
+
+/* FT_LOGLOG_REGIMES: D from the regime opts->regime asks for, or else the widest regime whose D lies in
+ * the map's bounds; *chosen = 0 if there is none. */
+static int fit_regime(ft_dim_result *r, const ft_ll_data *d, const ft_loglog_opts *o, int *chosen)
+{
+    *chosen = 0;
+    int rc = find_regimes(r, d, o);
+    if (rc != FT_OK)
+        return rc;
+    size_t k = FT_LOGLOG_NONE;
+    if (o->regime > 0) {
+        if ((size_t)o->regime > r->nregimes)
+            return ft_error(FT_E_INVALID, "regime %d asked for, but the log-log table has %zu regime%s (straight "
+                            "runs)%s", o->regime, r->nregimes, r->nregimes == 1 ? "" : "s",
+                            r->nregimes ? "" : ": give a scale range instead");
+        k = (size_t)o->regime - 1;
+        r->choice = "regime asked for";
+    } else {
+        for (size_t i = 0; i < r->nregimes; i++) {
+            const ft_loglog_segment *s = &r->regimes[i];
+            if (ft_ll_admit(d, o, s->first, s->last, s->D) != FT_LL_ADMITTED)
+                continue;
+            if (k == FT_LOGLOG_NONE || wider(d, s, &r->regimes[k]))
+                k = i;
+        }
+        r->choice = r->nregimes == 1 ? "the only regime" : "widest regime";
+    }
+    if (k == FT_LOGLOG_NONE)
+        return FT_OK;
+    *chosen = 1;
+    r->segmentation = "regimes";
+    return result_fit(r, d, r->regimes[k].first, r->regimes[k].last);
 }
 
 int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, const ft_loglog_opts *opts,
@@ -334,7 +466,7 @@ int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, con
         return rc;
     ft_ll_data d;
     ft_dim_result *r = NULL;
-    const char *name = o.method == FT_LOGLOG_ILS ? "ils" : "minimax";
+    const char *name = o.method == FT_LOGLOG_ILS ? "ils" : o.method == FT_LOGLOG_MINIMAX ? "minimax" : "regimes";
     int chosen = 0;
     rc = ft_ll_data_init(&d, t, lo_limit, hi_limit, map, o.min_points);
     if (rc == FT_OK)
@@ -343,9 +475,13 @@ int ft_loglog_fit_auto(const ft_loglog *t, double lo_limit, double hi_limit, con
         rc = fit_minimax(r, &d, &o, &chosen);
     if (rc == FT_OK && o.method == FT_LOGLOG_ILS)
         rc = fit_ils(r, &d, &o, &chosen);
+    if (rc == FT_OK && o.method == FT_LOGLOG_REGIMES)
+        rc = fit_regime(r, &d, &o, &chosen);
     if (rc == FT_OK && !chosen)
         rc = fit_whole(r, &d, &o);
-    if (rc == FT_OK)
+    if (rc == FT_OK) {
         r->best = matching_segment(r);
+        rc = conclude(r, &d, &o);
+    }
     return finish(rc, &d, r, out);
 }

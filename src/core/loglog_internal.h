@@ -54,9 +54,6 @@ int ft_ll_in_bounds(const ft_dim_map *m, double D, double tol);
 ft_ll_verdict ft_ll_admit(const ft_ll_data *d, const ft_loglog_opts *o, size_t first, size_t last, double D);
 /* The allocated warning of a whole-window fallback whose dimension is D; NULL if out of memory. */
 char *ft_ll_whole_range_warning(const ft_ll_data *d, const ft_loglog_opts *o, double D);
-/* The allocated warning for a D outside the map's bounds by more than tol; NULL if D is inside (or on
- * out of memory, with the error set: tell them apart with ft_ll_in_bounds). */
-char *ft_ll_bounds_warning(const ft_dim_map *m, double D, double tol);
 
 /* ILS over the window, the tolerance it used in *tol. *admitted = 1: [*first, *last] is the longest
  * qualifying converged run; 0: no converged run qualifies ([*first, *last] is the longest of them).
@@ -68,5 +65,17 @@ int ft_ll_ils(const ft_ll_data *d, const ft_loglog_opts *o, size_t *first, size_
  * (first chosen) and the width used. */
 int ft_ll_minimax(const ft_ll_data *d, const ft_loglog_opts *o, ft_loglog_segment **segs, size_t *nsegs,
                   size_t *longest, double *width);
+
+/* Curvature test of rows [first, last] (loglog_regimes.c): 1 if curved; *dD the change of D across the
+ * rows from the quadratic term, *tq its t statistic. */
+int ft_ll_curved(const ft_ll_data *d, const ft_loglog_opts *o, size_t first, size_t last, double *dD, double *tq);
+
+/* The regimes (straight runs by the curvature test) of the window by increasing scale and the
+ * *nregimes - 1 break scales between them (NULL when fewer than 2 regimes). */
+int ft_ll_regimes(const ft_ll_data *d, const ft_loglog_opts *o, ft_loglog_segment **regimes, size_t *nregimes,
+                  double **breaks);
+
+/* Fewest boxes, steps or pairs at a used row below which a count is called few (a warning). */
+#define FT_LL_FEW_COUNTS 30
 
 #endif /* FRACTERRA_LOGLOG_INTERNAL_H */

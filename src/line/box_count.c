@@ -12,7 +12,11 @@
  * through a grid corner it steps diagonally if both directions have the same sign, and otherwise steps the
  * positive axis first (the corner point's own cell) and then the negative one.
  *
- * Offsets: the count at side r is minimised over k x k grid origins shifted by multiples of r / k. The
+ * Offsets: the count at side r is taken over k x k grid origins shifted by multiples of r / k, as their
+ * mean (the default: an unbiased estimate of the expected count of a randomly placed grid, which for a
+ * smooth curve is proportional to 1 / r at every r, so D = 1 holds down to a handful of boxes) or their
+ * minimum (the "fewest boxes" of the literature, box-min: biased upward where the largest boxes hold few
+ * counts, since the minimum of a few counts falls further below their mean the fewer they are). The
  * chains are traversed once on the fine grid of side g = r / k; the cell of a point on the grid with
  * origin shifted by (-a g, -b g) is (floor((i + a) / k), floor((j + b) / k)) for its fine cell (i, j),
  * exactly. Fine cells are bucketed by column (counting sort); each coarse column is then a run of k fine
@@ -264,9 +268,10 @@ static void split_rows(const uint32_t *rows, size_t n, int k, uint32_t *q, uint8
     }
 }
 
-/* The fewest cells over the k x offsets a (in parallel: each a is independent and integer counts do not
- * depend on the order, so the result is the same on any number of threads) and the k y offsets b. */
-static int count_min(const cell_list *l, size_t ncol, size_t nrow, int k, uint64_t *count)
+/* The fewest cells and their total over the k x offsets a (in parallel: each a is independent and integer
+ * counts do not depend on the order, so the result is the same on any number of threads) and the k y
+ * offsets b. */
+static int count_offsets_all(const cell_list *l, size_t ncol, size_t nrow, int k, uint64_t *count, uint64_t *total)
 {
     uint32_t *rows = NULL;
     size_t *start = NULL;
@@ -275,7 +280,7 @@ static int count_min(const cell_list *l, size_t ncol, size_t nrow, int k, uint64
         return rc;
     const size_t nj = (nrow - 1) / (size_t)k + 2; /* coarse rows, one more for q + 1 */
     uint8_t *rem = ft_malloc(l->n);
-    uint64_t best_a[BOX_OFFSETS_LIMIT];
+    uint64_t best_a[BOX_OFFSETS_LIMIT], sum_a[BOX_OFFSETS_LIMIT];
     int failed = 0;
     if (rem == NULL) {
         free(rows);
@@ -288,42 +293,58 @@ static int count_min(const cell_list *l, size_t ncol, size_t nrow, int k, uint64
         row_state *state = malloc(nj * sizeof *state);
         uint64_t counts[BOX_OFFSETS_LIMIT];
         best_a[a] = UINT64_MAX;
+        sum_a[a] = 0;
         if (state == NULL) {
             failed = 1;
             continue;
         }
         count_offsets(rows, rem, start, ncol, k, a, state, nj, counts);
-        for (int b = 0; b < k; b++)
+        for (int b = 0; b < k; b++) {
             best_a[a] = counts[b] < best_a[a] ? counts[b] : best_a[a];
+            sum_a[a] += counts[b];
+        }
         free(state);
     }
-    uint64_t best = UINT64_MAX;
-    for (int a = 0; a < k; a++)
+    uint64_t best = UINT64_MAX, sum = 0;
+    for (int a = 0; a < k; a++) {
         best = best_a[a] < best ? best_a[a] : best;
+        sum += sum_a[a];
+    }
     *count = best;
+    *total = sum;
     free(rem);
     free(rows);
     free(start);
     return failed ? ft_error(FT_E_NOMEM, "out of memory counting boxes") : FT_OK;
 }
 
-int ft_line_box_count_min(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
-                          uint64_t *count)
+int ft_line_box_count_offsets(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
+                              uint64_t *fewest, double *mean)
 {
     if (k < 1 || k > BOX_OFFSETS_LIMIT)
         return ft_error(FT_E_INVALID, "box offsets per axis must be in [1, %d], got %d", BOX_OFFSETS_LIMIT, k);
     cell_list cells = {0};
     fine_grid f = {ox, oy, size / k, &cells};
     size_t ncol = 0, nrow = 0;
-    *count = 0;
+    uint64_t count = 0, total = 0;
     int rc = grid_extent(chains, n, &f, k, &cells, &ncol, &nrow);
     for (size_t c = 0; rc == FT_OK && c < n; c++)
         rc = chain_cells(chains[c], &f);
     if (rc == FT_OK && cells.n > 0)
-        rc = count_min(&cells, ncol, nrow, k, count);
+        rc = count_offsets_all(&cells, ncol, nrow, k, &count, &total);
     free(cells.col);
     free(cells.row);
+    if (fewest != NULL)
+        *fewest = count;
+    if (mean != NULL)
+        *mean = (double)total / ((double)k * (double)k);
     return rc;
+}
+
+int ft_line_box_count_min(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
+                          uint64_t *count)
+{
+    return ft_line_box_count_offsets(chains, n, size, k, ox, oy, count, NULL);
 }
 
 int ft_line_box_count(const ft_chain *const *chains, size_t n, double size, double ox, double oy,

@@ -42,7 +42,7 @@
 #define HI_FRACTION_WALK 0.25      /* hi = this x the bbox diagonal: divider, equipaced, hybrid */
 #define HI_FRACTION_BOX (1.0 / 48) /* ... box counting */
 
-static const char *const method_names[] = {"divider", "equipaced", "hybrid", "box"};
+static const char *const method_names[] = {"divider", "equipaced", "hybrid", "box", "box-min"};
 #define N_METHODS (sizeof method_names / sizeof method_names[0])
 
 const char *ft_line_method_name(ft_line_method m)
@@ -59,7 +59,8 @@ int ft_line_method_parse(const char *name, ft_line_method *m)
             *m = (ft_line_method)i;
             return FT_OK;
         }
-    return ft_error(FT_E_INVALID, "unknown line dimension method '%s' (divider, equipaced, hybrid or box)", name);
+    return ft_error(FT_E_INVALID, "unknown line dimension method '%s' (divider, equipaced, hybrid, box or box-min)",
+                    name);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -80,7 +81,7 @@ typedef struct {
 static int check_opts(ft_line_method method, const ft_line_dim_opts *o)
 {
     if ((unsigned)method >= N_METHODS)
-        return ft_error(FT_E_INVALID, "line dimension method must be 0..3, got %d", (int)method);
+        return ft_error(FT_E_INVALID, "line dimension method must be 0..4, got %d", (int)method);
     if (!(o->min_scale >= 0.0) || !isfinite(o->min_scale))
         return ft_error(FT_E_INVALID, "min_scale must be finite and >= 0 (0 = automatic), got %g", o->min_scale);
     if (!(o->max_scale >= 0.0) || !isfinite(o->max_scale))
@@ -137,9 +138,11 @@ static int to_ecef(chain_set *s, const ft_ellipsoid *e)
     for (size_t c = 0; c < s->n; c++) {
         const ft_chain *g = s->chains[c];
         for (size_t i = 0; i < g->n; i++)
-            if (!(fabs(g->y[i]) <= 90.0))
-                return ft_error(FT_E_INVALID, "line dimension: chain %zu vertex %zu has latitude %g, outside "
-                                "[-90, 90]: the coordinates are not longitude/latitude degrees", c, i, g->y[i]);
+            if (!(fabs(g->y[i]) <= 90.0) || !(fabs(g->x[i]) <= 540.0))
+                return ft_error(FT_E_INVALID, "line dimension: chain %zu vertex %zu at (%g, %g) is outside longitude "
+                                "[-540, 540] and latitude [-90, 90]: the coordinates are not longitude/latitude degrees "
+                                "(a GeoJSON file without a \"crs\" member is longitude/latitude by RFC 7946)",
+                                c, i, g->x[i], g->y[i]);
         s->ecef[c] = ft_chain_create(g->n, g->closed);
         s->ecef_z[c] = ft_malloc(g->n * sizeof *s->ecef_z[c]);
         if (s->ecef[c] == NULL || s->ecef_z[c] == NULL)
@@ -249,7 +252,7 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
                        double *hi)
 {
     double diag = extent_diagonal(s);
-    int box = method == FT_LINE_BOX;
+    int box = method == FT_LINE_BOX || method == FT_LINE_BOX_MIN;
     double lo_auto = (box ? LO_SEGMENTS_BOX : LO_SEGMENTS_WALK) * s->median_seg;
     double hi_auto = (box ? HI_FRACTION_BOX : HI_FRACTION_WALK) * diag;
     *lo = o->min_scale > 0.0 ? o->min_scale : lo_auto;
@@ -269,10 +272,15 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
 static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_opts *o, double r, double *value,
                    double *count)
 {
-    if (method == FT_LINE_BOX) {
-        uint64_t boxes = 0;
-        int rc = ft_line_box_count_min(s->chains, s->n, r, o->box_offsets, s->xmin, s->ymin, &boxes);
-        *value = *count = (double)boxes;
+    if (method == FT_LINE_BOX || method == FT_LINE_BOX_MIN) {
+        uint64_t fewest = 0;
+        double mean = 0.0;
+        /* the mean samples the origins at the centres of k x k strata of the cell (stratified sampling of
+         * a random origin); the fewest keeps the literature's origins at multiples of r / k from the corner */
+        double half = method == FT_LINE_BOX ? 0.5 * r / o->box_offsets : 0.0;
+        int rc = ft_line_box_count_offsets(s->chains, s->n, r, o->box_offsets, s->xmin - half, s->ymin - half,
+                                           &fewest, &mean);
+        *value = *count = method == FT_LINE_BOX ? mean : (double)fewest;
         return rc;
     }
     double len = 0.0, steps = 0.0;
@@ -302,18 +310,19 @@ static int build_table(const chain_set *s, ft_line_method method, const ft_line_
     if (t == NULL)
         return FT_E_NOMEM;
     const double ratio = log(hi / lo) / (nscales - 1);
+    const int box = method == FT_LINE_BOX || method == FT_LINE_BOX_MIN;
     char msg[64];
     int rc = FT_OK;
     for (int i = 0; rc == FT_OK && i < nscales; i++) {
         double r = i == nscales - 1 ? hi : lo * exp(ratio * i), value = 0.0, count = 0.0;
         rc = measure(s, method, o, r, &value, &count);
         double scale = method == FT_LINE_EQUIPACED ? r * value / s->length : r;
-        int usable = method == FT_LINE_BOX ? value > 0.0 : value >= r;
+        int usable = box ? value > 0.0 : value >= r;
         if (rc == FT_OK && usable)
             rc = ft_loglog_push(t, scale, value, count);
         else if (rc == FT_OK && o->fit_whole_range) /* the range was asked for: say it does not fit */
             rc = ft_error(FT_E_INVALID, "%s %g%s of the range [%g, %g]%s is longer than the chains: they are %g%s "
-                          "long and %g%s across; choose a largest scale below %g%s", method == FT_LINE_BOX ?
+                          "long and %g%s across; choose a largest scale below %g%s", box ?
                           "box size" : "ruler", r, o->ellipsoid ? " m" : "", lo, hi, o->ellipsoid ? " m" : "",
                           s->length, o->ellipsoid ? " m" : "", extent_diagonal(s), o->ellipsoid ? " m" : "",
                           HI_FRACTION_WALK * extent_diagonal(s), o->ellipsoid ? " m" : "");
@@ -327,8 +336,8 @@ static int build_table(const chain_set *s, ft_line_method method, const ft_line_
     if (rc == FT_OK && t->n < 3)
         rc = ft_error(FT_E_INVALID, "only %zu of %d %s in [%g, %g]%s %s; the chains are %g%s long and %g%s "
                       "across: lower the largest scale (about %g%s) or measure a longer line", t->n, nscales,
-                      method == FT_LINE_BOX ? "box sizes" : "rulers", lo, hi, u,
-                      method == FT_LINE_BOX ? "cover a box" : "fit once along the chains", s->length, u,
+                      box ? "box sizes" : "rulers", lo, hi, u,
+                      box ? "cover a box" : "fit once along the chains", s->length, u,
                       extent_diagonal(s), u, HI_FRACTION_WALK * extent_diagonal(s), u);
     if (rc != FT_OK) {
         ft_loglog_free(t);
@@ -356,6 +365,32 @@ static int check_r2(const ft_dim_result *r, double min_r2, const char *unit)
                     r->range[0], r->range[1], unit, r->r2, min_r2, r->D, r->stderr_D);
 }
 
+/* 1 if coordinate v (stride-free array of n) only grows or only falls, strictly. */
+static int monotone(const double *v, size_t n)
+{
+    int up = 1, down = 1;
+    for (size_t i = 1; i < n && (up || down); i++) {
+        up &= v[i] > v[i - 1];
+        down &= v[i] < v[i - 1];
+    }
+    return up || down;
+}
+
+/* 1 if every open chain is the graph of a function of x or of y (x or y strictly monotone along it) and
+ * the set has at least 16 vertices: the chains look like profiles (elevation against distance), whose
+ * divider or box dimension does not measure their roughness (self-affine, not self-similar). */
+static int looks_like_profile(const chain_set *s)
+{
+    size_t nv = 0;
+    for (size_t c = 0; c < s->n; c++) {
+        const ft_chain *ch = s->chains[c];
+        if (ch->closed || !(monotone(ch->x, ch->n) || monotone(ch->y, ch->n)))
+            return 0;
+        nv += ch->n;
+    }
+    return nv >= 16;
+}
+
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out)
 {
@@ -370,8 +405,9 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     chain_set s = {0};
     ft_loglog *t = NULL;
     double lo = 0.0, hi = 0.0;
-    int nscales = o->nscales > 0 ? o->nscales : (method == FT_LINE_BOX ? NSCALES_DEFAULT_BOX : NSCALES_DEFAULT);
-    if (o->ellipsoid != NULL && method == FT_LINE_BOX)
+    int box = method == FT_LINE_BOX || method == FT_LINE_BOX_MIN;
+    int nscales = o->nscales > 0 ? o->nscales : (box ? NSCALES_DEFAULT_BOX : NSCALES_DEFAULT);
+    if (o->ellipsoid != NULL && box)
         return ft_error(FT_E_INVALID, "box counting of longitude/latitude chains needs them projected to an "
                         "equal-area CRS first (boxes of equal ground area)");
     rc = collect_chains(chains, n, &s);
@@ -391,7 +427,7 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     }
     if (rc == FT_OK) {
         const ft_dim_map map_len = FT_DIM_MAP_DIVIDER, map_box = FT_DIM_MAP_BOXCOUNT_LINE;
-        const ft_dim_map *map = method == FT_LINE_BOX ? &map_box : &map_len;
+        const ft_dim_map *map = box ? &map_box : &map_len;
         rc = o->fit_whole_range ? ft_loglog_fit_range(t, lo, hi, map, out)
                                 : ft_loglog_fit_auto(t, lo, hi, &o->fit, map, out);
     }
@@ -401,7 +437,13 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
         (*out)->method = method_names[method];
         if (o->ellipsoid)
             ft_dim_result_set_units(*out, "m");
-    } else if (*out) {
+    }
+    if (rc == FT_OK && o->ellipsoid == NULL && looks_like_profile(&s))
+        rc = ft_dim_result_warn(*out, "profile: every chain is a graph over one axis (x or y only grows or only "
+                                "falls along it): if it is a profile (elevation against distance), the %s does not "
+                                "measure its roughness (a self-affine graph of D = 2 - H reads near 1 or far off); "
+                                "use `fracterra dim profile`", method_names[method]);
+    if (rc != FT_OK && *out != NULL) {
         ft_dim_result_free(*out);
         *out = NULL;
     }

@@ -78,6 +78,10 @@ void ft_line_hybrid_length(const ft_chain *c, const double *z, double r, int bot
  *  FT_E_NOMEM if memory runs out. */
 int ft_line_box_count_min(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
                           uint64_t *count);
+/** The same count over the k x k origins: the fewest (fewest, may be NULL) and the mean (mean, may be NULL;
+ *  an unbiased estimate of the count of a randomly placed grid). */
+int ft_line_box_count_offsets(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
+                              uint64_t *fewest, double *mean);
 
 /** Upper bound on the cells one box count may visit (keeps memory and time bounded for tiny boxes). */
 #define FT_BOX_MAX_CELLS ((uint64_t)1 << 30)

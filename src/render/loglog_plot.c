@@ -5,7 +5,9 @@
  * Axes are log10 with major ticks at decades (labelled 0.01 … 1000, or 10^k beyond), minor ticks at
  * 2..9 times a decade; a table spanning less than two decades gets 1-2-5 ticks instead. The fitted
  * range is a shaded band; used rows are filled dots, the others hollow; the least-squares line runs
- * over the used rows, each segment's line is dashed in its own colour; the legend goes in the corner of
+ * over the used rows, each regime (straight run, docs/loglog.md) is a solid line in its own colour over its
+ * scales and each break between regimes a dotted vertical line, each segment's line (--segments) is
+ * dashed in its own colour; the legend goes in the corner of
  * the plot that hides the fewest points. The file is drawn under a temporary name and renamed at the
  * end, so a failure leaves nothing behind.
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -23,6 +25,8 @@
 #define PLOT_MAX_SIDE 8192
 #define PLOT_MAX_SEGMENTS_LISTED 6
 #define PLOT_LINE_H 16.0
+#define PLOT_MAX_REGIMES_LISTED 4
+#define KIND_REGIME 100 /* legend kind of regime k: KIND_REGIME + k */
 
 typedef ft_plot_frame frame; /* log10 window */
 
@@ -99,6 +103,36 @@ static void draw_segments(cairo_t *cr, const frame *f, const ft_dim_result *r)
     cairo_set_dash(cr, NULL, 0, 0.0);
 }
 
+/* Regime k's colour: the palette from its far end, so regimes and segments do not share colours. */
+static void regime_colour(cairo_t *cr, size_t k)
+{
+    static const double rgb[][3] = {{0.10, 0.45, 0.75}, {0.95, 0.55, 0.05}, {0.20, 0.60, 0.25},
+                                    {0.55, 0.30, 0.70}};
+    const double *c = rgb[k % 4];
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+}
+
+static void draw_regimes(cairo_t *cr, const frame *f, const ft_dim_result *r)
+{
+    static const double dots[] = {2.0, 3.0};
+    cairo_set_line_width(cr, 1.8);
+    for (size_t k = 0; r->nregimes > 1 && k < r->nregimes; k++) {
+        const ft_loglog_segment *s = &r->regimes[k];
+        regime_colour(cr, k);
+        line_over(cr, f, log10(s->scale_lo), log10(s->scale_hi), s->slope, s->intercept);
+    }
+    cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+    cairo_set_line_width(cr, 1.0);
+    cairo_set_dash(cr, dots, 2, 0.0);
+    for (size_t k = 0; r->breaks != NULL && k + 1 < r->nregimes; k++) {
+        double X = ft_plot_px(f, log10(r->breaks[k]));
+        cairo_move_to(cr, X, f->y0);
+        cairo_line_to(cr, X, f->y0 + f->h);
+        cairo_stroke(cr);
+    }
+    cairo_set_dash(cr, NULL, 0, 0.0);
+}
+
 static void draw_fit(cairo_t *cr, const frame *f, const ft_dim_result *r)
 {
     if (r->fit.n < 2)
@@ -131,8 +165,9 @@ static void draw_points(cairo_t *cr, const frame *f, const ft_loglog *t)
 /* ---- legend ---- */
 
 typedef struct {
-    char text[PLOT_MAX_SEGMENTS_LISTED + 4][160];
-    int kind[PLOT_MAX_SEGMENTS_LISTED + 4]; /* 0 used dot, 1 hollow dot, 2 fit line, 3+k segment k, -1 text */
+    char text[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 6][160];
+    int kind[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 6]; /* 0 used dot, 1 hollow dot, 2 fit line,
+                                                       3+k segment k, KIND_REGIME+k regime k, -1 text */
     size_t n;
     double w, h;
 } legend;
@@ -153,6 +188,22 @@ static void legend_make(cairo_t *cr, const ft_dim_result *r, const ft_plot_opts 
         snprintf(buf, sizeof buf, "D = %.3f \xc2\xb1 %.3f, r\xc2\xb2 = %.3f, range %.4g\xe2\x80\x93%.4g%s%s", r->D,
                  r->stderr_D, r->r2, r->range[0], r->range[1], r->units[0] ? " " : "", r->units);
         legend_add(l, 2, buf);
+    }
+    size_t nreg = r->nregimes > 1 ? r->nregimes : 0;
+    nreg = nreg > PLOT_MAX_REGIMES_LISTED ? PLOT_MAX_REGIMES_LISTED : nreg;
+    for (size_t k = 0; k < nreg; k++) {
+        const ft_loglog_segment *s = &r->regimes[k];
+        snprintf(buf, sizeof buf, "regime %zu%s: D = %.3f, %.4g\xe2\x80\x93%.4g%s", k + 1, k == r->regime ? " (D)" : "",
+                 s->D, s->scale_lo, s->scale_hi, k + 1 < r->nregimes ? "" : "");
+        legend_add(l, KIND_REGIME + (int)k, buf);
+    }
+    if (nreg > 0) {
+        char br[120] = "breaks (dotted):";
+        for (size_t k = 0; k + 1 < r->nregimes && k < 3; k++) {
+            size_t used = strlen(br);
+            snprintf(br + used, sizeof br - used, " %.4g", r->breaks[k]);
+        }
+        legend_add(l, -1, br);
     }
     size_t shown = o->segments ? r->nsegments : 0;
     shown = shown > PLOT_MAX_SEGMENTS_LISTED ? PLOT_MAX_SEGMENTS_LISTED : shown;
@@ -201,6 +252,9 @@ static void legend_symbol(cairo_t *cr, int kind, double x, double y)
     if (kind == 2) {
         cairo_set_source_rgb(cr, 0.80, 0.10, 0.10);
         cairo_set_line_width(cr, 2.2);
+    } else if (kind >= KIND_REGIME) {
+        regime_colour(cr, (size_t)(kind - KIND_REGIME));
+        cairo_set_line_width(cr, 1.8);
     } else {
         ft_plot_palette(cr, (size_t)(kind - 3));
         cairo_set_line_width(cr, 1.6);
@@ -240,6 +294,7 @@ static void draw_plot(cairo_t *cr, const frame *f, const ft_dim_result *r, const
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     if (o->segments)
         draw_segments(cr, f, r);
+    draw_regimes(cr, f, r);
     draw_fit(cr, f, r);
     draw_points(cr, f, r->table);
     cairo_restore(cr);

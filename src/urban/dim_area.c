@@ -3,7 +3,7 @@
  * exactly from the vector geometry instead of rasterizing at each size.
  *
  * Boundary (FT_AREA_BOUNDARY): the rings are counted by ft_line_box_count_min, the exact cell traversal of
- * the chain counter (half-open cells, fewest over offsets x offsets grid origins).
+ * the chain counter (half-open cells, mean or fewest over offsets x offsets grid origins).
  *
  * Area (FT_AREA_AREA): the boxes whose inside meets a polygon's interior. Boxes of side r are groups of
  * offsets x offsets fine cells of side g = r / offsets, on a fine grid whose origin is the lower-left corner
@@ -324,10 +324,12 @@ static int row_empty(const uint64_t *row, size_t words)
     return 1;
 }
 
-static int count_area(const polygons *p, double r, int k, uint64_t *count)
+static int count_area(const polygons *p, double r, int k, int fewest, double *count)
 {
-    fine f = {p->xmin, p->ymin, r / k, 0, 0, 0, 0, 0, NULL};
-    double spanx = (p->xmax - p->xmin) / f.g, spany = (p->ymax - p->ymin) / f.g;
+    /* mean: origins at the centres of k x k strata of a box (stratified sampling of a random origin) */
+    double half = fewest ? 0.0 : 0.5 * r / k;
+    fine f = {p->xmin - half, p->ymin - half, r / k, 0, 0, 0, 0, 0, NULL};
+    double spanx = (p->xmax - f.ox) / f.g, spany = (p->ymax - f.oy) / f.g;
     if (!(fmax(spanx, spany) < MAX_SPAN))
         return ft_error(FT_E_INVALID, "box counting: box side %g is too small for the extent (%.3g fine cells "
                         "across, at most %.0f)", r, fmax(spanx, spany), MAX_SPAN);
@@ -352,8 +354,10 @@ static int count_area(const polygons *p, double r, int k, uint64_t *count)
                 ft_band_counter_row(bc, j, row);
         }
     }
-    if (rc == FT_OK)
-        *count = ft_band_counter_finish(bc);
+    if (rc == FT_OK) {
+        uint64_t least = ft_band_counter_finish(bc);
+        *count = fewest ? (double)least : ft_band_counter_mean(bc);
+    }
     ft_band_counter_free(bc);
     free(f.bits);
     free(b.edges);
@@ -362,11 +366,17 @@ static int count_area(const polygons *p, double r, int k, uint64_t *count)
     return rc;
 }
 
-static int count_one(const polygons *p, const ft_area_dim_opts *o, double r, uint64_t *count)
+static int count_one(const polygons *p, const ft_area_dim_opts *o, double r, double *count)
 {
-    return o->what == FT_AREA_AREA
-               ? count_area(p, r, o->offsets, count)
-               : ft_line_box_count_min(p->set.rings, p->set.nrings, r, o->offsets, p->xmin, p->ymin, count);
+    if (o->what == FT_AREA_AREA)
+        return count_area(p, r, o->offsets, o->fewest, count);
+    uint64_t least = 0;
+    double mean = 0.0;
+    double half = o->fewest ? 0.0 : 0.5 * r / o->offsets; /* as in count_area */
+    int rc = ft_line_box_count_offsets(p->set.rings, p->set.nrings, r, o->offsets, p->xmin - half, p->ymin - half,
+                                       &least, &mean);
+    *count = o->fewest ? (double)least : mean;
+    return rc;
 }
 
 /* The sizes are counted in parallel (each count is an integer of its own, so the table does not depend on
@@ -374,7 +384,7 @@ static int count_one(const polygons *p, const ft_area_dim_opts *o, double r, uin
  * their next size. The first failing size's error is raised again on the calling thread. */
 static int build_table(const polygons *p, const ft_area_dim_opts *o, const double *sizes, size_t n, ft_loglog **out)
 {
-    uint64_t *counts = ft_calloc(n, sizeof *counts);
+    double *counts = ft_calloc(n, sizeof *counts);
     int *rcs = ft_calloc(n, sizeof *rcs);
     char (*msgs)[256] = ft_calloc(n, sizeof *msgs);
     if (counts == NULL || rcs == NULL || msgs == NULL) {
@@ -422,7 +432,7 @@ static int build_table(const polygons *p, const ft_area_dim_opts *o, const doubl
         rc = FT_E_NOMEM;
     for (size_t i = 0; rc == FT_OK && i < n; i++)
         if (counts[i] > 0)
-            rc = ft_loglog_push(t, sizes[i], (double)counts[i], (double)counts[i]);
+            rc = ft_loglog_push(t, sizes[i], counts[i], counts[i]);
     if (rc == FT_OK)
         rc = ft_progress(o->progress, o->progress_arg, 1.0, "box counting");
     if (rc == FT_OK && t->n < 2)

@@ -148,6 +148,15 @@ uint64_t ft_band_counter_finish(ft_band_counter *bc)
     return best;
 }
 
+double ft_band_counter_mean(const ft_band_counter *bc)
+{
+    double sum = 0.0;
+    for (int q = 0; q < bc->noff; q++)
+        for (int p = 0; p < bc->noff; p++)
+            sum += (double)bc->counts[q * FT_BAND_OFFSETS_MAX + p];
+    return sum / ((double)bc->noff * (double)bc->noff);
+}
+
 void ft_bits_set_range(uint64_t *bits, size_t c0, size_t c1)
 {
     size_t w0 = c0 / 64, w1 = c1 / 64;

@@ -62,6 +62,8 @@ ft_band_counter *ft_band_counter_create(size_t ncol, uint32_t m, const uint32_t 
 void ft_band_counter_row(ft_band_counter *bc, size_t row, const uint64_t *bits);
 /** The fewest boxes over the offset pairs, once every row was given. */
 uint64_t ft_band_counter_finish(ft_band_counter *bc);
+/** After ft_band_counter_finish: the mean count over the origins. */
+double ft_band_counter_mean(const ft_band_counter *bc);
 void ft_band_counter_free(ft_band_counter *bc);
 /** Sets bits c0 .. c1 (inclusive) of a row bitmap. */
 void ft_bits_set_range(uint64_t *bits, size_t c0, size_t c1);

@@ -196,6 +196,19 @@ static void assert_result_shape(json_object *r)
             assert_true(ft_test_json_num(row, "scale") > ft_test_json_num(ft_test_json_at(table, i - 1), "scale"));
     }
     assert_true(used >= 3);
+    /* regimes and breaks (issue 13): one break fewer than regimes, regimes by increasing scale, the
+     * headline's regime among them (or null when D is not a regime's) */
+    json_object *regimes = ft_test_json_key(r, "regimes"), *breaks = ft_test_json_key(r, "breaks");
+    size_t nr = json_object_array_length(regimes);
+    assert_int_equal(json_object_array_length(breaks), nr > 0 ? nr - 1 : 0);
+    for (size_t i = 0; i < nr; i++) {
+        json_object *g = ft_test_json_at(regimes, i);
+        assert_true(ft_test_json_num(g, "min_scale") < ft_test_json_num(g, "max_scale"));
+        assert_true(isfinite(ft_test_json_num(g, "D")) && ft_test_json_num(g, "se") >= 0.0);
+        assert_true(ft_test_json_num(g, "r2") <= 1.0);
+    }
+    assert_true(json_object_is_type(ft_test_json_key(r, "warnings"), json_type_array));
+    assert_non_null(ft_test_json_str(r, "choice"));
 }
 
 /* ---- dim line ---- */
@@ -208,9 +221,9 @@ static void test_dim_straight_line_all_methods(void **state)
     assert_int_equal(ft_test_json_int(o, "chains"), 1);
     assert_int_equal(ft_test_json_int(o, "vertices"), 1001);
     json_object *results = ft_test_json_key(o, "results");
-    assert_int_equal(json_object_array_length(results), 4);
-    const char *names[] = {"divider", "equipaced", "hybrid", "box"};
-    for (size_t i = 0; i < 4; i++) {
+    assert_int_equal(json_object_array_length(results), 5);
+    const char *names[] = {"divider", "equipaced", "hybrid", "box", "box-min"};
+    for (size_t i = 0; i < 5; i++) {
         json_object *r = ft_test_json_at(results, i);
         assert_result_shape(r);
         assert_string_equal(ft_test_json_str(r, "method"), names[i]);
@@ -271,7 +284,7 @@ static void test_dim_by_field_and_fid(void **state)
     f = ft_test_json_key(o, "features");
     assert_int_equal(json_object_array_length(f), 2);
     assert_true(json_object_is_type(ft_test_json_key(ft_test_json_at(f, 0), "id"), json_type_int));
-    assert_int_equal(json_object_array_length(ft_test_json_key(ft_test_json_at(f, 1), "results")), 4);
+    assert_int_equal(json_object_array_length(ft_test_json_key(ft_test_json_at(f, 1), "results")), 5);
     json_object_put(o);
 }
 
@@ -649,6 +662,26 @@ static size_t vertices_out(json_object *o)
  * docs/line-newfoundland.md. The issue asks for D within 0.05 of the generalized chain's; measured, the
  * stages stay within 0.07 (the enhancement standardizes every junction at the SD = 1.3 angle of 117 degrees,
  * which flattens the sharp spikes Douglas-Peucker keeps), so the bound checked is 0.08. */
+/* Issue 13: on a real coastline the automatic range gives D within 0.04 of the literature's 1-100 km fit,
+ * or reports two regimes with their break. */
+static void test_newfoundland_automatic_range(void **state)
+{
+    (void)state;
+    const char *methods[] = {"divider", "box"};
+    for (size_t m = 0; m < 2; m++) {
+        json_object *a = FT_TEST_RUN_JSON("dim", "line", NEWFOUNDLAND, "--method", methods[m], "--json");
+        json_object *b = FT_TEST_RUN_JSON("dim", "line", NEWFOUNDLAND, "--method", methods[m], "--min-scale", "1000",
+                                          "--max-scale", "100000", "--json");
+        assert_result_shape(a);
+        double da = ft_test_json_num(a, "D"), db = ft_test_json_num(b, "D");
+        size_t nr = json_object_array_length(ft_test_json_key(a, "regimes"));
+        print_message("Newfoundland %s: automatic D %.4f (%zu regime(s)), 1-100 km D %.4f\n", methods[m], da, nr, db);
+        assert_true(fabs(da - db) <= 0.04 || nr >= 2);
+        json_object_put(a);
+        json_object_put(b);
+    }
+}
+
 static void test_newfoundland_sequence(void **state)
 {
     const char *gen = ft_test_tmp("nf158.geojson"), *enh = ft_test_tmp("nf_enh.geojson");
@@ -717,6 +750,7 @@ int main(void)
         cmocka_unit_test(test_bad_input_every_command),
         cmocka_unit_test(test_bad_input_dim),
         cmocka_unit_test(test_newfoundland_sequence),
+        cmocka_unit_test(test_newfoundland_automatic_range),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

@@ -193,7 +193,8 @@ static void test_dim_area_filled_square(void **state)
     json_object_put(b);
 
     /* explicit box sides: every one counted, D fitted over all of them */
-    json_object *c = FT_TEST_RUN_JSON("dim", "area", sq, "--what", "area", "--cell", "10,20", "--cell", "40", "--json");
+    json_object *c = FT_TEST_RUN_JSON("dim", "area", sq, "--what", "area", "--cell", "10,20", "--cell", "40",
+                                      "--fewest-boxes", "--json");
     json_object *t = ft_test_json_key(c, "table");
     assert_int_equal(json_object_array_length(t), 3);
     for (size_t i = 0; i < 3; i++)

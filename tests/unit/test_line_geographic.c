@@ -135,7 +135,11 @@ static void test_errors(void **state)
     o.min_scale = 500.0;
     o.max_scale = 2000.0;
     assert_int_equal(ft_line_dim(set, 1, FT_LINE_DIVIDER, &o, &r), FT_E_INVALID);
-    assert_non_null(strstr(ft_last_error(), "latitude 95"));
+    assert_non_null(strstr(ft_last_error(), ", 95) is outside longitude"));
+    c->y[1] = 45.0;
+    c->x[1] = 5120.0; /* metres taken for degrees */
+    assert_int_equal(ft_line_dim(set, 1, FT_LINE_DIVIDER, &o, &r), FT_E_INVALID);
+    assert_non_null(strstr(ft_last_error(), "(5120, 45) is outside longitude"));
     ft_chain_free(c);
 }
 

@@ -63,8 +63,11 @@ static void test_exact_power_law(void **state)
     assert_near(r->range[0], 1.0, 0.0);
     assert_near(r->range[1], 512.0, 0.0);
     assert_int_equal(r->fit.n, 10);
-    assert_string_equal(r->method, "ils");
-    assert_string_equal(r->segmentation, "ils");
+    assert_string_equal(r->method, "regimes");
+    assert_string_equal(r->segmentation, "regimes");
+    assert_int_equal(r->nregimes, 1);
+    assert_int_equal(r->regime, 0);
+    assert_string_equal(r->choice, "the only regime");
     assert_int_equal(r->nwarnings, 0);
     assert_int_equal(r->nsegments, 1);
     assert_int_equal(r->best, 0);
@@ -76,13 +79,9 @@ static void test_exact_power_law(void **state)
     /* the map is applied as D = a + b*slope: divider-style {1, -1} gives 2.5, outside the divider's
      * [1, 2]: the only straight run does not qualify, D is the whole table's fit and says so */
     const ft_dim_map div = FT_DIM_MAP_DIVIDER;
-    assert_int_equal(ft_loglog_segment_ils(t, NULL, &div, &r), FT_OK);
-    assert_near(r->D, 2.5, 1e-12);
-    assert_near(r->r2, 1.0, 1e-12);
-    assert_string_equal(r->segmentation, FT_LOGLOG_WHOLE_RANGE);
-    assert_non_null(ft_dim_result_find_warning(r, NULL));
-    assert_non_null(ft_dim_result_find_warning(r, "outside [1, 2]"));
-    ft_dim_result_free(r);
+    assert_error_names(ft_loglog_segment_ils(t, NULL, &div, &r), FT_E_NUMERIC, "D = 2.5000 lies outside [1, 2]");
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_E_NUMERIC, "rougher than any");
+    assert_null(r);
     ft_loglog_free(t);
 }
 
@@ -450,6 +449,7 @@ static void test_no_straight_run(void **state)
         assert_int_equal(ft_loglog_push(t, pow(10.0, 0.2 * i), pow(10.0, (i % 2 ? 0.2 : -0.2)), 0.0), FT_OK);
     ft_loglog_opts o = FT_LOGLOG_OPTS_DEFAULT;
     o.tol_sigma = 0.0;
+    o.method = FT_LOGLOG_ILS;
     ft_dim_result *r = NULL;
     assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, &o, &BOX, &r), FT_E_NUMERIC, "0.02");
     o.method = FT_LOGLOG_MINIMAX;
@@ -509,17 +509,26 @@ static void test_staircase_gives_trend(void **state)
     ft_dim_result *r = NULL;
 
     /* the rule before min_span and bounds: the longest straight run is a tread, D = 0 exactly */
-    ft_loglog_opts old = FT_LOGLOG_OPTS_DEFAULT;
+    ft_loglog_opts old = FT_LOGLOG_OPTS_DEFAULT, ils = FT_LOGLOG_OPTS_DEFAULT;
     old.min_span = 1.0;
+    old.method = ils.method = FT_LOGLOG_ILS;
     assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &old, &div_unbounded, &r), FT_OK);
     assert_near(r->D, 0.0, 1e-9);
     assert_int_equal(r->fit.n, STAIR_M);
     assert_string_equal(r->segmentation, "ils");
     ft_dim_result_free(r);
 
-    /* default: no tread qualifies (a factor 10^(7 x 0.025) = 1.50 < 4, D = 0 outside [1, 2]); D is the
-     * whole table's least-squares trend, flagged */
+    /* default: the staircase has no curvature, so the whole table is one regime, its trend */
     assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    assert_near(r->D, staircase_ls_D(), 1e-9);
+    assert_int_equal(r->nregimes, 1);
+    assert_int_equal(r->fit.n, n);
+    assert_null(ft_dim_result_find_warning(r, "whole range"));
+    ft_dim_result_free(r);
+
+    /* ILS: no tread qualifies (a factor 10^(7 x 0.025) = 1.50 < 4, D = 0 outside [1, 2]); D is the
+     * whole table's least-squares trend, flagged */
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &ils, &div, &r), FT_OK);
     assert_near(r->D, staircase_ls_D(), 1e-9);
     assert_near(r->D, STAIR_D, 0.03);
     check_whole_range(r, n);
@@ -535,7 +544,7 @@ static void test_staircase_gives_trend(void **state)
     assert_near(r->D, staircase_ls_D(), 1e-9);
     check_whole_range(r, n);
     ft_dim_result_free(r);
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div_unbounded, &r), FT_OK);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &ils, &div_unbounded, &r), FT_OK);
     assert_near(r->D, staircase_ls_D(), 1e-9);
     check_whole_range(r, n);
     ft_dim_result_free(r);
@@ -565,16 +574,17 @@ static void test_out_of_bounds_never_chosen(void **state)
 {
     (void)state;
     const ft_dim_map div = FT_DIM_MAP_DIVIDER, div_unbounded = {1.0, -1.0, 0.0, 0.0};
-    ft_loglog_opts mm = FT_LOGLOG_OPTS_DEFAULT;
+    ft_loglog_opts mm = FT_LOGLOG_OPTS_DEFAULT, ils = FT_LOGLOG_OPTS_DEFAULT;
     mm.method = FT_LOGLOG_MINIMAX;
+    ils.method = FT_LOGLOG_ILS;
     ft_dim_result *r = NULL;
     /* the long run has slope +0.5, D = 0.5: without bounds it wins, with them the short run (D = 1.3) */
     ft_loglog *t = short_in_long_out(0.5);
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div_unbounded, &r), FT_OK);
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &ils, &div_unbounded, &r), FT_OK);
     assert_near(r->D, 0.5, 1e-12);
     ft_dim_result_free(r);
     for (int method = 0; method < 2; method++) {
-        assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, method ? &mm : NULL, &div, &r), FT_OK);
+        assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, method ? &mm : &ils, &div, &r), FT_OK);
         assert_near(r->D, 1.3, 1e-12);
         assert_int_equal(r->fit.first, 0);
         assert_int_equal(r->fit.last, 5);
@@ -585,10 +595,12 @@ static void test_out_of_bounds_never_chosen(void **state)
     }
     ft_loglog_free(t);
 
-    /* D = 2.04 is within the tolerance 0.05 of [1, 2] and the long run wins; D = 2.1 is not */
-    t = short_in_long_out(-1.04);
+    /* D = 2.02 is within the tolerance 0.025 of [1, 2]: the long run wins, reported as D = 2 with a
+     * warning; D = 2.1 is not */
+    t = short_in_long_out(-1.02);
     assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
-    assert_near(r->D, 2.04, 1e-12);
+    assert_near(r->D, 2.0, 0.0);
+    assert_non_null(ft_dim_result_find_warning(r, "D = 2.0200 estimated, 2 reported"));
     ft_dim_result_free(r);
     ft_loglog_free(t);
     t = short_in_long_out(-1.1);
@@ -598,24 +610,17 @@ static void test_out_of_bounds_never_chosen(void **state)
     ft_loglog_opts wide = FT_LOGLOG_OPTS_DEFAULT;
     wide.bounds_tol = 0.2;
     assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &wide, &div, &r), FT_OK);
-    assert_near(r->D, 2.1, 1e-12);
+    assert_near(r->D, 2.0, 0.0);
+    assert_near(r->fit.slope, -1.1, 1e-12);
     ft_dim_result_free(r);
     ft_loglog_free(t);
 
-    /* a power law whose D lies outside the bounds everywhere: the whole range, flagged, says so */
+    /* a power law whose D lies outside the bounds everywhere: an error, by every method and a user range */
     t = power_law(10, 1.0, 0.5); /* divider: D = 1 - 0.5 = 0.5 */
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
-    assert_near(r->D, 0.5, 1e-12);
-    check_whole_range(r, 10);
-    assert_non_null(ft_dim_result_find_warning(r, "outside [1, 2]"));
-    ft_dim_result_free(r);
-    /* a user range is fitted as asked, with the same warning */
-    assert_int_equal(ft_loglog_fit_range(t, 0.0, 0.0, &div, &r), FT_OK);
-    assert_near(r->D, 0.5, 1e-12);
-    assert_string_equal(r->segmentation, "range");
-    assert_non_null(ft_dim_result_find_warning(r, NULL));
-    assert_non_null(ft_dim_result_find_warning(r, "outside [1, 2]"));
-    ft_dim_result_free(r);
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_E_NUMERIC, "outside [1, 2]");
+    assert_error_names(ft_loglog_fit_auto(t, 0.0, 0.0, &ils, &div, &r), FT_E_NUMERIC, "smoother than any");
+    assert_error_names(ft_loglog_fit_range(t, 0.0, 0.0, &div, &r), FT_E_NUMERIC, "D = 0.5000");
+    assert_null(r);
     ft_loglog_free(t);
 }
 
@@ -640,8 +645,9 @@ static void test_short_window_flagged(void **state)
     o.min_span = 3.0;
     assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, &o, &BOX, &r), FT_OK);
     assert_near(r->D, 1.25, 1e-12);
-    assert_string_equal(r->segmentation, "ils");
-    assert_int_equal(r->nwarnings, 0);
+    assert_string_equal(r->segmentation, "regimes");
+    assert_int_equal(r->nwarnings, 1);
+    assert_non_null(ft_dim_result_find_warning(r, "narrow band"));
     ft_dim_result_free(r);
     ft_loglog_free(t);
 }

@@ -126,7 +126,7 @@ static void test_increment_statistics(void **state)
     ft_grid *g = ft_grid_create(nx, ny);
     for (size_t i = 0; i < ny; i++)
         for (size_t j = 0; j < nx; j++)
-            g->z[i * nx + j] = (float)(j % 2) + (float)j * 0.25f;
+            g->z[i * nx + j] = (float)(j % 2) + (float)j * 0.75f;
     ft_variogram_opts v = FT_VARIOGRAM_OPTS_DEFAULT;
     v.min_lag = 1;
     v.max_lag = 2;
@@ -137,8 +137,8 @@ static void test_increment_statistics(void **state)
     assert_string_equal(y->method, "yokoya");
     assert_string_equal(p->method, "pentland");
     /* lag 1 with midpoints at least max_lag / 2 = 1 cell from the edges: along rows j = 1 .. 6, |Δz|
-     * alternating 0.75, 1.25 (3 each per row, 9 rows); along columns rows 1 .. 6, Δz = 0 (54 pairs) */
-    double A = 9.0 * (3 * 1.25 + 3 * 0.75), B = 9.0 * (3 * 1.25 * 1.25 + 3 * 0.75 * 0.75), C = 54.0 + 54.0;
+     * alternating 1.75, 0.25 (3 each per row, 9 rows); along columns rows 1 .. 6, Δz = 0 (54 pairs) */
+    double A = 9.0 * (3 * 1.75 + 3 * 0.25), B = 9.0 * (3 * 1.75 * 1.75 + 3 * 0.25 * 0.25), C = 54.0 + 54.0;
     assert_near(y->table->rows[0].value, A / C, 1e-12, "yokoya lag 1");
     assert_near(p->table->rows[0].value, sqrt((B - A * A / C) / (C - 1.0)), 1e-12, "pentland lag 1");
     assert_near(y->table->rows[0].count, C, 0.0, "pairs");
