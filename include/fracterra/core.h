@@ -431,6 +431,21 @@ typedef struct {
 /** ft_dim_result.segmentation when no straight run qualified and D is the whole window's fit. */
 #define FT_LOGLOG_WHOLE_RANGE "whole range (no straight segment)"
 
+/** Noise plus power law fitted to a structure function (src/surface/nugget_fit.c): the table's
+ *  value^power = c0 + a * scale^(2H) before the correction. The value of each table row is the corrected
+ *  (c0 - removed) statistic when applied = 1. */
+typedef struct {
+    int fitted;      /**< 1: the model was fitted (c0, a, H, power meaningful) */
+    int applied;     /**< 1: a nugget was detected (or given) and removed from the table's values */
+    double power;    /**< 1 (mean squared difference) or 2 (mean |dz|, sd of |dz|) */
+    double c0;       /**< the nugget, in value^power units (>= 0) */
+    double a, H;     /**< the power law's factor and Hurst exponent */
+    double F;        /**< F statistic of c0 against the pure power law (detection) */
+    double sigma_z;  /**< standard deviation of white noise on z that c0 implies (z units; Gaussian noise
+                          and increments), or the one given */
+    double floor;    /**< smallest scale of the fit because of the noise (0: no floor) */
+} ft_noise_model;
+
 /** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */
 typedef struct {
     const char *method;       /**< static name, "range", "ils" or "minimax"; an estimator may point it
@@ -459,6 +474,8 @@ typedef struct {
     size_t nwarnings;
     char units[32];           /**< unit of the scales ("m", "ft", "cell", "1/m" ...); "" = not known.
                                    Set by the estimator or its caller (ft_dim_result_set_units) */
+    ft_noise_model nugget;    /**< the white-noise (nugget) model of the lag estimators; all zero when
+                                   none was fitted (docs/surface-noise.md) */
 } ft_dim_result;
 
 void ft_dim_result_free(ft_dim_result *r);
