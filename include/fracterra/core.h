@@ -444,6 +444,10 @@ typedef struct {
     double sigma_z;  /**< standard deviation of white noise on z that c0 implies (z units; Gaussian noise
                           and increments), or the one given */
     double floor;    /**< smallest scale of the fit because of the noise (0: no floor) */
+    double s;        /**< scattered points: sd of the difference of two points' position errors along each
+                          axis (sqrt 2 sigma_xy); 0 for grids */
+    double sigma_xy; /**< scattered points: sd of the noise on x and y (ground units) fitted or given */
+    int detected;    /**< 1: the noise is significant (F test) or was given */
 } ft_noise_model;
 
 /** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */

@@ -46,6 +46,18 @@ int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
 /** A new table of t with c0 removed from each value^power (rows with nothing left dropped); sets
  *  m->applied and m->floor = max(min_floor, the scale where a scale^(2H) = c0). */
 int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out);
+/** Scattered points with noise on x, y (sd sigma_p) and z: E Δz²(d) = c0 + a E|d + δ|^(2H), δ ~ N(0, s² I₂),
+ *  s = sqrt(2) sigma_p, fitted to the mean squared differences q at the n increasing distances d
+ *  (profiling H and s; c0 = 2 sigma_z² and s held when sigma_z, sigma_xy > 0 are given). m->detected
+ *  says whether the noise terms are significant (F >= 10 on the two extra parameters and the noise >= 2%
+ *  of q at the smallest lag) or given. Needs 6 lags. docs/surface-noise.md. */
+int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
+                            ft_noise_model *m);
+/** E|d + δ|^(2H) for δ ~ N(0, s² I₂) (d^(2H) when s = 0). */
+double ft_nugget_eiv_moment(double H, double d, double s);
+/** The model of ft_nugget_fit_positions at distance d: c0 + a E|d + δ|^(2H). */
+double ft_nugget_model_value(const ft_noise_model *m, double d);
+
 /** The fit of a lag estimator's table with the noise model of no: a nugget detected (or given) is removed
  *  and the fit starts at the floor (whole: least squares from there; otherwise ft_loglog_fit_auto from
  *  there); result->nugget holds the model and "warnings" say what was done. */
@@ -264,9 +276,15 @@ typedef struct {
                                         ft_points_counters_free); set to NULL on failure */
     ft_progress_fn progress;
     void *progress_arg;
+    double noise_sigma_xy; /**< known sd of noise on x and y (ground units, >= 0; 0 = unknown): lags below 3x
+                                it are left out of the fit (docs/surface-noise.md) */
+    int noise_mode;       /**< 0 (default): detect a nugget (white noise) in the statistic and remove it, the
+                               default lags then extended to 32 x the mean spacing (at most a quarter of
+                               the bounding box's shorter side); -1: no noise model */
 } ft_points_dim_opts;
 #define FT_POINTS_DIM_OPTS_DEFAULT                                                                           \
-    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL}
+    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, \
+     0.0, 0}
 
 const char *ft_points_method_name(ft_points_method m);
 /** "yokoya" or "pentland" (case-insensitive); FT_E_INVALID naming the text otherwise. */

@@ -264,6 +264,7 @@ int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structu
         ft_dim_result *r = *out;
         r->nugget = m;
         r->nugget.applied = detected;
+        r->nugget.detected = detected;
         if (detected && given)
             rc = ft_dim_result_warn(r, "noise model: the given noise sd %g on z (nugget %g) was removed from the "
                                     "statistic; the fit starts at scale %g", no->sigma_z, m.c0, lo);
