@@ -36,6 +36,7 @@
 #define DETECT_F 10.0    /* F of the nugget against the pure power law */
 #define DETECT_SHARE 0.02 /* c0 / q at the smallest lag */
 #define FLOOR_RATIO 1.0  /* the fit starts where a r^(2H) >= FLOOR_RATIO c0 */
+#define NUGGET_SPAN 16.0 /* the nugget is fitted over the lags up to 16 x the smallest */
 #define XY_FLOOR 3.0     /* with position noise sd σ_p given, lags below XY_FLOOR σ_p are left out */
 
 /* σ² of white noise on z per unit of c0 (the factor k in c0 = k σ²). */
@@ -225,10 +226,15 @@ int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structu
                         no->sigma_xy);
     if (no->mode < 0 || (t->n < 4 && !given) || t->n < 3)
         return fit_from(t, 0.0, whole, fit, map, out);
-    int rc = ft_nugget_fit(t, stat, no->sigma_z, &m);
+    /* The nugget shows at the small lags; the large ones carry the realization's own curvature, which
+     * the model would trade against c0: the fit uses the rows within NUGGET_SPAN x the smallest scale. */
+    ft_loglog head = *t;
+    while (head.n > 6 && head.rows[head.n - 1].scale > NUGGET_SPAN * t->rows[0].scale)
+        head.n--;
+    int rc = ft_nugget_fit(&head, stat, no->sigma_z, &m);
     if (rc != FT_OK) /* no increasing power law: leave the table to the ordinary fit and its checks */
         return fit_from(t, 0.0, whole, fit, map, out);
-    int detected = given || ft_nugget_detected(&m, t);
+    int detected = given || ft_nugget_detected(&m, &head);
     double min_floor = XY_FLOOR * no->sigma_xy;
     if (!detected && min_floor <= 0.0) {
         rc = fit_from(t, 0.0, whole, fit, map, out);
