@@ -146,7 +146,7 @@ static double sd_of(const double *v, size_t n)
 }
 
 /* The estimate of one point set. NaN (message printed) on failure. */
-static double estimate(const args *a, ft_points *p, double noise_z, double D, int s)
+static double estimate(const args *a, ft_points *p, double noise_xy, double noise_z, double D, int s)
 {
     ft_points_dim_opts po = FT_POINTS_DIM_OPTS_DEFAULT;
     po.method = a->method;
@@ -154,6 +154,7 @@ static double estimate(const args *a, ft_points *p, double noise_z, double D, in
     po.eps = a->eps;
     po.fit_auto = a->fit_auto;
     po.noise_sigma = a->noise_model ? noise_z : 0.0;
+    po.noise_sigma_xy = a->noise_model ? noise_xy : 0.0;
     po.noise_mode = a->no_nugget ? -1 : 0;
     if (a->min_lag > 0.0 || a->max_lag > 0.0) {
         double x0, y0, x1, y1;
@@ -203,7 +204,7 @@ static double one_fracterra(const args *a, ft_synth_method m, double D, int s, d
     if (rc == FT_OK)
         rc = ft_surface_points_from_grid(g, &go, &p);
     if (rc == FT_OK)
-        est = estimate(a, p, go.noise_z, D, s);
+        est = estimate(a, p, go.noise_xy, go.noise_z, D, s);
     else
         fprintf(stderr, "fracterra_accuracy: D %.2f surface %d: %s\n", D, s, ft_last_error());
     ft_points_free(p);
@@ -254,7 +255,7 @@ static double one_stein(const args *a, const fbm_embedding *e, double D, int s, 
         if (ft_points_push(p, x, y, zz) != FT_OK)
             goto done;
     }
-    est = estimate(a, p, noise, D, s);
+    est = estimate(a, p, noise_xy, noise, D, s);
 done:
     free(z);
     free(idx);
