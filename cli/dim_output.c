@@ -320,7 +320,7 @@ static json_object *json_noise(const ft_noise_model *m)
     json_object_object_add(o, "detected", json_object_new_boolean(m->detected || m->applied));
     json_object_object_add(o, "removed", json_object_new_boolean(m->applied));
     json_object_object_add(o, "sigma_z", cli_json_double(m->sigma_z));
-    if (m->s > 0.0 || m->power == 1.0)
+    if (m->s > 0.0 || m->sigma_xy > 0.0)
         json_object_object_add(o, "sigma_xy", cli_json_double(m->sigma_xy));
     json_object_object_add(o, "nugget", cli_json_double(m->c0));
     json_object_object_add(o, "H", cli_json_double(m->H));
