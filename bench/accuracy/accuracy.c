@@ -5,9 +5,14 @@
  * the paper's Table 1; optionally with independent Gaussian noise on x, y and z at a signal-to-noise ratio
  * SNR = 20 log10(σ_S / σ_N) dB, σ_S the largest of the standard deviations of x, y and z.
  *
- *   fracterra_accuracy [--surfaces N] [--size N] [--fraction F] [--synth exact,sra,fft] [--dims LIST]
- *                      [--snr LIST] [--jitter] [--method yokoya|pentland] [--min-lag K] [--max-lag K]
- *                      [--nlags N] [--eps E] [--fit-auto] [--noise-model] [--zsd S] [--seed N]
+ *   fracterra_accuracy [--surfaces N] [--size N] [--fraction F] [--synth stein,exact,sra,fft] [--dims LIST]
+ *                      [--snr LIST] [--z-only] [--jitter] [--method yokoya|pentland] [--min-lag K] [--max-lag K]
+ *                      [--nlags N] [--eps E] [--fit-auto] [--noise-model] [--no-nugget] [--zsd S] [--seed N]
+ *
+ * --synth stein (the default) is Stein's exact circulant embedding written here (fbm_circulant.c),
+ * independent of fracterra's synthesis; --z-only puts the noise on z alone; --noise-model gives the
+ * estimator the true σ (x, y and z); --no-nugget turns its noise model off. A row beats the paper when
+ * |mean error| minus one standard error of the mean is below the paper's.
  *
  * Lags are given in multiples of the mean point spacing (the library's default unit); surfaces are
  * generated with standard deviation --zsd in cell units (default: size / sqrt(12), the standard deviation
@@ -125,6 +130,11 @@ static int parse_args(int argc, char **argv, args *a)
         }
         i += takes;
     }
+    for (int k = 0; a->jitter && k < a->nsynth; k++)
+        if (a->synth[k] == SYNTH_STEIN) {
+            fprintf(stderr, "fracterra_accuracy: --jitter needs a fracterra synthesizer (--synth exact,sra,fft)\n");
+            return 2;
+        }
     if (!(a->zsd > 0.0))
         a->zsd = (double)a->size / sqrt(12.0);
     if (a->surfaces < 1 || a->size < 16 || !(a->fraction > 0.0 && a->fraction <= 1.0) || a->ndims < 1) {
