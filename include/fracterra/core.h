@@ -448,6 +448,8 @@ typedef struct {
                           axis (sqrt 2 sigma_xy); 0 for grids */
     double sigma_xy; /**< scattered points: sd of the noise on x and y (ground units) fitted or given */
     int detected;    /**< 1: the noise is significant (F test) or was given */
+    int positions;   /**< 1: the scattered-points model (c0, a, H, s fitted to the mean squared difference
+                          while the table holds the method's statistic, which scales as its square root) */
 } ft_noise_model;
 
 /** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */

@@ -176,6 +176,7 @@ int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double s
     if (!isfinite(rss1))
         return ft_error(FT_E_NUMERIC, "position-noise fit: no increasing power law fits the %zu lags", n);
     m->fitted = 1;
+    m->positions = 1;
     m->c0 = c0;
     m->a = a;
     m->H = H1;
