@@ -120,8 +120,10 @@ static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, f
     return rc;
 }
 
-/* The table with the noise removed: each kept lag's raw statistic times sqrt(power law / model) (for
- * Gaussian differences both statistics scale as the square root of the variance), and the floor. */
+/* The table with the noise removed: each kept lag's observed mean Δz² less the modelled noise (model minus
+ * power law; exact in expectation, where a ratio on |Δz| would carry the Jensen gap of the mixture over true
+ * distances), as the method's statistic of a Gaussian difference of that variance: E|X| = sqrt(2/π v),
+ * sd|X| = sqrt((1 - 2/π) v); and the floor. */
 static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m,
                            ft_loglog **out)
 {
@@ -129,18 +131,19 @@ static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts
     if (t == NULL)
         return FT_E_NOMEM;
     int rc = FT_OK;
-    double floor = 0.0;
+    double floor = 0.0, gauss = o->method == FT_POINTS_YOKOYA ? 2.0 / M_PI : 1.0 - 2.0 / M_PI;
     for (size_t k = 0; k < c->n && rc == FT_OK; k++) {
         const ft_points_lag *l = &c->lags[k];
         double v = l->C > 0.0 ? raw_value(l, o->method) : 0.0;
         if (l->status != FT_LAG_KEPT && !(l->status == FT_LAG_NOISE && v > 0.0))
             continue;
         double signal = m->a * pow(l->dist, 2.0 * m->H), total = ft_nugget_model_value(m, l->dist);
-        if (!(v > 0.0) || !(signal > 0.0) || !(total > 0.0))
+        double clean = l->B / l->C - (total - signal); /* the observed mean Δz² less the modelled noise */
+        if (!(v > 0.0) || !(signal > 0.0) || !(total > 0.0) || !(clean > 0.0))
             continue;
         if (signal < FLOOR_RATIO * (total - signal))
             floor = l->dist * (1.0 + 1e-9);
-        rc = ft_loglog_push(t, l->dist, v * sqrt(signal / total), l->C);
+        rc = ft_loglog_push(t, l->dist, sqrt(gauss * clean), l->C);
     }
     if (rc == FT_OK)
         rc = ft_loglog_sort(t);
