@@ -279,8 +279,9 @@ const cli_command cli_cmd_dim_points = {
     "fractal dimension of scattered elevations (Yokoya, Pentland)",
     "fracterra dim points POINTS [--method yokoya|pentland|all] [--eps E] [--min-pairs N]\n"
     "                            [--lags L1,L2,...|--min-scale S --max-scale S --scales N] [--exact|--sample P]\n"
-    "                            [--noise-sigma S] [--seed N] [--x COL --y COL --z COL] [--layer NAME]\n"
-    "                            [--zfield NAME] [--segments] [--plot FILE] [--json]",
+    "                            [--noise-sigma [XY,]Z] [--noise-model auto|off] [--seed N]\n"
+    "                            [--x COL --y COL --z COL] [--layer NAME] [--zfield NAME] [--segments]\n"
+    "                            [--plot FILE] [--json]",
     "Measures the fractal dimension D of irregularly sampled elevations (CSV with a header, XYZ text, or\n"
     "an OGR point layer), after Arakawa & Krotkov section 2.4: for every lag L and every pair of points\n"
     "whose separation d satisfies |d - L| <= eps, the counters A = sum |dz|, B = sum dz^2 and C = pairs;\n"

@@ -193,7 +193,8 @@ const cli_command cli_cmd_dim_surface = {
     "dim surface",
     "fractal dimension of an elevation grid",
     "fracterra dim surface DEM [--method variogram|yokoya|pentland|spectrum|prism|cubes|all] [--pairs N]\n"
-    "                            [--seed N] [--band N] [--min-scale S] [--max-scale S] [--scales N]\n"
+    "                            [--seed N] [--band N] [--noise-sigma Z] [--noise-model auto|off]\n"
+    "                            [--min-scale S] [--max-scale S] [--scales N]\n"
     "                            [--segments] [--plot FILE] [--json]",
     "Measures the fractal dimension D (2..3) of a DEM (any raster GDAL reads). The quantity is measured at\n"
     "scales in a geometric series (powers of two for prism and cubes) and D is read from the straightest\n"
