@@ -21,6 +21,7 @@
 
 #define BIG_SIDE 4472   /* 5% of 4472² = 999,949 points */
 #define SMALL_SIDE 632  /* 5% of 632² = 19,971 points */
+#define NOISE_SIDE 1414 /* 5% of 1414² = 99,970 points */
 #define POINTS_DIM 2.3
 #define BENCH_SEED UINT64_C(20240501)
 
@@ -100,7 +101,49 @@ static int run_exact(ft_bench_case *c)
     return estimate(1);
 }
 
+/* The noise model's cost (issue 21): the default path on 100,000 points, with and without it. */
+static int noise_prepare(ft_bench_case *c)
+{
+    int rc = make_points(NOISE_SIDE);
+    if (rc == FT_OK)
+        c->work = (double)held->n;
+    return rc;
+}
+
+static int noise_setup(ft_bench_case *c)
+{
+    c->work = 0.05 * NOISE_SIDE * NOISE_SIDE;
+    c->peer_none = "none: the same without the noise model is surface.points.nonoise.100k";
+    return FT_OK;
+}
+
+static int run_default(int noise_mode)
+{
+    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
+    o.noise_mode = noise_mode;
+    ft_dim_result *r = NULL;
+    int rc = ft_surface_dim_points(held, &o, &r);
+    ft_dim_result_free(r);
+    return rc;
+}
+
+static int run_noise(ft_bench_case *c)
+{
+    (void)c;
+    return run_default(0);
+}
+
+static int run_nonoise(ft_bench_case *c)
+{
+    (void)c;
+    return run_default(-1);
+}
+
 static const ft_bench_workload points_workloads[] = {
+    {"surface.points.noise.100k", "dim points defaults (noise model on) on 100,000 irregular points, one thread",
+     FT_BENCH_VERTICES, noise_setup, noise_prepare, run_noise, NULL},
+    {"surface.points.nonoise.100k", "the same with --noise-model off", FT_BENCH_VERTICES, noise_setup,
+     noise_prepare, run_nonoise, NULL},
     {"surface.points.yokoya.1m", "Yokoya D of 1,000,000 irregular points, lags up to 5% of the extent, one thread",
      FT_BENCH_VERTICES, big_setup, big_prepare, run_grid, NULL},
     {"surface.points.exact.20k", "the same on 20,000 points enumerating all pairs (--exact, O(N^2)), one thread",

@@ -117,6 +117,18 @@ RUN_METHOD(spectrum, FT_SURFACE_SPECTRUM)
 RUN_METHOD(prism, FT_SURFACE_PRISM)
 RUN_METHOD(cubes, FT_SURFACE_CUBES)
 
+/* The variogram without the noise model (issue 21: its cost against surface.variogram.4096). */
+static int run_variogram_nonoise(ft_bench_case *c)
+{
+    (void)c;
+    ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+    o.noise.mode = -1;
+    ft_dim_result *r = NULL;
+    int rc = ft_surface_dim(held, FT_SURFACE_VARIOGRAM, &o, &r);
+    ft_dim_result_free(r);
+    return rc;
+}
+
 /* ---- Gwyddion peers ---- */
 
 #ifdef FT_HAVE_GWYDDION
@@ -274,6 +286,8 @@ static const ft_bench_workload surface_workloads[] = {
     METHOD_WL(spectrum, 4096, "power-spectrum D"),
     METHOD_WL(prism, 4096, "triangular prism D"),
     METHOD_WL(cubes, 4096, "cube-counting D"),
+    {"surface.variogram.nonoise.4096", "exhaustive variogram D of a 4096x4096 fft surface (D = 2.5), "
+     "--noise-model off", FT_BENCH_CELLS, setup_variogram_4096, prepare_4096, run_variogram_nonoise, NULL},
     {"surface.spectrum.holes.4096", "power-spectrum D of a 4096x4096 fft surface (D = 2.5) with 10% of its cells in "
      "nodata blobs", FT_BENCH_CELLS, setup_holes, prepare_holes_4096, run_spectrum, NULL},
     {"surface.map.4096.t1", "dim map of a 4096x4096 surface, variogram, 64-cell windows, step 16, 1 thread",

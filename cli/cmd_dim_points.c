@@ -34,6 +34,7 @@ enum {
     OPT_EXACT,
     OPT_SAMPLE,
     OPT_NOISE,
+    OPT_NOISE_MODEL,
     OPT_SEED,
     OPT_X,
     OPT_Y,
@@ -107,7 +108,8 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         a->est.sample = (size_t)v;
         return CLI_CONTINUE;
     }
-    case OPT_NOISE: return cli_parse_double(cmd, "--noise-sigma", arg, 0.0, INFINITY, CLI_CLOSED, &a->est.noise_sigma);
+    case OPT_NOISE: return cli_parse_noise_sigma(cmd, arg, 1, &a->est.noise_sigma_xy, &a->est.noise_sigma);
+    case OPT_NOISE_MODEL: return cli_parse_noise_model(cmd, arg, &a->est.noise_mode);
     case OPT_SEED: {
         char *end = NULL;
         unsigned long long v = strtoull(arg, &end, 10);
@@ -212,6 +214,8 @@ static json_object *extra_members(const char *path, const points_args *a)
         json_object_object_add(o, "seed", json_object_new_int64((int64_t)a->est.seed));
     if (a->est.noise_sigma > 0.0)
         json_object_object_add(o, "noise_sigma", cli_json_double(a->est.noise_sigma));
+    if (a->est.noise_sigma_xy > 0.0)
+        json_object_object_add(o, "noise_sigma_xy", cli_json_double(a->est.noise_sigma_xy));
     return o;
 }
 
@@ -222,6 +226,7 @@ static int run_dim_points(const cli_command *cmd, int argc, char **argv)
         {"min-pairs", required_argument, NULL, OPT_MIN_PAIRS}, {"lags", required_argument, NULL, OPT_LAGS},
         {"exact", no_argument, NULL, OPT_EXACT},       {"sample", required_argument, NULL, OPT_SAMPLE},
         {"noise-sigma", required_argument, NULL, OPT_NOISE}, {"seed", required_argument, NULL, OPT_SEED},
+        {"noise-model", required_argument, NULL, OPT_NOISE_MODEL},
         {"x", required_argument, NULL, OPT_X},         {"y", required_argument, NULL, OPT_Y},
         {"z", required_argument, NULL, OPT_Z},         {"layer", required_argument, NULL, OPT_LAYER},
         {"zfield", required_argument, NULL, OPT_ZFIELD}, CLI_DIM_LONGOPTS,
@@ -286,8 +291,9 @@ const cli_command cli_cmd_dim_points = {
     "fractal dimension of scattered elevations (Yokoya, Pentland)",
     "fracterra dim points POINTS [--method yokoya|pentland|all] [--eps E] [--min-pairs N]\n"
     "                            [--lags L1,L2,...|--min-scale S --max-scale S --scales N] [--exact|--sample P]\n"
-    "                            [--noise-sigma S] [--seed N] [--x COL --y COL --z COL] [--layer NAME]\n"
-    "                            [--zfield NAME] [--segments] [--plot FILE] [--json]",
+    "                            [--noise-sigma [XY,]Z] [--noise-model auto|off] [--seed N]\n"
+    "                            [--x COL --y COL --z COL] [--layer NAME] [--zfield NAME] [--segments]\n"
+    "                            [--plot FILE] [--json]",
     "Measures the fractal dimension D of irregularly sampled elevations (CSV with a header, XYZ text, or\n"
     "an OGR point layer), after Arakawa & Krotkov section 2.4: for every lag L and every pair of points\n"
     "whose separation d satisfies |d - L| <= eps, the counters A = sum |dz|, B = sum dz^2 and C = pairs;\n"
@@ -307,7 +313,11 @@ const cli_command cli_cmd_dim_points = {
     "                       grid search, which visits only pairs within the largest lag\n"
     "      --sample P       estimate from P random pairs within the largest lag (sampling stderr reported)\n"
     "      --seed N         seed of --sample (default 1)\n"
-    "      --noise-sigma S  standard deviation of Gaussian noise on z: removes 2 S^2 from E dz^2\n"
+    "      --noise-sigma [XY,]Z  known standard deviations of Gaussian noise on x and y (XY, map units)\n"
+    "                       and on z (Z): 2 Z^2 is removed from E dz^2 and lags below 3 XY are left out\n"
+    "      --noise-model M  auto (default): detect noise on x, y and z (the plot flattening toward small\n"
+    "                       lags), remove it (errors-in-variables fit) and fit past it, extending the\n"
+    "                       default lags to 32 spacings; off: none (docs/surface-noise.md)\n"
     "      --x/--y/--z COL  CSV column names (default x, y, z)\n"
     "      --layer NAME     OGR layer (default: the first); --zfield NAME: z from this field, not the geometry\n"
     CLI_DIM_OPTIONS_HELP
@@ -316,8 +326,8 @@ const cli_command cli_cmd_dim_points = {
     "4 per octave.\n\n"
     "JSON: {\"file\", \"points\", \"spacing\", \"eps\", \"min_pairs\", \"pairs\", \"lags\", \"lags_kept\",\n"
     "\"dropped_lags\": [{\"lag\", \"pairs\", \"reason\", \"method\"}], \"method\", \"D\", \"r2\", \"stderr\",\n"
-    "\"range\", "
-    "\"table\": [...]} (\"sample_stderr\" and \"seed\" with --sample); several methods: \"results\": [...].\n\n"
+    "\"range\", \"warnings\", \"noise\": {\"detected\", \"removed\", \"sigma_z\", \"sigma_xy\", \"nugget\", \"H\", \"F\",\n"
+    "\"floor\"}, \"table\": [...]} (\"sample_stderr\" and \"seed\" with --sample); several methods: \"results\": [...].\n\n"
     "Examples:\n"
     "  fracterra dim points scan.xyz --plot scan-dim.svg\n"
     "  fracterra dim points spots.csv --z elev --method all --json | jq '.results[].D'\n"

@@ -19,6 +19,7 @@ typedef struct {
     int band;
     long pairs; /* -1: automatic */
     uint64_t seed;
+    ft_noise_opts noise;
 } surface_args;
 
 /* ---- shared with dim map (surface_cli.h) ---- */
@@ -94,6 +95,11 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 'b': return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->band);
     case 'p': return surface_parse_pairs(cmd, arg, &a->pairs);
     case 's': return terrain_parse_seed(cmd, arg, &a->seed);
+    case 'N': {
+        double xy;
+        return cli_parse_noise_sigma(cmd, arg, 0, &xy, &a->noise.sigma_z);
+    }
+    case 'M': return cli_parse_noise_model(cmd, arg, &a->noise.mode);
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
@@ -147,14 +153,15 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     static const struct option longopts[] = {
         {"method", required_argument, NULL, 'm'}, {"band", required_argument, NULL, 'b'},
         {"pairs", required_argument, NULL, 'p'},  {"seed", required_argument, NULL, 's'},
+        {"noise-sigma", required_argument, NULL, 'N'}, {"noise-model", required_argument, NULL, 'M'},
         CLI_DIM_LONGOPTS,                          CLI_OPT_HELP,
         CLI_OPT_END,
     };
     static const char *const names[] = {"DEM"};
-    surface_args a = {CLI_DIM_OPTS_DEFAULT, "variogram", 1, -1, 1};
+    surface_args a = {CLI_DIM_OPTS_DEFAULT, "variogram", 1, -1, 1, FT_NOISE_OPTS_DEFAULT};
     ft_surface_method ms[FT_SURFACE_NMETHODS];
     int first = 0, nm = 0;
-    int rc = cli_parse_options(cmd, argc, argv, longopts, "m:b:p:s:" CLI_DIM_SHORTOPTS, on_option, &a, &first);
+    int rc = cli_parse_options(cmd, argc, argv, longopts, "m:b:p:s:N:M:" CLI_DIM_SHORTOPTS, on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 1);
     if (rc == CLI_CONTINUE)
@@ -180,6 +187,7 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     o.fit.regime = a.dim.regime;
     o.pairs = surface_pairs(a.pairs, g);
     o.seed = a.seed;
+    o.noise = a.noise;
     o.progress = cli_progress();
     cli_dim_report *rep = cli_dim_report_create(path);
     rc = rep && cli_dim_report_group(rep, 0, NULL, path, NULL) == FT_OK
@@ -196,7 +204,8 @@ const cli_command cli_cmd_dim_surface = {
     "dim surface",
     "fractal dimension of an elevation grid",
     "fracterra dim surface DEM [--method variogram|yokoya|pentland|spectrum|prism|cubes|all] [--pairs N]\n"
-    "                            [--seed N] [--band N] [--min-scale S] [--max-scale S] [--scales N]\n"
+    "                            [--seed N] [--band N] [--noise-sigma Z] [--noise-model auto|off]\n"
+    "                            [--min-scale S] [--max-scale S] [--scales N]\n"
     "                            [--segments] [--plot FILE] [--json]",
     "Measures the fractal dimension D (2..3) of a DEM (any raster GDAL reads). The quantity is measured at\n"
     "scales in a geometric series (powers of two for prism and cubes) and D is read from the widest\n"
@@ -220,12 +229,16 @@ const cli_command cli_cmd_dim_surface = {
     "                       up to 1024x1024 cells, 32000 points above\n"
     "  -s, --seed N         seed of the random points (default 1)\n"
     "  -b, --band N         band of the DEM (default 1)\n"
+    "      --noise-sigma Z  variogram, yokoya, pentland: known standard deviation of white noise on z;\n"
+    "                       its nugget is removed\n"
+    "      --noise-model M  auto (default): detect white noise (the plot flattening toward small lags),\n"
+    "                       remove its nugget and fit past it, said in \"warnings\"; off: none\n"
     CLI_DIM_OPTIONS_HELP
     "  -h, --help           print this help\n"
     "Scales are lags, square or cube sides, or wavelengths, in map units. With both --min-scale and\n"
     "--max-scale, D is fitted over every scale between them.\n\n"
     "JSON: {\"file\", \"band\", \"size\", \"cells_valid\", \"pairs\", \"method\", \"D\", \"r2\", \"stderr\",\n"
-    "\"range\": [lo, hi], \"segmentation\", \"max_err\", \"table\": [{\"scale\", \"value\", \"count\", \"slope\",\n"
+    "\"range\": [lo, hi], \"segmentation\", \"max_err\", \"warnings\", \"noise\" (lag methods), \"table\": [{\"scale\", \"value\", \"count\", \"slope\",\n"
     "\"used\"}]} (and \"segments\" with --segments); several methods: \"results\": [...].\n\n"
     "Examples:\n"
     "  fracterra dim surface tests/data/dem_volcano_maunga_whau_10m.tif --plot volcano.svg\n"

@@ -348,6 +348,23 @@ static json_object *json_breaks(const ft_dim_result *r)
     return a;
 }
 
+/* The noise model of a lag estimator (docs/surface-noise.md): detected (or given) and removed or not, the
+ * noise sds it implies, the fitted structure function and the floor of the fit. */
+static json_object *json_noise(const ft_noise_model *m)
+{
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "detected", json_object_new_boolean(m->detected || m->applied));
+    json_object_object_add(o, "removed", json_object_new_boolean(m->applied));
+    json_object_object_add(o, "sigma_z", cli_json_double(m->sigma_z));
+    if (m->s > 0.0 || m->sigma_xy > 0.0)
+        json_object_object_add(o, "sigma_xy", cli_json_double(m->sigma_xy));
+    json_object_object_add(o, "nugget", cli_json_double(m->c0));
+    json_object_object_add(o, "H", cli_json_double(m->H));
+    json_object_object_add(o, "F", cli_json_double(m->F));
+    json_object_object_add(o, "floor", cli_json_double(m->floor));
+    return o;
+}
+
 /* The members of one result (DESIGN.md "JSON results") added to o. */
 static void add_result(json_object *o, const dim_item *it, int segments)
 {
@@ -370,6 +387,8 @@ static void add_result(json_object *o, const dim_item *it, int segments)
     for (size_t i = 0; i < r->nwarnings; i++)
         json_object_array_add(w, json_object_new_string(r->warnings[i]));
     json_object_object_add(o, "warnings", w);
+    if (r->nugget.fitted)
+        json_object_object_add(o, "noise", json_noise(&r->nugget));
     json_object_object_add(o, "table", json_table(r->table));
     if (segments)
         json_object_object_add(o, "segments", json_segments(r));
@@ -450,6 +469,9 @@ static void print_summary(const dim_item *it)
         if (i + 1 < r->nregimes && r->breaks)
             printf("%-10s break at %.6g%s%s\n", "", r->breaks[i], r->units[0] ? " " : "", r->units);
     }
+    if (r->nugget.applied)
+        printf("%-10s noise removed: sd %.4g on z%s; fit from %.6g\n", "", r->nugget.sigma_z,
+               r->nugget.s > 0.0 ? " (and x, y: see --json)" : "", r->nugget.floor);
     if (it->plot)
         printf("%-10s plot %s\n", "", it->plot);
 }
@@ -545,4 +567,36 @@ int cli_dim_report_print(const cli_command *cmd, cli_dim_report *rep, const cli_
     if (rc != CLI_OK)
         remove_plots(rep);
     return rc;
+}
+
+int cli_parse_noise_sigma(const cli_command *cmd, const char *arg, int allow_xy, double *xy, double *z)
+{
+    char *end = NULL;
+    double a = strtod(arg, &end), b = NAN;
+    int two = end != arg && *end == ',';
+    if (two) {
+        const char *s = end + 1;
+        b = strtod(s, &end);
+        if (end == s)
+            two = -1;
+    }
+    int ok = end != arg && *end == '\0' && two >= 0 && (allow_xy || !two) && a >= 0.0 && isfinite(a) &&
+             (!two || (b >= 0.0 && isfinite(b)));
+    if (!ok)
+        return cli_usage_error(cmd, "--noise-sigma must be %s (standard deviations >= 0), got '%s'",
+                               allow_xy ? "Z or XY,Z" : "Z", arg);
+    *xy = two ? a : 0.0;
+    *z = two ? b : a;
+    return CLI_CONTINUE;
+}
+
+int cli_parse_noise_model(const cli_command *cmd, const char *arg, int *mode)
+{
+    if (strcmp(arg, "auto") == 0)
+        *mode = 0;
+    else if (strcmp(arg, "off") == 0)
+        *mode = -1;
+    else
+        return cli_usage_error(cmd, "--noise-model must be auto or off, got '%s'", arg);
+    return CLI_CONTINUE;
 }

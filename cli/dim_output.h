@@ -58,6 +58,12 @@ enum {
     "  -j, --json           print one JSON object: method, D, r2, stderr, range, units, regimes, breaks,\n"     \
     "                       warnings, table (and segments)\n"
 
+/** --noise-sigma Z (or XY,Z when allow_xy): standard deviations of the noise on z and on x, y (xy = 0 when
+ *  only Z is given). CLI_CONTINUE or CLI_USAGE naming the text. */
+int cli_parse_noise_sigma(const cli_command *cmd, const char *arg, int allow_xy, double *xy, double *z);
+/** --noise-model auto|off into 0 / -1. */
+int cli_parse_noise_model(const cli_command *cmd, const char *arg, int *mode);
+
 /* Returned by cli_dim_option for an option that is not one of the shared ones. */
 #define CLI_DIM_NOT_SHARED (-100)
 

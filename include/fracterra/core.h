@@ -460,6 +460,27 @@ typedef struct {
 /** ft_dim_result.segmentation when no straight run qualified and D is the whole window's fit. */
 #define FT_LOGLOG_WHOLE_RANGE "whole range (no straight segment)"
 
+/** Noise plus power law fitted to a structure function (src/surface/nugget_fit.c): the table's
+ *  value^power = c0 + a * scale^(2H) before the correction. The value of each table row is the corrected
+ *  (c0 - removed) statistic when applied = 1. */
+typedef struct {
+    int fitted;      /**< 1: the model was fitted (c0, a, H, power meaningful) */
+    int applied;     /**< 1: a nugget was detected (or given) and removed from the table's values */
+    double power;    /**< 1 (mean squared difference) or 2 (mean |dz|, sd of |dz|) */
+    double c0;       /**< the nugget, in value^power units (>= 0) */
+    double a, H;     /**< the power law's factor and Hurst exponent */
+    double F;        /**< F statistic of c0 against the pure power law (detection) */
+    double sigma_z;  /**< standard deviation of white noise on z that c0 implies (z units; Gaussian noise
+                          and increments), or the one given */
+    double floor;    /**< smallest scale of the fit because of the noise (0: no floor) */
+    double s;        /**< scattered points: sd of the difference of two points' position errors along each
+                          axis (sqrt 2 sigma_xy); 0 for grids */
+    double sigma_xy; /**< scattered points: sd of the noise on x and y (ground units) fitted or given */
+    int detected;    /**< 1: the noise is significant (F test) or was given */
+    int positions;   /**< 1: the scattered-points model (c0, a, H, s fitted to the mean squared difference
+                          while the table holds the method's statistic, which scales as its square root) */
+} ft_noise_model;
+
 /** A dimension with everything needed to judge it and to print an estimator's JSON (docs/loglog.md). */
 typedef struct {
     const char *method;       /**< static name, "range", "ils" or "minimax"; an estimator may point it
@@ -496,6 +517,8 @@ typedef struct {
                                    of their least-squares lines) */
     const char *choice;       /**< static: why these rows give D ("widest regime", "regime asked for",
                                    "range asked for", "longest ILS run", ...) */
+    ft_noise_model nugget;    /**< the white-noise (nugget) model of the lag estimators; all zero when
+                                   none was fitted (docs/surface-noise.md) */
 } ft_dim_result;
 
 void ft_dim_result_free(ft_dim_result *r);

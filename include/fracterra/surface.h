@@ -15,6 +15,55 @@
 extern "C" {
 #endif
 
+/* ------------------------------------------------------------------------------------------------
+ * Noise on the elevations (the nugget) for the lag estimators: docs/surface-noise.md.
+ * --------------------------------------------------------------------------------------------- */
+
+/** The structure function a lag estimator's table holds. */
+typedef enum {
+    FT_STRUCT_MEAN_SQ = 0,  /**< mean Δz² (variogram): nugget 2σ² */
+    FT_STRUCT_MEAN_ABS = 1, /**< mean |Δz| (Yokoya): its square has nugget 4σ²/π */
+    FT_STRUCT_SD_ABS = 2    /**< sd of |Δz| (Pentland): its square has nugget 2σ²(1 - 2/π) */
+} ft_structure_stat;
+
+/** What the lag estimators know or assume about white noise in the data. */
+typedef struct {
+    int mode;        /**< 0 (default): detect a nugget and remove it; -1: no noise model */
+    double sigma_z;  /**< known sd of white noise on z (z units); 0 = unknown (estimated when detected) */
+    double sigma_xy; /**< known sd of noise on x and y (ground units); 0 = unknown. Lags below 3 sigma_xy are
+                          left out of the fit */
+} ft_noise_opts;
+#define FT_NOISE_OPTS_DEFAULT {0, 0.0, 0.0}
+
+/** Fits value^power = c0 + a scale^(2H) to every row of t (power 1 for FT_STRUCT_MEAN_SQ, 2 otherwise),
+ *  weights 1/value^(2 power), profiling H; with sigma_z > 0, c0 is held at the nugget that sigma_z gives.
+ *  m receives c0, a, H, the F statistic of c0 (automatic case) and the sigma_z c0 implies. Needs 4 rows
+ *  (3 with sigma_z); FT_E_NUMERIC when no increasing power law fits. */
+int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m);
+/** 1 if the fitted model m of t holds a significant nugget: F >= 10 and c0 >= 2% of the smallest lag's
+ *  value^power. */
+int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
+/** A new table of t with c0 removed from each value^power (rows with nothing left dropped); sets
+ *  m->applied and m->floor = max(min_floor, the scale where a scale^(2H) = c0). */
+int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out);
+/** Scattered points with noise on x, y (sd sigma_p) and z: E Δz²(d) = c0 + a E|d + δ|^(2H), δ ~ N(0, s² I₂),
+ *  s = sqrt(2) sigma_p, fitted to the mean squared differences q at the n increasing distances d
+ *  (profiling H and s; c0 = 2 sigma_z² and s held when sigma_z, sigma_xy > 0 are given). m->detected
+ *  says whether the noise terms are significant (F >= 10 on the two extra parameters and the noise >= 2%
+ *  of q at the smallest lag) or given. Needs 6 lags. docs/surface-noise.md. */
+int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
+                            ft_noise_model *m);
+/** E|d + δ|^(2H) for δ ~ N(0, s² I₂) (d^(2H) when s = 0). */
+double ft_nugget_eiv_moment(double H, double d, double s);
+/** The model of ft_nugget_fit_positions at distance d: c0 + a E|d + δ|^(2H). */
+double ft_nugget_model_value(const ft_noise_model *m, double d);
+
+/** The fit of a lag estimator's table with the noise model of no: a nugget detected (or given) is removed
+ *  and the fit starts at the floor (whole: least squares from there; otherwise ft_loglog_fit_auto from
+ *  there); result->nugget holds the model and "warnings" say what was done. */
+int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structure_stat stat, int whole,
+                         const ft_loglog_opts *fit, const ft_dim_map *map, ft_dim_result **out);
+
 typedef struct {
     double min_lag;     /**< smallest lag in cells; 0 = 1 */
     double max_lag;     /**< largest lag in cells; 0 = automatic */
@@ -26,8 +75,9 @@ typedef struct {
     int fit_whole_range; /**< 1: fit every lag between min and max, no segmentation */
     ft_progress_fn progress;
     void *progress_arg;
+    ft_noise_opts noise; /**< white noise on z (nugget): detected and removed by default */
 } ft_variogram_opts;
-#define FT_VARIOGRAM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+#define FT_VARIOGRAM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, FT_NOISE_OPTS_DEFAULT}
 
 /** Variogram dimension of a grid: mean squared elevation difference against lag (in ground units),
  *  D = 3 - slope/2. Pairs touching nodata are skipped. */
@@ -129,8 +179,10 @@ typedef struct {
     int fit_whole_range; /**< 1: least squares over the whole range, no segmentation */
     ft_progress_fn progress;
     void *progress_arg;
+    ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget), default automatic */
 } ft_surface_dim_opts;
-#define FT_SURFACE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, 0.0, 0, 0.5, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+#define FT_SURFACE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, 0.0, 0, 0.5, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL,            \
+                                     FT_NOISE_OPTS_DEFAULT}
 
 /** "variogram", "yokoya", "pentland", "spectrum", "prism", "cubes" ("?" for a bad value). */
 const char *ft_surface_method_name(ft_surface_method m);
@@ -224,9 +276,15 @@ typedef struct {
                                         ft_points_counters_free); set to NULL on failure */
     ft_progress_fn progress;
     void *progress_arg;
+    double noise_sigma_xy; /**< known sd of noise on x and y (ground units, >= 0; 0 = unknown): lags below 3x
+                                it are left out of the fit (docs/surface-noise.md) */
+    int noise_mode;       /**< 0 (default): detect a nugget (white noise) in the statistic and remove it, the
+                               default lags then extended to 32 x the mean spacing (at most a quarter of
+                               the bounding box's shorter side); -1: no noise model */
 } ft_points_dim_opts;
 #define FT_POINTS_DIM_OPTS_DEFAULT                                                                           \
-    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL}
+    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, \
+     0.0, 0}
 
 const char *ft_points_method_name(ft_points_method m);
 /** "yokoya" or "pentland" (case-insensitive); FT_E_INVALID naming the text otherwise. */

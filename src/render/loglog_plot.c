@@ -13,6 +13,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "fracterra/render.h"
+#include "fracterra/surface.h"
 #include "render/render_internal.h"
 
 #include <cairo.h>
@@ -142,6 +143,42 @@ static void draw_fit(cairo_t *cr, const frame *f, const ft_dim_result *r)
     line_over(cr, f, log10(r->range[0]), log10(r->range[1]), r->fit.slope, r->fit.intercept);
 }
 
+/* log10 of the statistic the data show with the noise, from the fit line (the noise-free statistic) and the
+ * noise model (docs/surface-noise.md): (v^p + c0)^(1/p) on grids, v sqrt(model / power law) on points. */
+static double noisy_value(const ft_dim_result *r, double lx)
+{
+    const ft_noise_model *m = &r->nugget;
+    double ly = r->fit.intercept + r->fit.slope * lx, d = pow(10.0, lx);
+    if (m->positions) {
+        double signal = m->a * pow(d, 2.0 * m->H);
+        return ly + 0.5 * log10((m->c0 + m->a * ft_nugget_eiv_moment(m->H, d, m->s)) / signal);
+    }
+    return log10(pow(pow(10.0, m->power * ly) + m->c0, 1.0 / m->power));
+}
+
+/* The fitted structure function with the noise, dashed, over the table's scales (issue 21). */
+static void draw_noise_curve(cairo_t *cr, const frame *f, const ft_dim_result *r)
+{
+    static const double dash[] = {3.0, 3.0};
+    if (!r->nugget.applied || r->fit.n < 2 || !(r->nugget.a > 0.0))
+        return;
+    cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+    cairo_set_line_width(cr, 1.4);
+    cairo_set_dash(cr, dash, 2, 0.0);
+    double lx0 = f->xmin, lx1 = f->xmax;
+    for (int k = 0; k <= 100; k++) {
+        double lx = lx0 + (lx1 - lx0) * k / 100.0, ly = noisy_value(r, lx);
+        if (!isfinite(ly))
+            continue;
+        if (k == 0)
+            cairo_move_to(cr, ft_plot_px(f, lx), ft_plot_py(f, ly));
+        else
+            cairo_line_to(cr, ft_plot_px(f, lx), ft_plot_py(f, ly));
+    }
+    cairo_stroke(cr);
+    cairo_set_dash(cr, NULL, 0, 0.0);
+}
+
 static void dot(cairo_t *cr, double X, double Y, int filled)
 {
     cairo_new_sub_path(cr);
@@ -165,9 +202,10 @@ static void draw_points(cairo_t *cr, const frame *f, const ft_loglog *t)
 /* ---- legend ---- */
 
 typedef struct {
-    char text[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 6][160];
-    int kind[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 6]; /* 0 used dot, 1 hollow dot, 2 fit line,
-                                                       3+k segment k, KIND_REGIME+k regime k, -1 text */
+    char text[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 7][160];
+    int kind[PLOT_MAX_SEGMENTS_LISTED + PLOT_MAX_REGIMES_LISTED + 7]; /* 0 used dot, 1 hollow dot, 2 fit line,
+                                                       3+k segment k, KIND_REGIME+k regime k, -1 text,
+                                                       -2 the fit with the noise */
     size_t n;
     double w, h;
 } legend;
@@ -204,6 +242,11 @@ static void legend_make(cairo_t *cr, const ft_dim_result *r, const ft_plot_opts 
             snprintf(br + used, sizeof br - used, " %.4g", r->breaks[k]);
         }
         legend_add(l, -1, br);
+    }
+    if (r->nugget.applied && r->fit.n >= 2 && r->nugget.a > 0.0) {
+        snprintf(buf, sizeof buf, "fit with the noise (sd %.3g on z%s), removed from the points", r->nugget.sigma_z,
+                 r->nugget.positions ? ", and on x, y" : "");
+        legend_add(l, -2, buf);
     }
     size_t shown = o->segments ? r->nsegments : 0;
     shown = shown > PLOT_MAX_SEGMENTS_LISTED ? PLOT_MAX_SEGMENTS_LISTED : shown;
@@ -245,6 +288,17 @@ static void legend_symbol(cairo_t *cr, int kind, double x, double y)
     static const double dash[] = {6.0, 4.0};
     if (kind == 0 || kind == 1) {
         dot(cr, x + 14.0, y, kind == 0);
+        return;
+    }
+    if (kind == -2) {
+        static const double dots[] = {3.0, 3.0};
+        cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+        cairo_set_line_width(cr, 1.4);
+        cairo_set_dash(cr, dots, 2, 0.0);
+        cairo_move_to(cr, x + 2.0, y);
+        cairo_line_to(cr, x + 28.0, y);
+        cairo_stroke(cr);
+        cairo_set_dash(cr, NULL, 0, 0.0);
         return;
     }
     if (kind < 0)
@@ -295,6 +349,7 @@ static void draw_plot(cairo_t *cr, const frame *f, const ft_dim_result *r, const
     if (o->segments)
         draw_segments(cr, f, r);
     draw_regimes(cr, f, r);
+    draw_noise_curve(cr, f, r);
     draw_fit(cr, f, r);
     draw_points(cr, f, r->table);
     cairo_restore(cr);

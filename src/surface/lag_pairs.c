@@ -276,8 +276,10 @@ int ft_surface_lag_fit(const size_t *lags, const ft_lag_acc *tot, size_t nl, con
 {
     ft_loglog *t = NULL;
     int rc = build_table(lags, tot, nl, stat, name, &t);
+    if (rc == FT_OK) /* the nugget (white noise on z) detected and removed: nugget_fit.c */
+        rc = ft_surface_fit_noise(t, &o->noise, (ft_structure_stat)stat, o->fit_whole_range, &o->fit, map, out);
     if (rc == FT_OK)
-        rc = ft_surface_fit_table(t, o->fit_whole_range, &o->fit, map, name, out);
+        (*out)->method = name;
     ft_loglog_free(t);
     return rc;
 }

@@ -88,6 +88,187 @@ static double sample_se(const ft_points_counters *c, const ft_dim_result *r)
     return fabs(r->map.b) * sqrt(var);
 }
 
+#define FLOOR_RATIO 1.0 /* the fit starts where the power law exceeds FLOOR_RATIO x what the noise adds */
+#define XY_FLOOR 3.0    /* and above XY_FLOOR x a given position-noise sd */
+
+/* The method's statistic without the counters' z-noise correction. */
+static double raw_value(const ft_points_lag *l, ft_points_method m)
+{
+    if (m == FT_POINTS_YOKOYA)
+        return l->A / l->C;
+    double ss = l->B - l->A * l->A / l->C;
+    return ss > 0.0 && l->C > 1.0 ? sqrt(ss / (l->C - 1.0)) : 0.0;
+}
+
+/* The noise model of the kept lags (nugget_positions.c): fitted to the mean squared differences. */
+static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m)
+{
+    double *d = ft_malloc(2 * c->n * sizeof *d);
+    if (d == NULL)
+        return FT_E_NOMEM;
+    double *q = d + c->n;
+    size_t n = 0;
+    for (size_t k = 0; k < c->n; k++) {
+        const ft_points_lag *l = &c->lags[k];
+        if (l->status == FT_LAG_KEPT && l->B > 0.0 && (n == 0 || l->dist > d[n - 1])) {
+            d[n] = l->dist;
+            q[n++] = l->B / l->C;
+        }
+    }
+    int rc = ft_nugget_fit_positions(d, q, n, o->noise_sigma, o->noise_sigma_xy, m);
+    free(d);
+    return rc;
+}
+
+/* The table with the noise removed: each kept lag's observed mean Δz² less the modelled noise (model minus
+ * power law; exact in expectation, where a ratio on |Δz| would carry the Jensen gap of the mixture over true
+ * distances), as the method's statistic of a Gaussian difference of that variance: E|X| = sqrt(2/π v),
+ * sd|X| = sqrt((1 - 2/π) v); and the floor. */
+static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m,
+                           ft_loglog **out)
+{
+    ft_loglog *t = ft_loglog_create(c->n);
+    if (t == NULL)
+        return FT_E_NOMEM;
+    int rc = FT_OK;
+    double floor = 0.0, gauss = o->method == FT_POINTS_YOKOYA ? 2.0 / M_PI : 1.0 - 2.0 / M_PI;
+    for (size_t k = 0; k < c->n && rc == FT_OK; k++) {
+        const ft_points_lag *l = &c->lags[k];
+        double v = l->C > 0.0 ? raw_value(l, o->method) : 0.0;
+        if (l->status != FT_LAG_KEPT && !(l->status == FT_LAG_NOISE && v > 0.0))
+            continue;
+        double signal = m->a * pow(l->dist, 2.0 * m->H), total = ft_nugget_model_value(m, l->dist);
+        double clean = l->B / l->C - (total - signal); /* the observed mean Δz² less the modelled noise */
+        if (!(v > 0.0) || !(signal > 0.0) || !(total > 0.0) || !(clean > 0.0))
+            continue;
+        if (signal < FLOOR_RATIO * (total - signal))
+            floor = l->dist * (1.0 + 1e-9);
+        rc = ft_loglog_push(t, l->dist, sqrt(gauss * clean), l->C);
+    }
+    if (rc == FT_OK)
+        rc = ft_loglog_sort(t);
+    if (rc != FT_OK) {
+        ft_loglog_free(t);
+        return rc;
+    }
+    m->floor = fmax(floor, XY_FLOOR * o->noise_sigma_xy);
+    m->applied = 1;
+    *out = t;
+    return FT_OK;
+}
+
+static int fit_plain(const ft_loglog *t, const ft_points_dim_opts *o, double lo, ft_dim_result **out)
+{
+    ft_dim_map map = FT_DIM_MAP_INCREMENT_SURFACE;
+    int rc = o->fit_auto ? ft_loglog_fit_auto(t, lo, 0.0, &o->fit, &map, out)
+                         : ft_loglog_fit_range(t, lo, 0.0, &map, out);
+    if (rc == FT_OK && !o->fit_auto && (*out)->table->n >= 2) {
+        /* The minimax segments are reported with the whole-range fit too (--segments). */
+        ft_dim_result *r = *out;
+        rc = ft_loglog_segment_minimax(r->table, &o->fit, &map, &r->segments, &r->nsegments);
+        for (size_t k = 0; rc == FT_OK && k < r->nsegments; k++)
+            if (r->segments[k].first == r->fit.first && r->segments[k].last == r->fit.last)
+                r->best = k;
+        if (rc != FT_OK) {
+            ft_dim_result_free(r);
+            *out = NULL;
+        }
+    }
+    return rc;
+}
+
+/* The fit with the noise model: noise on x, y and z detected (or given) in the mean squared differences,
+ * removed from the statistic, the fit from the floor up; what was done in the warnings. */
+static int fit_points(const ft_points_counters *c, const ft_loglog *t, const ft_points_dim_opts *o,
+                      ft_dim_result **out)
+{
+    ft_noise_model m = {0};
+    if (o->noise_mode < 0 || fit_model(c, o, &m) != FT_OK || !m.detected) {
+        int rc = fit_plain(t, o, 0.0, out);
+        if (rc == FT_OK)
+            (*out)->nugget = m;
+        return rc;
+    }
+    ft_loglog *ct = NULL;
+    int rc = corrected_table(c, o, &m, &ct);
+    if (rc != FT_OK)
+        return rc;
+    size_t need = o->fit.min_points > 3 ? o->fit.min_points : 3, above = 0;
+    for (size_t i = 0; i < ct->n; i++)
+        above += ct->rows[i].scale >= m.floor;
+    double lo = m.floor;
+    if (ct->n < 2)
+        rc = ft_error(FT_E_NUMERIC, "scattered points: the noise (sd %g on z, %g on x and y) exceeds the "
+                      "elevation differences at every lag; use larger lags", m.sigma_z, m.sigma_xy);
+    else if (above < need)
+        lo = ct->rows[ct->n >= need ? ct->n - need : 0].scale;
+    if (rc == FT_OK)
+        rc = fit_plain(ct, o, lo, out);
+    if (rc == FT_OK) {
+        ft_dim_result *r = *out;
+        r->nugget = m;
+        int given = o->noise_sigma > 0.0 || o->noise_sigma_xy > 0.0;
+        rc = ft_dim_result_warn(r, "noise %s: the log-log plot flattens toward the small lags; noise sd %.4g on z "
+                                "and %.4g on x and y (%s); the noise terms were removed from the statistic "
+                                "(F = %.3g) and the fit starts at lag %g, where the power law exceeds them",
+                                given ? "model" : "detected", m.sigma_z, m.sigma_xy,
+                                given ? "given or fitted" : "fitted", m.F, lo);
+        if (rc == FT_OK && above < need)
+            rc = ft_dim_result_warn(r, "noise dominates up to lag %g: only the %zu largest lags are fitted; use "
+                                    "larger lags", m.floor, need);
+        if (rc != FT_OK) {
+            ft_dim_result_free(r);
+            *out = NULL;
+        }
+    }
+    ft_loglog_free(ct);
+    return rc;
+}
+
+/* Counters and their table for the options o. */
+static int count(const ft_points *p, const ft_points_dim_opts *o, ft_points_counters **c, ft_loglog **t)
+{
+    *t = NULL;
+    int rc = ft_surface_points_counters(p, o, c);
+    size_t need = o->fit.min_points > 2 ? o->fit.min_points : 2;
+    if (rc == FT_OK && (*c)->kept < need) {
+        char list[2048];
+        list_dropped(*c, list, sizeof list);
+        rc = ft_error(FT_E_EMPTY, "scattered points: too few lags: %zu of %zu kept, %zu needed; dropped lags: %s "
+                      "(min_pairs %zu, eps %g; lower the pair threshold, widen eps or use larger lags)",
+                      (*c)->kept, (*c)->n, need, list, (*c)->min_pairs, (*c)->eps);
+    }
+    if (rc == FT_OK)
+        rc = build_table(*c, t);
+    return rc;
+}
+
+/* Default lags and a nugget (or a position-noise floor) near the top of their range: the lags extended
+ * to EXTEND_LAG x the mean spacing, at most a quarter of the bounding box's shorter side. Returns the new
+ * largest lag, or 0 to keep the counters. */
+#define EXTEND_LAG 32.0
+#define FLAT_H 0.15
+static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, const ft_points_counters *c,
+                               const ft_loglog *t)
+{
+    if (o->noise_mode < 0 || o->lags != NULL || o->max_lag > 0.0)
+        return 0.0;
+    double x0, y0, x1, y1;
+    ft_points_bbox(p, &x0, &y0, &x1, &y1);
+    double cap = 0.25 * fmin(x1 - x0, y1 - y0), hi = fmin(EXTEND_LAG * c->spacing, cap);
+    double top = c->lags[c->n - 1].lag;
+    if (!(hi > 2.0 * top))
+        return 0.0;
+    if (3.0 * o->noise_sigma_xy * 4.0 > top)
+        return hi;
+    (void)t;
+    ft_noise_model m;
+    /* A plot as flat as H < FLAT_H over the default lags: the noise may dominate all of them. */
+    if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
+        return 0.0;
+    return hi;
+}
+
 int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out)
 {
     if (out == NULL)
@@ -98,44 +279,38 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         o = *opts;
     if (o.counters != NULL)
         *o.counters = NULL;
+    if (!(o.noise_sigma_xy >= 0.0) || !isfinite(o.noise_sigma_xy))
+        return ft_error(FT_E_INVALID, "scattered points: noise_sigma_xy must be >= 0, got %g", o.noise_sigma_xy);
+    if (o.noise_mode != 0 && o.noise_mode != -1)
+        return ft_error(FT_E_INVALID, "scattered points: noise_mode must be 0 or -1, got %d", o.noise_mode);
     ft_points_counters *c = NULL;
     ft_loglog *t = NULL;
-    int rc = ft_surface_points_counters(p, &o, &c);
-    size_t need = o.fit.min_points > 2 ? o.fit.min_points : 2;
-    if (rc == FT_OK && c->kept < need) {
-        char list[2048];
-        list_dropped(c, list, sizeof list);
-        rc = ft_error(FT_E_EMPTY, "scattered points: too few lags: %zu of %zu kept, %zu needed; dropped lags: %s "
-                      "(min_pairs %zu, eps %g; lower the pair threshold, widen eps or use larger lags)",
-                      c->kept, c->n, need, list, c->min_pairs, c->eps);
+    int rc = count(p, &o, &c, &t);
+    double ext = rc == FT_OK ? extended_max_lag(p, &o, c, t) : 0.0;
+    if (ext > 0.0) {
+        ft_points_dim_opts o2 = o;
+        o2.min_lag = o.min_lag > 0.0 ? o.min_lag : c->lags[0].lag;
+        o2.max_lag = ext;
+        ft_points_counters_free(c);
+        ft_loglog_free(t);
+        c = NULL;
+        rc = count(p, &o2, &c, &t);
     }
     if (rc == FT_OK)
-        rc = build_table(c, &t);
-    ft_dim_map map = FT_DIM_MAP_INCREMENT_SURFACE;
-    if (rc == FT_OK)
-        rc = o.fit_auto ? ft_loglog_fit_auto(t, 0.0, 0.0, &o.fit, &map, out)
-                        : ft_loglog_fit_range(t, 0.0, 0.0, &map, out);
-    if (rc == FT_OK && !o.fit_auto && t->n >= 2) {
-        /* The minimax segments are reported with the whole-range fit too (--segments). */
-        ft_dim_result *r = *out;
-        rc = ft_loglog_segment_minimax(t, &o.fit, &map, &r->segments, &r->nsegments);
-        for (size_t k = 0; rc == FT_OK && k < r->nsegments; k++)
-            if (r->segments[k].first == r->fit.first && r->segments[k].last == r->fit.last)
-                r->best = k;
-        if (rc != FT_OK) {
-            ft_dim_result_free(r);
-            *out = NULL;
-        }
-    }
+        rc = fit_points(c, t, &o, out);
+    if (rc == FT_OK && ext > 0.0)
+        rc = ft_dim_result_warn(*out, "noise model: the default lags (to %g x the mean spacing) were extended to "
+                                "%g (%g x the spacing %g) to fit past the noise", 4.0, ext, ext / c->spacing,
+                                c->spacing);
     if (rc == FT_OK) {
         (*out)->method = ft_points_method_name(o.method);
         if (c->sample > 0)
             c->D_sample_se = sample_se(c, *out);
         rc = ft_progress(o.progress, o.progress_arg, 1.0, "dim points");
-        if (rc != FT_OK) {
-            ft_dim_result_free(*out);
-            *out = NULL;
-        }
+    }
+    if (rc != FT_OK) {
+        ft_dim_result_free(*out);
+        *out = NULL;
     }
     if (rc == FT_OK && o.counters != NULL) {
         *o.counters = c;

@@ -57,7 +57,7 @@ int ft_surface_lag_opts(const ft_surface_dim_opts *o, double cx, double cy, ft_v
     double lo, hi;
     scales_in_cells(o, cx, cy, &lo, &hi);
     *v = (ft_variogram_opts){lo, hi, o->nscales, o->pairs, o->seed, o->fit, o->fit_whole_range, o->progress,
-                             o->progress_arg};
+                             o->progress_arg, o->noise};
     return FT_OK;
 }
 

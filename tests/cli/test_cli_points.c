@@ -178,6 +178,41 @@ static void test_bad_input(void **state)
     expect_error(POINTS(two), 1, "at least 3 points", "got 2");
     expect_error(POINTS(ft_test_tmp("missing.csv")), 1, "missing.csv", NULL);
     expect_error(POINTS(DAVIS, "extra.csv"), 2, "extra.csv", NULL);
+    expect_error(POINTS(DAVIS, "--noise-sigma", "1,2,3"), 2, "--noise-sigma", "1,2,3");
+    expect_error(POINTS(DAVIS, "--noise-sigma", "-1"), 2, "--noise-sigma", "-1");
+    expect_error(POINTS(DAVIS, "--noise-sigma", "1,"), 2, "--noise-sigma", "1,");
+    expect_error(POINTS(DAVIS, "--noise-sigma", "x"), 2, "--noise-sigma", "x");
+    expect_error(POINTS(DAVIS, "--noise-model", "maybe"), 2, "--noise-model", "maybe");
+}
+
+/* The real spot heights carry no detectable noise: the model is fitted and reported, nothing removed;
+ * --noise-sigma XY,Z is used as given and echoed. */
+static void test_davis_noise_model(void **state)
+{
+    (void)state;
+    ft_run_result r = POINTS(DAVIS, "--lags", "0.5,0.75,1,1.25,1.5,1.75,2,2.5,3,3.5", "--eps", "0.2", "--min-pairs",
+                             "10", "--json");
+    json_object *o = json_of(&r), *n = ft_test_json_key(o, "noise");
+    assert_false(json_object_get_boolean(ft_test_json_key(n, "removed")));
+    assert_true(ft_test_json_num(n, "sigma_z") >= 0.0);
+    json_object *warns = ft_test_json_key(o, "warnings"); /* the band and CRS warnings, none about noise */
+    for (size_t i = 0; i < json_object_array_length(warns); i++)
+        assert_null(strstr(json_object_get_string(ft_test_json_at(warns, i)), "noise"));
+    json_object_put(o);
+    r = POINTS(DAVIS, "--lags", "0.5,0.75,1,1.25,1.5,1.75,2,2.5,3,3.5", "--eps", "0.2", "--min-pairs", "10",
+               "--noise-sigma", "0.1,5", "--json");
+    o = json_of(&r);
+    assert_true(ft_test_json_num(o, "noise_sigma") == 5.0);
+    assert_true(ft_test_json_num(o, "noise_sigma_xy") == 0.1);
+    n = ft_test_json_key(o, "noise");
+    assert_true(json_object_get_boolean(ft_test_json_key(n, "removed")));
+    assert_true(ft_test_json_num(n, "sigma_z") == 5.0);
+    json_object *w = ft_test_json_key(o, "warnings");
+    int said = 0;
+    for (size_t i = 0; i < json_object_array_length(w); i++)
+        said |= strstr(json_object_get_string(json_object_array_get_idx(w, i)), "noise model") != NULL;
+    assert_true(said);
+    json_object_put(o);
 }
 
 int main(void)
@@ -186,7 +221,7 @@ int main(void)
         cmocka_unit_test(test_davis_default_too_few_lags),
         cmocka_unit_test(test_davis_explicit_lags),
         cmocka_unit_test(test_plane_all_methods_exact),
-        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_bad_input), cmocka_unit_test(test_davis_noise_model),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

@@ -144,6 +144,12 @@ static void test_bad_input(void **state)
     run(2, "dim map", "--window", a4, 0);
     const char *a5[] = {"dim", "map", dem, out, "--window", "64", "--method", "all", NULL};
     run(2, "dim map", "all", a5, 0);
+    const char *n1[] = {"dim", "surface", dem, "--noise-sigma", "1,2", NULL}; /* no XY for a grid */
+    run(2, "dim surface", "--noise-sigma", n1, 0);
+    const char *n2[] = {"dim", "surface", dem, "--noise-sigma", "-0.5", NULL};
+    run(2, "dim surface", "-0.5", n2, 0);
+    const char *n3[] = {"dim", "surface", dem, "--noise-model", "on", NULL};
+    run(2, "dim surface", "--noise-model", n3, 0);
     const char *a6[] = {"dim", "surface", ft_test_tmp("missing.tif"), NULL};
     run(1, "dim surface", "missing.tif", a6, 0);
     /* an all-nodata DEM */

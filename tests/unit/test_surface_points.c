@@ -234,36 +234,41 @@ static void test_sample_mode(void **state)
     ft_points_free(p);
 }
 
-/* Noise N(0, 0.1²) on z of a smooth unit-sd surface flattens the small lags; giving the estimator
- * noise_sigma brings D back towards the noise-free estimate. */
+/* Noise N(0, 0.1²) on z of a smooth unit-sd surface flattens the small lags: without the noise model D
+ * rises; the default path detects the noise, says so, and brings D back towards the noise-free estimate;
+ * a given noise_sigma does too. */
+static void noise_case(ft_points_method m, const ft_points *clean, const ft_points *noisy)
+{
+    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
+    o.method = m;
+    ft_dim_result *a = NULL, *b = NULL, *c = NULL, *d = NULL;
+    expect_ok(ft_surface_dim_points(clean, &o, &a));
+    expect_ok(ft_surface_dim_points(noisy, &o, &d));
+    o.noise_mode = -1;
+    expect_ok(ft_surface_dim_points(noisy, &o, &b));
+    o.noise_sigma = 0.1;
+    expect_ok(ft_surface_dim_points(noisy, &o, &c));
+    print_message("%s clean %.4f noisy %.4f given sigma %.4f automatic %.4f (noise sd %.4g)\n",
+                  ft_points_method_name(m), a->D, b->D, c->D, d->D, d->nugget.sigma_z);
+    assert_true(b->D > a->D + 0.02);
+    assert_true(fabs(c->D - a->D) < 0.5 * fabs(b->D - a->D));
+    assert_true(fabs(d->D - a->D) < 0.5 * fabs(b->D - a->D));
+    assert_true(d->nugget.applied);
+    assert_non_null(ft_dim_result_find_warning(d, "noise detected"));
+    assert_near(d->nugget.sigma_z, 0.1, 0.03);
+    assert_null(ft_dim_result_find_warning(b, "noise"));
+    ft_dim_result_free(a);
+    ft_dim_result_free(b);
+    ft_dim_result_free(c);
+    ft_dim_result_free(d);
+}
+
 static void test_noise_model(void **state)
 {
     (void)state;
     ft_points *clean = surface_points(2.2, 400, 0.05, 6, 0.0), *noisy = surface_points(2.2, 400, 0.05, 6, 0.1);
-    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
-    ft_dim_result *a = NULL, *b = NULL, *c = NULL;
-    expect_ok(ft_surface_dim_points(clean, &o, &a));
-    expect_ok(ft_surface_dim_points(noisy, &o, &b));
-    o.noise_sigma = 0.1;
-    expect_ok(ft_surface_dim_points(noisy, &o, &c));
-    assert_true(b->D > a->D + 0.02);
-    assert_true(fabs(c->D - a->D) < 0.5 * fabs(b->D - a->D));
-    ft_dim_result_free(a);
-    ft_dim_result_free(b);
-    ft_dim_result_free(c);
-    /* the same with Pentland's statistic */
-    o.method = FT_POINTS_PENTLAND;
-    o.noise_sigma = 0.0;
-    expect_ok(ft_surface_dim_points(clean, &o, &a));
-    expect_ok(ft_surface_dim_points(noisy, &o, &b));
-    o.noise_sigma = 0.1;
-    expect_ok(ft_surface_dim_points(noisy, &o, &c));
-    print_message("pentland clean %.4f noisy %.4f corrected %.4f\n", a->D, b->D, c->D);
-    assert_true(b->D > a->D + 0.02);
-    assert_true(fabs(c->D - a->D) < 0.5 * fabs(b->D - a->D));
-    ft_dim_result_free(a);
-    ft_dim_result_free(b);
-    ft_dim_result_free(c);
+    noise_case(FT_POINTS_YOKOYA, clean, noisy);
+    noise_case(FT_POINTS_PENTLAND, clean, noisy);
     ft_points_free(clean);
     ft_points_free(noisy);
 }

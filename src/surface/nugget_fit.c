@@ -1,0 +1,296 @@
+/* fracterra — surface/nugget_fit.c: white noise on the elevations seen by the lag estimators (the nugget
+ * of geostatistics; Matheron 1962, Cressie 1993 §2.3.1) and its removal. docs/surface-noise.md.
+ *
+ * With independent N(0, σ²) noise on z, every pair's difference gains 2σ² of variance, so the structure
+ * functions of a fractional Brownian surface (variance a' r^(2H) of the noise-free increments) become,
+ * with Gaussian increments (E|X| = sqrt(2/π) sd X):
+ *
+ *   mean Δz²            γ(r)  = 2σ² + a' r^(2H)                 (variogram)
+ *   (mean |Δz|)²        E(r)² = (2/π)(2σ² + a' r^(2H))          (Yokoya; Arakawa & Krotkov §2.3)
+ *   (sd of |Δz|)²       S(r)² = (1 - 2/π)(2σ² + a' r^(2H))      (Pentland)
+ *
+ * i.e. q(r) = value^power = c0 + a r^(2H) with power 1 or 2: a constant (the nugget c0) plus a power
+ * law. On the log-log plot the noise flattens the curve toward the small lags and pushes D up, most at
+ * low D. The fit profiles the exponent e = 2H over [0.01, 2] (a grid of 0.01, then golden section):
+ * for each e, c0 >= 0 and a > 0 by weighted linear least squares with weights 1/q² (equal relative
+ * errors, what a log-log fit assumes); the pure power law (c0 = 0) is profiled the same way and the F
+ * statistic of the extra parameter, F = (RSS0 - RSS1) / (RSS1 / (n - 3)), with the share of c0 in the
+ * smallest lag's q, decides whether a nugget is there.
+ *
+ * Position noise (errors on x and y) is handled by the same constant: a pair observed at distance d has
+ * its elevations at a true distance |d + δ|, δ ~ N(0, 2σ_p² I); to second order E q = q(d) + σ_p² (2H)²
+ * a d^(2H-2), a term nearly constant in d for smooth surfaces (H near 1) and absorbed by c0, fast
+ * vanishing for rough ones. The fit range starts where the power law exceeds the nugget (the floor).
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "internal.h"
+#include "surface/grid_internal.h"
+
+#define E_MIN 0.01
+#define E_MAX 2.0
+#define E_STEP 0.01
+#define DETECT_F 10.0    /* F of the nugget against the pure power law */
+#define DETECT_SHARE 0.02 /* c0 / q at the smallest lag */
+#define FLOOR_RATIO 1.0  /* the fit starts where a r^(2H) >= FLOOR_RATIO c0 */
+#define NUGGET_SPAN 16.0 /* the nugget is fitted over the lags up to 16 x the smallest */
+#define XY_FLOOR 3.0     /* with position noise sd σ_p given, lags below XY_FLOOR σ_p are left out */
+
+/* σ² of white noise on z per unit of c0 (the factor k in c0 = k σ²). */
+static double noise_factor(ft_structure_stat stat)
+{
+    return stat == FT_STRUCT_MEAN_SQ ? 2.0 : stat == FT_STRUCT_MEAN_ABS ? 4.0 / M_PI : 2.0 * (1.0 - 2.0 / M_PI);
+}
+
+typedef struct {
+    const double *lr, *q, *w; /* log scale, q, weight */
+    size_t n;
+    double c0_fixed;          /* >= 0: c0 held at this value; < 0: fitted (>= 0) */
+} profile_data;
+
+/* Weighted LS of q on (1, r^e) at one exponent: RSS, c0 and a (INFINITY when a <= 0). */
+static double rss_at(const profile_data *p, double e, double *c0_out, double *a_out)
+{
+    double S = 0.0, Sx = 0.0, Sxx = 0.0, Sq = 0.0, Sxq = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        double x = exp(e * p->lr[i]), w = p->w[i];
+        S += w;
+        Sx += w * x;
+        Sxx += w * x * x;
+        Sq += w * p->q[i];
+        Sxq += w * x * p->q[i];
+    }
+    double c0, a;
+    if (p->c0_fixed >= 0.0) {
+        c0 = p->c0_fixed;
+        a = (Sxq - c0 * Sx) / Sxx;
+    } else {
+        double det = S * Sxx - Sx * Sx;
+        a = det > 0.0 ? (S * Sxq - Sx * Sq) / det : 0.0;
+        c0 = (Sq - a * Sx) / S;
+        if (!(c0 >= 0.0)) {
+            c0 = 0.0;
+            a = Sxq / Sxx;
+        }
+    }
+    if (!(a > 0.0) || !isfinite(a))
+        return INFINITY;
+    double rss = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        double r = p->q[i] - c0 - a * exp(e * p->lr[i]);
+        rss += p->w[i] * r * r;
+    }
+    *c0_out = c0;
+    *a_out = a;
+    return rss;
+}
+
+/* The exponent e minimising the RSS: a grid, then golden section around the best grid point. */
+static double profile(const profile_data *p, double *e_out, double *c0, double *a)
+{
+    double best = INFINITY, eb = NAN, cc, aa;
+    for (double e = E_MIN; e <= E_MAX + 1e-9; e += E_STEP) {
+        double r = rss_at(p, e, &cc, &aa);
+        if (r < best) {
+            best = r;
+            eb = e;
+        }
+    }
+    if (!isfinite(best))
+        return INFINITY;
+    double lo = fmax(E_MIN, eb - E_STEP), hi = fmin(E_MAX, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double f1 = rss_at(p, x1, &cc, &aa), f2 = rss_at(p, x2, &cc, &aa);
+    for (int it = 0; it < 40; it++) {
+        if (f1 < f2) {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - g * (hi - lo);
+            f1 = rss_at(p, x1, &cc, &aa);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + g * (hi - lo);
+            f2 = rss_at(p, x2, &cc, &aa);
+        }
+    }
+    double e = 0.5 * (lo + hi), r = rss_at(p, e, &cc, &aa);
+    if (!(r <= best)) {
+        e = eb;
+        r = rss_at(p, e, &cc, &aa);
+    }
+    *e_out = e;
+    *c0 = cc;
+    *a = aa;
+    return r;
+}
+
+int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m)
+{
+    if (t == NULL || m == NULL)
+        return ft_error(FT_E_INVALID, "nugget fit: the table or the model is NULL");
+    if ((unsigned)stat > FT_STRUCT_SD_ABS)
+        return ft_error(FT_E_INVALID, "nugget fit: unknown statistic %d", (int)stat);
+    if (!(sigma_z >= 0.0) || !isfinite(sigma_z))
+        return ft_error(FT_E_INVALID, "nugget fit: noise sigma must be >= 0, got %g", sigma_z);
+    *m = (ft_noise_model){0};
+    m->power = stat == FT_STRUCT_MEAN_SQ ? 1.0 : 2.0;
+    size_t need = sigma_z > 0.0 ? 3 : 4;
+    if (t->n < need)
+        return ft_error(FT_E_EMPTY, "nugget fit: needs at least %zu rows, got %zu", need, t->n);
+    double *buf = ft_malloc(3 * t->n * sizeof *buf);
+    if (buf == NULL)
+        return FT_E_NOMEM;
+    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0};
+    for (size_t i = 0; i < t->n; i++) {
+        double q = pow(t->rows[i].value, m->power);
+        buf[i] = log(t->rows[i].scale);
+        buf[t->n + i] = q;
+        buf[2 * t->n + i] = 1.0 / (q * q);
+    }
+    double k = noise_factor(stat), e1 = NAN, c0 = 0.0, a = 0.0;
+    if (sigma_z > 0.0)
+        p.c0_fixed = k * sigma_z * sigma_z;
+    double rss1 = profile(&p, &e1, &c0, &a);
+    double F = 0.0;
+    if (sigma_z == 0.0 && isfinite(rss1)) {
+        double e0, c00, a0;
+        p.c0_fixed = 0.0;
+        double rss0 = profile(&p, &e0, &c00, &a0);
+        F = rss1 > 0.0 ? (rss0 - rss1) / (rss1 / (double)(t->n - 3)) : (rss0 > 0.0 ? INFINITY : 0.0);
+    }
+    free(buf);
+    if (!isfinite(rss1))
+        return ft_error(FT_E_NUMERIC, "nugget fit: no increasing power law fits the %zu rows", t->n);
+    m->fitted = 1;
+    m->c0 = c0;
+    m->a = a;
+    m->H = 0.5 * e1;
+    m->F = F;
+    m->sigma_z = sqrt(c0 / k);
+    return FT_OK;
+}
+
+int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t)
+{
+    if (!m->fitted || !(m->c0 > 0.0) || t->n == 0)
+        return 0;
+    double q0 = pow(t->rows[0].value, m->power);
+    return m->F >= DETECT_F && m->c0 >= DETECT_SHARE * q0;
+}
+
+int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out)
+{
+    *out = NULL;
+    ft_loglog *c = ft_loglog_create(t->n);
+    if (c == NULL)
+        return FT_E_NOMEM;
+    /* The floor: where the fitted power law reaches FLOOR_RATIO times the nugget. */
+    double floor = m->c0 > 0.0 && m->H > 0.0 ? pow(FLOOR_RATIO * m->c0 / m->a, 1.0 / (2.0 * m->H)) : 0.0;
+    m->floor = fmax(floor, min_floor);
+    m->applied = 1;
+    int rc = FT_OK;
+    for (size_t i = 0; i < t->n && rc == FT_OK; i++) {
+        double q = pow(t->rows[i].value, m->power) - m->c0;
+        if (q > 0.0)
+            rc = ft_loglog_push(c, t->rows[i].scale, pow(q, 1.0 / m->power), t->rows[i].count);
+    }
+    if (rc != FT_OK) {
+        ft_loglog_free(c);
+        return rc;
+    }
+    *out = c;
+    return FT_OK;
+}
+
+/* The fit of the rows with scale >= lo (whole range or the shared segmentation). */
+static int fit_from(const ft_loglog *t, double lo, int whole, const ft_loglog_opts *fit, const ft_dim_map *map,
+                    ft_dim_result **out)
+{
+    return whole ? ft_loglog_fit_range(t, lo, 0.0, map, out) : ft_loglog_fit_auto(t, lo, 0.0, fit, map, out);
+}
+
+int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structure_stat stat, int whole,
+                         const ft_loglog_opts *fit, const ft_dim_map *map, ft_dim_result **out)
+{
+    *out = NULL;
+    ft_noise_model m = {0};
+    int given = no->sigma_z > 0.0;
+    if (!(no->sigma_z >= 0.0) || !isfinite(no->sigma_z) || !(no->sigma_xy >= 0.0) || !isfinite(no->sigma_xy))
+        return ft_error(FT_E_INVALID, "noise sd must be finite and >= 0, got %g on z and %g on x, y", no->sigma_z,
+                        no->sigma_xy);
+    if (no->mode < 0 || (t->n < 4 && !given) || t->n < 3)
+        return fit_from(t, 0.0, whole, fit, map, out);
+    /* The nugget shows at the small lags; the large ones carry the realization's own curvature, which
+     * the model would trade against c0: the fit uses the rows within NUGGET_SPAN x the smallest scale. */
+    ft_loglog head = *t;
+    while (head.n > 6 && head.rows[head.n - 1].scale > NUGGET_SPAN * t->rows[0].scale)
+        head.n--;
+    int rc = ft_nugget_fit(&head, stat, no->sigma_z, &m);
+    if (rc != FT_OK) /* no increasing power law: leave the table to the ordinary fit and its checks */
+        return fit_from(t, 0.0, whole, fit, map, out);
+    int detected = given || ft_nugget_detected(&m, &head);
+    double min_floor = XY_FLOOR * no->sigma_xy;
+    if (!detected && min_floor <= 0.0) {
+        rc = fit_from(t, 0.0, whole, fit, map, out);
+        if (rc == FT_OK)
+            (*out)->nugget = m;
+        return rc;
+    }
+    ft_loglog *owned = NULL;
+    const ft_loglog *c = t;
+    if (detected) {
+        rc = ft_nugget_remove(t, &m, min_floor, &owned);
+        if (rc != FT_OK)
+            return rc;
+        c = owned;
+    } else {
+        m.floor = min_floor;
+    }
+    size_t need = fit->min_points > 3 ? fit->min_points : 3, above = 0;
+    for (size_t i = 0; i < c->n; i++)
+        above += c->rows[i].scale >= m.floor * (1.0 - 1e-9);
+    double lo = m.floor;
+    int short_range = 0;
+    if (c->n < 2) {
+        rc = ft_error(FT_E_NUMERIC, "the noise (nugget %g, noise sd %g) exceeds the statistic at every lag but "
+                      "%zu: no lag is left to fit; use larger lags", m.c0, m.sigma_z, c->n);
+    } else if (above < need) {
+        short_range = 1;
+        lo = c->rows[c->n >= need ? c->n - need : 0].scale;
+    }
+    if (rc == FT_OK)
+        rc = fit_from(c, lo, whole, fit, map, out);
+    if (rc == FT_OK) {
+        ft_dim_result *r = *out;
+        r->nugget = m;
+        r->nugget.applied = detected;
+        r->nugget.detected = detected;
+        if (detected && given)
+            rc = ft_dim_result_warn(r, "noise model: the given noise sd %g on z (nugget %g) was removed from the "
+                                    "statistic; the fit starts at scale %g", no->sigma_z, m.c0, lo);
+        else if (detected)
+            rc = ft_dim_result_warn(r, "noise detected: the log-log plot flattens toward the small lags (a nugget "
+                                    "of %.3g, %.0f%% of the statistic at the smallest lag, F = %.3g); estimated "
+                                    "noise sd on z %.4g; the nugget was removed and the fit starts at scale %g, "
+                                    "where the power law exceeds the noise", m.c0,
+                                    100.0 * m.c0 / pow(t->rows[0].value, m.power), m.F, m.sigma_z, lo);
+        if (rc == FT_OK && min_floor > 0.0)
+            rc = ft_dim_result_warn(r, "noise model: position noise sd %g on x and y: lags below %g left out",
+                                    no->sigma_xy, min_floor);
+        if (rc == FT_OK && short_range)
+            rc = ft_dim_result_warn(r, "noise dominates up to scale %g: only the %zu largest lags (from %g) are "
+                                    "fitted; use larger lags", m.floor, need, lo);
+        if (rc != FT_OK) {
+            ft_dim_result_free(r);
+            *out = NULL;
+        }
+    }
+    ft_loglog_free(owned);
+    return rc;
+}
