@@ -109,7 +109,7 @@ void ft_grid_summary_clear(ft_grid_summary *s);
 
 typedef struct {
     const char *driver;       /**< GDAL driver short name; NULL = from the extension (GTiff default) */
-    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, DEFLATE) */
+    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, ZSTD-1 or DEFLATE-1) */
     int type;                 /**< GDALDataType of the output band; 0 = Float32 */
 } ft_write_grid_opts;
 #define FT_WRITE_GRID_OPTS_DEFAULT {NULL, NULL, 0}
