@@ -98,7 +98,9 @@ static int make_grid(void *arg)
         memcpy(g->gt, gt, sizeof gt);
         g->has_nodata = 1;
         g->nodata_value = -9999.0;
-        rc = ft_io_write_grid(path, g, NULL);
+        ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+        o.co = tif_co; /* DEFLATE, the codec of the files users read most */
+        rc = ft_io_write_grid(path, g, &o);
     }
     ft_grid_free(g);
     return rc;
