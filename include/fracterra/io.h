@@ -96,9 +96,24 @@ typedef struct {
  *  mask band, and NaN cells are nodata). FT_E_FORMAT for a vector file or a bad band number. */
 int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out);
 
+/** A band's header and cell statistics, computed strip by strip without holding its cells (the memory of
+ *  one strip of about 4 M cells): what ft_io_read_grid would give, then ft_grid_count_valid and
+ *  ft_grid_minmax, without the grid. */
+typedef struct {
+    ft_grid header;   /**< size, geotransform, CRS and nodata of the band; z and mask are NULL */
+    size_t valid;     /**< cells that are not nodata */
+    double zmin, zmax;/**< range of the valid cells, in the band's physical units; NaN when valid is 0 */
+} ft_grid_summary;
+
+/** Summarizes band opts->band of a raster file (opts may be NULL). Same errors as ft_io_read_grid.
+ *  Release with ft_grid_summary_clear. */
+int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out);
+/** Frees the summary's CRS and zeroes it; NULL is a no-op. */
+void ft_grid_summary_clear(ft_grid_summary *s);
+
 typedef struct {
     const char *driver;       /**< GDAL driver short name; NULL = from the extension (GTiff default) */
-    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, DEFLATE) */
+    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, ZSTD-1 or DEFLATE-1) */
     int type;                 /**< GDALDataType of the output band; 0 = Float32 */
 } ft_write_grid_opts;
 #define FT_WRITE_GRID_OPTS_DEFAULT {NULL, NULL, 0}
@@ -139,6 +154,10 @@ int ft_io_write_points(const char *path, const ft_points *p);
  *  from lo, else po. Same errors as the single-kind readers. Release with ft_data_clear. */
 int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
                    const ft_read_points_opts *po, ft_data *out);
+/** As ft_io_read_any, except that a grid is summarized (ft_io_summarize_grid) into *summary instead of
+ *  read: out->grid stays NULL. Clear both. */
+int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                           const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary);
 /** Frees what ft_io_read_any read and zeroes *d; NULL is a no-op. */
 void ft_data_clear(ft_data *d);
 
