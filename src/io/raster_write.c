@@ -1,7 +1,7 @@
 /* fracterra — io/raster_write.c: ft_grids as the bands of one raster, atomically (ft_io_write_grid writes
  * one band; raster_write_bands.c checks and writes several through ft_io_write_bands below).
  *
- * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + ZSTD or DEFLATE, .asc Arc/Info ASCII,
+ * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + DEFLATE, .asc Arc/Info ASCII,
  * others looked up among GDAL's drivers, no extension = GeoTIFF) or is named by the caller. Drivers that can
  * only CreateCopy (AAIGrid and others) get a copy of an in-memory dataset. Masked and non-finite cells
  * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
@@ -75,15 +75,15 @@ static int output_type(int requested, GDALDataType *t)
 }
 
 /* GeoTIFF defaults, overridden by the caller's: tiled, BigTIFF when needed, compressed on every core
- * (NUM_THREADS) with a floating-point or integer predictor and the cheapest lossless codec that keeps files
- * small: ZSTD level 1 where GDAL has it (on 4096² Float32 surfaces 0.4x the CPU time of DEFLATE level 6,
- * files 1-2 % larger), else DEFLATE level 1. A level is set only for the default codec. */
+ * (NUM_THREADS) with a floating-point or integer predictor and DEFLATE level 1: every GeoTIFF reader can
+ * open it (ZSTD, 0.7x its CPU time on 4096² Float32 surfaces, cannot be read by libtiff builds without
+ * ZSTD; library callers can ask for it in the creation options), and level 1 costs half the CPU time of level 6 for files
+ * 1 % larger. A level is set only for the default codec. */
 static char **creation_options(GDALDriverH drv, const char *const *co, GDALDataType t)
 {
     char **o = NULL;
     int gtiff = EQUAL(GDALGetDriverShortName(drv), "GTiff");
-    const char *list = gtiff ? GDALGetMetadataItem(drv, GDAL_DMD_CREATIONOPTIONLIST, NULL) : NULL;
-    const char *codec = list != NULL && strstr(list, "ZSTD") != NULL ? "ZSTD" : "DEFLATE";
+    const char *codec = "DEFLATE";
     if (gtiff) {
         o = CSLSetNameValue(o, "TILED", "YES");
         o = CSLSetNameValue(o, "COMPRESS", codec);
@@ -101,9 +101,8 @@ static char **creation_options(GDALDriverH drv, const char *const *co, GDALDataT
         CPLFree(key);
     }
     if (gtiff && !caller_codec) {
-        const char *level = EQUAL(codec, "ZSTD") ? "ZSTD_LEVEL" : "ZLEVEL";
-        if (CSLFetchNameValue(o, level) == NULL)
-            o = CSLSetNameValue(o, level, "1");
+        if (CSLFetchNameValue(o, "ZLEVEL") == NULL)
+            o = CSLSetNameValue(o, "ZLEVEL", "1");
     }
     return o;
 }
