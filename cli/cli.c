@@ -204,22 +204,7 @@ int cli_json_fput(json_object *o, FILE *f)
 
 int cli_write_file(const char *path, cli_write_fn fn, const void *arg)
 {
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL) {
-        int rc = ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno));
-        free(tmp);
-        return rc;
-    }
-    int bad = fn(f, arg) != FT_OK || ferror(f);
-    bad |= fclose(f) != 0;
-    int rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    return ft_io_atomic_write(path, fn, arg);
 }
 
 int cli_print_json(const cli_command *cmd, json_object *o)

@@ -224,7 +224,7 @@ typedef struct {
 
 static const char *stage(staged *s, const char *path)
 {
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     if (tmp == NULL)
         return NULL;
     s->path[s->n] = path;
@@ -236,7 +236,7 @@ static int commit_all(staged *s)
 {
     int rc = FT_OK;
     for (size_t i = 0; i < s->n && rc == FT_OK; i++) {
-        rc = ft_tmp_commit(s->tmp[i], s->path[i]);
+        rc = ft_io_atomic_commit(s->tmp[i], s->path[i]);
         if (rc == FT_OK) {
             free(s->tmp[i]);
             s->tmp[i] = NULL;
@@ -249,7 +249,7 @@ static void discard_all(staged *s)
 {
     for (size_t i = 0; i < s->n; i++) {
         if (s->tmp[i] != NULL)
-            ft_tmp_discard(s->tmp[i]);
+            ft_io_atomic_discard(s->tmp[i]);
         free(s->tmp[i]);
     }
     s->n = 0;

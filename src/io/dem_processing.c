@@ -200,19 +200,18 @@ static int write_copy(GDALDatasetH ds, const char *path)
         GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) == NULL)
         return ft_error(FT_E_UNSUPPORTED, "hillshade: GDAL's %s driver cannot write %s", GDALGetDriverShortName(drv),
                         path);
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    ft_io_stage st;
+    if ((rc = ft_io_stage_begin(path, drv, &st)) != FT_OK)
+        return rc;
     ft_io_gdal_reset();
-    GDALDatasetH out = GDALCreateCopy(drv, tmp, ds, FALSE, NULL, NULL, NULL);
+    GDALDatasetH out = GDALCreateCopy(drv, st.target, ds, FALSE, NULL, NULL, NULL);
     if (out != NULL)
         GDALClose(out);
     int ok = out != NULL && !ft_io_gdal_failed();
-    rc = ok ? ft_tmp_commit(tmp, path) : ft_io_fail(FT_E_IO, "cannot write %s", path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    if (!ok)
+        rc = ft_io_fail(FT_E_IO, "cannot write %s", path);
+    int end = ft_io_stage_end(&st, ok);
+    return ok ? end : rc;
 }
 
 static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *out_path,

@@ -227,11 +227,12 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
         return rc;
     w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);
     w.nodata = ft_malloc(n * sizeof *w.nodata);
-    char *tmp = w.use_nodata && w.nodata ? ft_tmp_path(path) : NULL;
-    if (tmp == NULL) {
+    ft_io_stage st;
+    rc = w.use_nodata && w.nodata ? ft_io_stage_begin(path, drv, &st) : FT_E_NOMEM;
+    if (rc != FT_OK) {
         free(w.use_nodata);
         free(w.nodata);
-        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
+        return rc;
     }
     for (size_t k = 0; k < n; k++) {
         w.use_nodata[k] = bands[k]->has_nodata || any_invalid(bands[k]);
@@ -239,13 +240,11 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     }
     char **co = creation_options(drv, o.co, w.type);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
-    rc = direct ? write_direct(&w, drv, tmp, co) : write_copy(&w, drv, tmp, co);
+    rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
     CSLDestroy(co);
+    int end = ft_io_stage_end(&st, rc == FT_OK);
     if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
+        rc = end;
     free(w.use_nodata);
     free(w.nodata);
     return rc;

@@ -5,6 +5,7 @@
 #include "render/render_internal.h"
 
 #include "fracterra/core.h"
+#include "fracterra/io.h"
 #include "internal.h"
 
 #include <cairo-pdf.h>
@@ -65,14 +66,14 @@ static int draw_to(const char *tmp, const char *path, ft_canvas_format fmt, int 
 
 int ft_canvas_write(const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw, const void *arg)
 {
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     if (tmp == NULL)
         return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
     int rc = draw_to(tmp, path, fmt, w, h, draw, arg);
     if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
+        rc = ft_io_atomic_commit(tmp, path);
     if (rc != FT_OK)
-        ft_tmp_discard(tmp);
+        ft_io_atomic_discard(tmp);
     free(tmp);
     return rc;
 }

@@ -9,6 +9,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "fracterra/render.h"
+#include "fracterra/io.h"
 #include "internal.h"
 #include "render/render_internal.h"
 
@@ -152,16 +153,16 @@ static int write_scaled_png(cairo_surface_t *src, int width, int height, const c
     cairo_destroy(cr);
 
     int rc = FT_OK;
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     if (tmp == NULL) {
         rc = ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
     } else if (st != CAIRO_STATUS_SUCCESS) {
         rc = ft_error(FT_E_NOMEM, "cannot draw %s: %s", path, cairo_status_to_string(st));
     } else if ((st = cairo_surface_write_to_png(dst, tmp)) != CAIRO_STATUS_SUCCESS) {
-        ft_tmp_discard(tmp);
+        ft_io_atomic_discard(tmp);
         rc = ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
-    } else if ((rc = ft_tmp_commit(tmp, path)) != FT_OK) {
-        ft_tmp_discard(tmp);
+    } else if ((rc = ft_io_atomic_commit(tmp, path)) != FT_OK) {
+        ft_io_atomic_discard(tmp);
     }
     free(tmp);
     cairo_surface_destroy(dst);
