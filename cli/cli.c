@@ -202,6 +202,22 @@ int cli_json_fput(json_object *o, FILE *f)
     return fputs(json_object_to_json_string_ext(o, flags), f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
 }
 
+int cli_refuse_overwrite(const cli_command *cmd, const char *what, const char *out, ...)
+{
+    if (out == NULL)
+        return CLI_CONTINUE;
+    va_list ap;
+    va_start(ap, out);
+    const char *in;
+    int rc = CLI_CONTINUE;
+    while (rc == CLI_CONTINUE && (in = va_arg(ap, const char *)) != NULL)
+        if (*in != '\0' && ft_io_same_file(in, out))
+            rc = cli_usage_error(cmd, "%s '%s' is the input file '%s': it would be overwritten; choose another name",
+                                 what, out, in);
+    va_end(ap);
+    return rc;
+}
+
 int cli_write_file(const char *path, cli_write_fn fn, const void *arg)
 {
     return ft_io_atomic_write(path, fn, arg);

@@ -97,6 +97,11 @@ int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, co
 
 /* ---- output ---- */
 
+/** Refuses (CLI_USAGE, before any work) an output that is the same file as an input (ft_io_same_file):
+ *  what names the output ("OUT", "--dem", ...) and the NULL-terminated list of input paths (NULL entries
+ *  before the end may be skipped by passing "" instead). CLI_CONTINUE otherwise; out may be NULL. */
+int cli_refuse_overwrite(const cli_command *cmd, const char *what, const char *out, ...);
+
 /** Prints o pretty-printed on stdout, then releases it. CLI_OK, or CLI_FAIL if stdout cannot be written. */
 int cli_print_json(const cli_command *cmd, json_object *o);
 /** Writes o as pretty JSON (the format --json prints) followed by a newline; FT_OK or FT_E_IO. */

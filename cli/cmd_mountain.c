@@ -534,6 +534,9 @@ static int run_mountain(const cli_command *cmd, int argc, char **argv)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
     if (rc == CLI_CONTINUE)
         rc = check_args(cmd, &a, argv[first + 1]);
+    const char *outs[4][2] = {{"OUT", NULL}, {"--dem", a.dem_path}, {"--view", a.view_path}, {"--map", a.map_path}};
+    for (int i = 0; i < 4 && rc == CLI_CONTINUE; i++)
+        rc = cli_refuse_overwrite(cmd, outs[i][0], i == 0 ? argv[first + 1] : outs[i][1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     return grow(cmd, &a, argv[first], argv[first + 1]);

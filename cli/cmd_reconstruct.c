@@ -391,6 +391,8 @@ static int run_reconstruct(const cli_command *cmd, int argc, char **argv)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
     if (rc == CLI_CONTINUE)
         rc = check_options(cmd, &a);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], a.like ? a.like : "", (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     const char *in = argv[first], *out = argv[first + 1];

@@ -34,6 +34,8 @@ int line_edit_parse(const cli_command *cmd, int argc, char **argv, const struct 
     int rc = cli_parse_options(cmd, argc, argv, longopts, shortopts, fn, ctx, first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, *first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUTPUT", argv[*first + 1], argv[*first], (const char *)NULL);
     return rc;
 }
 
