@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,10 +17,34 @@
 #include <strings.h>
 #include <unistd.h>
 
+static volatile sig_atomic_t interrupted;
+
+/* The first Ctrl-C (or TERM) asks the running computation to stop at its next progress report, so that
+ * it unwinds and removes its temporary files; a second one ends the process at once. */
+static void on_interrupt(int sig)
+{
+    if (interrupted) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
+    interrupted = sig;
+}
+
 void cli_init(void)
 {
     /* 15 significant digits: exact for every value a file stores in decimal, without 0.1 -> 0.1000000000001. */
     json_c_set_serialization_double_format("%.15g", JSON_C_OPTION_GLOBAL);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+int cli_interrupted(void)
+{
+    return interrupted != 0;
 }
 
 static void vmessage(const cli_command *cmd, const char *prefix, const char *fmt, va_list ap)
@@ -51,7 +76,11 @@ int cli_fail(const cli_command *cmd)
     const char *msg = ft_last_error();
     if (msg == NULL || *msg == '\0')
         msg = ft_strerror(ft_last_error_code());
-    cli_error(cmd, "%s", msg);
+    if (interrupted && ft_last_error_code() == FT_E_CANCELLED)
+        cli_error(cmd, "interrupted (%s): stopped, no output written (%s)", interrupted == SIGINT ? "Ctrl-C" : "TERM",
+                  msg);
+    else
+        cli_error(cmd, "%s", msg);
     return CLI_FAIL;
 }
 
@@ -94,7 +123,7 @@ int cli_parse_options(const cli_command *cmd, int argc, char **argv, const struc
     char optstring[128];
     snprintf(optstring, sizeof optstring, ":h%s", shortopts ? shortopts : "");
     opterr = 0;
-    optind = 1;
+    optind = 0; /* glibc: 0 resets getopt's whole state, including a half-read cluster of a previous parse */
     int c;
     while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
         char name[96];
@@ -239,9 +268,19 @@ json_object *cli_json_double(double v)
     return isfinite(v) ? json_object_new_double(v) : NULL;
 }
 
+static int progress_tty(double frac, const char *msg, void *arg)
+{
+    return interrupted ? 0 : GDALTermProgress(frac, msg, arg);
+}
+
+static int progress_quiet(double frac, const char *msg, void *arg)
+{
+    return !interrupted;
+}
+
 ft_progress_fn cli_progress(void)
 {
-    return isatty(STDERR_FILENO) ? GDALTermProgress : NULL;
+    return isatty(STDERR_FILENO) ? progress_tty : progress_quiet;
 }
 
 /* Copies the quoted WKT string starting at s (at its opening quote; "" escapes a quote) into buf and

@@ -49,7 +49,7 @@ extern const cli_command cli_cmd_dim_map;
 extern const cli_command cli_cmd_dim_area;
 extern const cli_command cli_cmd_dim_points;
 
-/** Sets up output conventions (JSON number format); called once by main. */
+/** Sets up output conventions (JSON number format) and the Ctrl-C handler; called once by main. */
 void cli_init(void);
 
 /* ---- messages (stderr) ---- */
@@ -112,8 +112,11 @@ typedef int (*cli_write_fn)(FILE *f, const void *arg);
 int cli_write_file(const char *path, cli_write_fn fn, const void *arg);
 /** A JSON number, or null when v is not finite (JSON has no NaN). */
 json_object *cli_json_double(double v);
-/** GDALTermProgress when stderr is a terminal, NULL otherwise (no progress output in pipes and logs). */
+/** A progress callback: GDALTermProgress's bar when stderr is a terminal, silent otherwise (pipes and logs);
+ *  both return 0 (stop) once Ctrl-C or TERM was received, so that the work unwinds without output. */
 ft_progress_fn cli_progress(void);
+/** 1 once Ctrl-C (SIGINT) or SIGTERM was received (cli_init installs the handler). */
+int cli_interrupted(void);
 
 /** The CRS's top-level name (first quoted string of the WKT) into name, and its top-level EPSG code
  *  into *epsg (0 if none). name becomes "" when wkt is NULL or empty. */

@@ -234,6 +234,24 @@ static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, cons
     return rc;
 }
 
+/* Reads the band through the grid reader first, so that a hillshade is refused where `render` refuses the
+ * same DEM: a truncated file (a read error, not a grid of zeros), fewer than 2 x 2 cells, no valid cell, or
+ * more cells than the memory bound allows. */
+static int check_shadeable(GDALDatasetH src, const char *path, int band)
+{
+    ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
+    go.band = band;
+    ft_grid *g = NULL;
+    int rc = ft_io_read_grid_ds(src, path, &go, &g);
+    if (rc == FT_OK && (g->nx < 2 || g->ny < 2))
+        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", path, g->nx,
+                      g->ny);
+    if (rc == FT_OK && ft_grid_count_valid(g) == 0)
+        rc = ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, g->nx * g->ny);
+    ft_grid_free(g);
+    return rc;
+}
+
 static int open_and_shade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *o)
 {
     GDALDatasetH src = NULL;
@@ -243,7 +261,7 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
     if (o->band > GDALGetRasterCount(src)) {
         rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
                       o->band);
-    } else {
+    } else if ((rc = check_shadeable(src, dem_path, o->band)) == FT_OK) {
         vsimem_names n;
         names_init(&n);
         rc = shade_and_write(src, o, out_path, &n);

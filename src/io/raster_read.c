@@ -50,6 +50,11 @@ static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
     int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
     if (nx <= 0 || ny <= 0)
         return ft_error(FT_E_FORMAT, "'%s' has an empty raster (%d x %d)", path, nx, ny);
+    char what[PATH_MAX + 64];
+    snprintf(what, sizeof what, "reading '%s' (%d x %d cells)", path, nx, ny);
+    /* float elevations and a byte mask per cell */
+    if (ft_check_memory((double)nx * (double)ny * (sizeof(float) + 1.0), what) != FT_OK)
+        return FT_E_NOMEM;
     ft_grid *g = ft_grid_create((size_t)nx, (size_t)ny);
     if (g == NULL)
         return FT_E_NOMEM;
