@@ -51,7 +51,13 @@ typedef struct {
     const char *name; /**< "fractalize", "weed", "smooth", "simplify", "repair" */
     ft_line_op op;    /**< ft_line_op_enhance, ft_line_op_weed, ... (line.h) */
     const void *opts;
+    double growth;    /**< at most this many vertices out per vertex in (0 or 1: no growth) */
+    char option[48];  /**< the option that drives the growth, as the user gave it ("--iterations 16") */
 } line_step;
+
+/* Memory per output vertex of a line edit: x and y in the edited chain, its copy in the layer, the writer's
+ * OGR geometry. */
+#define LINE_BYTES_PER_VERTEX 48.0
 
 /* Called once the input is read, before the steps (e.g. to choose a tolerance from the data); may add
  * members to params. FT_OK or an error code (error set). */
