@@ -231,6 +231,15 @@ int cli_json_fput(json_object *o, FILE *f)
     return fputs(json_object_to_json_string_ext(o, flags), f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
 }
 
+int cli_check_grid_work(const cli_command *cmd, const char *path, const ft_grid *g)
+{
+    double cells = (double)g->nx * (double)g->ny, side = (double)(g->nx > g->ny ? g->nx : g->ny);
+    double levels = fmax(1.0, log2(side));
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "'%s' (%zu x %zu cells, %.0f levels)", path, g->nx, g->ny, ceil(levels));
+    return ft_check_work(cells * levels, what) == FT_OK ? CLI_CONTINUE : cli_fail(cmd);
+}
+
 int cli_refuse_overwrite(const cli_command *cmd, const char *what, const char *out, ...)
 {
     if (out == NULL)

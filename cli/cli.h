@@ -95,6 +95,10 @@ int cli_run_subcommand(const cli_command *cmd, const cli_command *const *subs, s
  *  CLI_CONTINUE or CLI_USAGE. */
 int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n);
 
+/** Refuses (CLI_FAIL, message printed) a grid whose measurement would exceed the work bound: cells × levels,
+ *  levels = log2 of its longer side (the scales an estimator or a pyramid visits). CLI_CONTINUE otherwise. */
+int cli_check_grid_work(const cli_command *cmd, const char *path, const ft_grid *g);
+
 /* ---- output ---- */
 
 /** Refuses (CLI_USAGE, before any work) an output that is the same file as an input (ft_io_same_file):

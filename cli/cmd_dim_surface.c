@@ -26,7 +26,14 @@ int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid
 {
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
     ro.band = band;
-    return ft_io_read_grid(path, &ro, out) == FT_OK ? CLI_CONTINUE : cli_fail(cmd);
+    if (ft_io_read_grid(path, &ro, out) != FT_OK)
+        return cli_fail(cmd);
+    if (cli_check_grid_work(cmd, path, *out) != CLI_CONTINUE) {
+        ft_grid_free(*out);
+        *out = NULL;
+        return CLI_FAIL;
+    }
+    return CLI_CONTINUE;
 }
 
 int surface_parse_methods(const cli_command *cmd, const char *text, int allow_all, ft_surface_method *ms, int *n)

@@ -464,6 +464,30 @@ static int check_outputs(const cli_command *cmd, const mountain_args *a, const c
     return CLI_CONTINUE;
 }
 
+/* The sizes the options would reach on this seed, refused beyond the memory bound before any work: the
+ * shrinking makes in all about 2·area/d² contour vertices (a disc of radius R: R/d
+ * levels of 2πR/d vertices), and the DEM about bbox-area/cell² cells (float, mask and a double work copy). */
+static int check_sizes(const cli_command *cmd, const mountain_args *a, const ft_polygon_set *seed)
+{
+    double area = ft_polygon_set_area(seed);
+    char what[200];
+    if (a->mo.spacing > 0.0 && area > 0.0) {
+        double verts = 2.0 * area / (a->mo.spacing * a->mo.spacing);
+        snprintf(what, sizeof what, "--spacing %g on a seed of %.4g square units (about %.3g contour vertices)",
+                 a->mo.spacing, area, verts);
+        if (ft_check_memory(verts * 48.0, what) != FT_OK)
+            return cli_fail(cmd);
+    }
+    if (a->dem.cell > 0.0 && (a->dem_path || a->view_path) && area > 0.0) {
+        double cells = 2.0 * area / (a->dem.cell * a->dem.cell);
+        snprintf(what, sizeof what, "--cell %g over a seed of %.4g square units (about %.3g DEM cells)", a->dem.cell,
+                 area, cells);
+        if (ft_check_memory(cells * 13.0, what) != FT_OK)
+            return cli_fail(cmd);
+    }
+    return CLI_CONTINUE;
+}
+
 static int grow(const cli_command *cmd, mountain_args *a, const char *in, const char *out)
 {
     ft_layer *seed_layer = NULL;
@@ -472,6 +496,8 @@ static int grow(const cli_command *cmd, mountain_args *a, const char *in, const 
     int status = check_outputs(cmd, a, out);
     if (status == CLI_CONTINUE)
         status = read_seed(cmd, in, a, &seed_layer, &seed);
+    if (status == CLI_CONTINUE)
+        status = check_sizes(cmd, a, seed);
     if (status == CLI_CONTINUE) {
         r.seed_layer = seed_layer;
         a->mo.progress = a->dem.progress = cli_progress();

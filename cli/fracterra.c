@@ -52,7 +52,7 @@ static void print_usage(FILE *f)
                "Every command also takes:\n"
                "  --max-memory SIZE  the memory a command may plan to use (e.g. 2G, 512M; default: half the\n"
                "                     machine's memory): larger work is refused before it starts\n"
-               "  --max-work N       the elementary steps it may plan (default %.0e, some minutes)\n"
+               "  --max-work N       the elementary steps it may plan (default %.0e: rulers, pairs or cells)\n"
                "Ctrl-C stops a command cleanly: no output file is left behind.\n\n"
                "Example:\n  fracterra info tests/data/dem_volcano_maunga_whau_10m.tif\n",
             FT_WORK_LIMIT_DEFAULT);

@@ -79,9 +79,9 @@ size_t ft_memory_limit(void);
 /** Sets the process-wide memory bound (the CLI's --max-memory); 0 restores the default. */
 void ft_set_memory_limit(size_t bytes);
 /** The work bound in elementary steps (a pair, a cell visit, a vertex move): ft_set_work_limit's value,
- *  else FT_WORK_LIMIT_DEFAULT, some minutes on one core. */
+ *  else FT_WORK_LIMIT_DEFAULT (a ruler placement, a pair or a cell visit each: well under a minute). */
 double ft_work_limit(void);
-#define FT_WORK_LIMIT_DEFAULT 2e11
+#define FT_WORK_LIMIT_DEFAULT 1e9
 /** Sets the process-wide work bound (the CLI's --max-work); 0 restores the default. */
 void ft_set_work_limit(double steps);
 /** FT_OK if an estimate of `bytes` (may be huge or infinite) fits ft_memory_limit(); else FT_E_NOMEM with

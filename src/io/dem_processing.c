@@ -12,6 +12,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include <limits.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -246,6 +247,11 @@ static int check_shadeable(GDALDatasetH src, const char *path, int band)
     if (rc == FT_OK && (g->nx < 2 || g->ny < 2))
         rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", path, g->nx,
                       g->ny);
+    if (rc == FT_OK) {
+        char what[PATH_MAX + 64];
+        snprintf(what, sizeof what, "shading '%s' (%zu x %zu cells)", path, g->nx, g->ny);
+        rc = ft_check_work(4.0 * (double)g->nx * (double)g->ny, what); /* read, slope, shade, encode */
+    }
     if (rc == FT_OK && ft_grid_count_valid(g) == 0)
         rc = ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, g->nx * g->ny);
     ft_grid_free(g);

@@ -55,6 +55,8 @@ static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
     /* float elevations and a byte mask per cell */
     if (ft_check_memory((double)nx * (double)ny * (sizeof(float) + 1.0), what) != FT_OK)
         return FT_E_NOMEM;
+    if (ft_check_work((double)nx * (double)ny, what) != FT_OK)
+        return FT_E_INVALID;
     ft_grid *g = ft_grid_create((size_t)nx, (size_t)ny);
     if (g == NULL)
         return FT_E_NOMEM;
