@@ -388,6 +388,17 @@ int cli_read_layer(const cli_command *cmd, const char *path, const char *layer, 
     int rc = ft_io_read_layer(path, &lo, out);
     if (rc == FT_OK)
         rc = ft_layer_check_finite(*out);
+    double x0, y0, x1, y1;
+    /* Lengths and areas square the coordinates' differences: beyond 1e150 they overflow to inf. */
+    if (rc == FT_OK && ft_layer_bbox(*out, &x0, &y0, &x1, &y1) == FT_OK &&
+        !(fmax(x1 - x0, y1 - y0) <= 1e150 && fmax(fmax(fabs(x0), fabs(x1)), fmax(fabs(y0), fabs(y1))) <= 1e150))
+        rc = ft_error(FT_E_NUMERIC, "%s: coordinates reach %g x %g: lengths and areas would overflow double "
+                      "precision (rescale or reproject the data)", path, fmax(fabs(x0), fabs(x1)),
+                      fmax(fabs(y0), fabs(y1)));
+    if (rc != FT_OK) {
+        ft_layer_free(*out);
+        *out = NULL;
+    }
     if (rc == FT_E_INVALID)
         return cli_usage_error(cmd, "%s", ft_last_error());
     return rc == FT_OK ? CLI_CONTINUE : cli_fail(cmd);

@@ -154,6 +154,15 @@ static int check_args(const cli_command *cmd, const mountain_args *a, const char
         return cli_usage_error(cmd, "--view writes a PNG: its name must end in .png, got '%s'", a->view_path);
     if (a->map_path && !has_ext(a->map_path, "svg png pdf"))
         return cli_usage_error(cmd, "--map must end in .svg, .png or .pdf, got '%s'", a->map_path);
+    /* The outputs are staged under temporary names whose driver is found from the real name's extension. */
+    const char *dot = strrchr(out, '.');
+    if (a->driver == NULL && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "OUT '%s' has no extension: end it in .geojson, .gpkg, .shp or .gmt, or name "
+                               "a driver with -f", out);
+    dot = a->dem_path ? strrchr(a->dem_path, '.') : NULL;
+    if (a->dem_path && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "--dem '%s' has no extension: end it in .tif (or another raster format's)",
+                               a->dem_path);
     const char *paths[4] = {out, a->dem_path, a->view_path, a->map_path};
     static const char *const names[4] = {"OUT", "--dem", "--view", "--map"};
     for (int i = 0; i < 4; i++)
@@ -457,6 +466,15 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
 
 static int check_outputs(const cli_command *cmd, const mountain_args *a, const char *out)
 {
+    /* The outputs are staged under temporary names whose driver is found from the real name's extension. */
+    const char *dot = strrchr(out, '.');
+    if (a->driver == NULL && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "OUT '%s' has no extension: end it in .geojson, .gpkg, .shp or .gmt, or name "
+                               "a driver with -f", out);
+    dot = a->dem_path ? strrchr(a->dem_path, '.') : NULL;
+    if (a->dem_path && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "--dem '%s' has no extension: end it in .tif (or another raster format's)",
+                               a->dem_path);
     const char *paths[4] = {out, a->dem_path, a->view_path, a->map_path};
     for (int i = 0; i < 4; i++)
         if (paths[i] != NULL && ft_io_check_writable(paths[i]) != FT_OK)
