@@ -88,7 +88,7 @@ void ft_set_work_limit(double steps);
  *  "<what> would need 12.5 GB of memory, more than the 11.6 GB limit (--max-memory)". what names the
  *  option or data that drive the size, e.g. "--size 20000x20000 (4e+08 cells)". */
 int ft_check_memory(double bytes, const char *what);
-/** The same for work: FT_E_INVALID with "<what> would take 3e+12 steps, more than the 2e+11 limit
+/** The same for work: FT_E_UNSUPPORTED (a valid request beyond the bound) with "<what> would take 3e+12 steps, more than the 2e+11 limit
  *  (--max-work)" when steps exceeds ft_work_limit(). */
 int ft_check_work(double steps, const char *what);
 

@@ -75,7 +75,7 @@ int ft_check_work(double steps, const char *what)
     if (steps <= limit)
         return FT_OK;
     if (isfinite(steps))
-        return ft_error(FT_E_INVALID, "%s would take %.3g steps, more than the %.3g limit (raise it with --max-work)",
+        return ft_error(FT_E_UNSUPPORTED, "%s would take %.3g steps, more than the %.3g limit (raise it with --max-work)",
                         what ? what : "this computation", steps, limit);
-    return ft_error(FT_E_INVALID, "%s would never finish (unbounded work)", what ? what : "this computation");
+    return ft_error(FT_E_UNSUPPORTED, "%s would never finish (unbounded work)", what ? what : "this computation");
 }

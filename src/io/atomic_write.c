@@ -336,23 +336,26 @@ void ft_io_atomic_discard(const char *tmp)
 
 /* ---- GDAL writers ------------------------------------------------------------------------------ */
 
-/* GTiff (and COG, which writes through it) reports every failed write through libtiff; the other drivers
- * (GeoJSON, PNG, ...) may drop a short write without a word, so they write into memory and the bytes are
- * copied to the temporary with every write checked. */
-static int driver_reports_write_errors(GDALDriverH drv)
+/* Most drivers (GeoJSON, PNG, ...) may drop a short write without a word, so they write into memory and
+ * the bytes are copied to the temporary with every write checked (and the system's reason reported).
+ * GTiff (and COG, which writes through it) reports failed writes through libtiff, so a raster too large to
+ * hold twice in memory is written by it directly. */
+#define STAGE_IN_MEMORY_MAX 256e6
+
+static int write_directly(GDALDriverH drv, double bytes)
 {
     const char *name = drv ? GDALGetDriverShortName(drv) : "";
-    return strcmp(name, "GTiff") == 0 || strcmp(name, "COG") == 0;
+    return bytes > STAGE_IN_MEMORY_MAX && (strcmp(name, "GTiff") == 0 || strcmp(name, "COG") == 0);
 }
 
-int ft_io_stage_begin(const char *path, GDALDriverH drv, ft_io_stage *s)
+int ft_io_stage_begin(const char *path, GDALDriverH drv, double bytes, ft_io_stage *s)
 {
     memset(s, 0, sizeof *s);
     s->path = path;
     s->tmp = ft_io_atomic_tmp(path);
     if (s->tmp == NULL)
         return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    if (driver_reports_write_errors(drv)) {
+    if (write_directly(drv, bytes)) {
         s->target = ft_strdup(s->tmp);
     } else {
         char dir[96];

@@ -202,7 +202,7 @@ static int write_copy(GDALDatasetH ds, const char *path)
         return ft_error(FT_E_UNSUPPORTED, "hillshade: GDAL's %s driver cannot write %s", GDALGetDriverShortName(drv),
                         path);
     ft_io_stage st;
-    if ((rc = ft_io_stage_begin(path, drv, &st)) != FT_OK)
+    if ((rc = ft_io_stage_begin(path, drv, 4.0 * GDALGetRasterXSize(ds) * GDALGetRasterYSize(ds), &st)) != FT_OK)
         return rc;
     ft_io_gdal_reset();
     GDALDatasetH out = GDALCreateCopy(drv, st.target, ds, FALSE, NULL, NULL, NULL);

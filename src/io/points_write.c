@@ -136,7 +136,7 @@ int ft_io_write_points(const char *path, const ft_points *p)
     ft_io_stage st;
     rc = ft_io_find_driver(path, NULL, GDAL_DCAP_VECTOR, &drv);
     if (rc == FT_OK)
-        rc = ft_io_stage_begin(path, drv, &st);
+        rc = ft_io_stage_begin(path, drv, 0.0, &st);
     if (rc != FT_OK)
         return rc;
     rc = write_ogr(path, drv, st.target, p);

@@ -56,7 +56,7 @@ static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
     if (ft_check_memory((double)nx * (double)ny * (sizeof(float) + 1.0), what) != FT_OK)
         return FT_E_NOMEM;
     if (ft_check_work((double)nx * (double)ny, what) != FT_OK)
-        return FT_E_INVALID;
+        return FT_E_UNSUPPORTED;
     ft_grid *g = ft_grid_create((size_t)nx, (size_t)ny);
     if (g == NULL)
         return FT_E_NOMEM;

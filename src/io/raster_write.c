@@ -228,7 +228,7 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);
     w.nodata = ft_malloc(n * sizeof *w.nodata);
     ft_io_stage st;
-    rc = w.use_nodata && w.nodata ? ft_io_stage_begin(path, drv, &st) : FT_E_NOMEM;
+    rc = w.use_nodata && w.nodata ? ft_io_stage_begin(path, drv, 8.0 * (double)n * (double)bands[0]->nx * (double)bands[0]->ny, &st) : FT_E_NOMEM;
     if (rc != FT_OK) {
         free(w.use_nodata);
         free(w.nodata);

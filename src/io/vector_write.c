@@ -258,7 +258,7 @@ int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_la
     if (!GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL))
         return ft_error(FT_E_UNSUPPORTED, "driver '%s' cannot create vector files", GDALGetDriverShortName(drv));
     ft_io_stage st;
-    if ((rc = ft_io_stage_begin(path, drv, &st)) != FT_OK)
+    if ((rc = ft_io_stage_begin(path, drv, 0.0, &st)) != FT_OK)
         return rc;
     writer w = {.path = path, .l = layer};
     rc = write_dataset(&w, drv, st.target, &o);
