@@ -12,6 +12,7 @@ packages=(
   libcairo2-dev               # PNG/SVG/PDF rendering
   libjson-c-dev               # JSON output
   libcmocka-dev               # unit tests
+  clang libclang-rt-dev libomp-dev  # make fuzz: libFuzzer harnesses (clang's runtime, OpenMP for clang)
 )
 
 missing=()

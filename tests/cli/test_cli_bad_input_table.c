@@ -20,7 +20,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "fracterra/fracterra.h"
 #include "ft_test_run.h"
@@ -349,11 +352,38 @@ static void test_full_file_system(void **state)
     signal(SIGXFSZ, old);
 }
 
+/* ---- Ctrl-C ---- */
+
+/* A long synthesis interrupted after a second stops with exit 1, not by the signal, and leaves nothing. */
+static void test_interrupt(void **state)
+{
+    char *out = ft_test_path(dir, "int.tif");
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int null = open("/dev/null", O_WRONLY);
+        dup2(null, STDOUT_FILENO);
+        dup2(null, STDERR_FILENO);
+        execl(FT_BIN, FT_BIN, "synth", out, "--dim", "2.3", "--size", "6000x6000", "--method", "exact", (char *)NULL);
+        _exit(127);
+    }
+    sleep(1);
+    kill(pid, SIGINT);
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 1);
+    assert_false(ft_test_exists(out));
+    assert_false(has_tmp_leftover());
+    free(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_input_table),
         cmocka_unit_test(test_full_file_system),
+        cmocka_unit_test(test_interrupt),
     };
     return cmocka_run_group_tests_name("cli_bad_input_table", tests, setup, teardown);
 }
