@@ -198,6 +198,22 @@ static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **c
     return rc;
 }
 
+/* A driver that cannot store the band type would convert it on the way (PNG turns Float32 elevations
+ * into a Byte image of their integer parts): refused instead of a silently different file. */
+static int check_type(const char *path, GDALDriverH drv, GDALDataType type)
+{
+    const char *types = GDALGetMetadataItem(drv, GDAL_DMD_CREATIONDATATYPES, NULL);
+    const char *name = GDALGetDataTypeName(type);
+    if (types == NULL || name == NULL)
+        return FT_OK;
+    for (const char *s = strstr(types, name); s != NULL; s = strstr(s + 1, name))
+        if ((s == types || s[-1] == ' ') && (s[strlen(name)] == ' ' || s[strlen(name)] == '\0'))
+            return FT_OK;
+    return ft_error(FT_E_UNSUPPORTED, "%s: GDAL's %s driver cannot store %s cells (it stores %s); write a GeoTIFF "
+                    "(.tif), or make a picture with `fracterra hillshade` or `render`", path,
+                    GDALGetDriverShortName(drv), name, types);
+}
+
 static int check_grid(const char *path, const ft_grid *g)
 {
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
@@ -223,6 +239,8 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
         rc = output_type(o.type, &w.type);
     if (rc == FT_OK)
         rc = ft_io_find_driver(path, o.driver, GDAL_DCAP_RASTER, &drv);
+    if (rc == FT_OK)
+        rc = check_type(path, drv, w.type);
     if (rc != FT_OK)
         return rc;
     w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);

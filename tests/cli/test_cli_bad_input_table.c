@@ -259,6 +259,7 @@ static const bad_case cases[] = {
     {"nonsense", 1, "a layer and a z field", {"reconstruct", "@/pts.csv", "@/out.tif", "--layer", "x", "--cell", "1"}},
     {"nonsense", 2, "--periodic is for --method fft",
      {"synth", "@/out.tif", "--dim", "2.3", "--size", "64x64", "--method", "sra", "--periodic"}},
+    {"nonsense", 1, "cannot store Float32 cells", {"synth", "@/out.png", "--dim", "2.3", "--size", "64x64"}},
     {"nonsense", 2, "--sigma must be", {"synth", "@/out.tif", "--dim", "2.3", "--size", "64x64", "--sigma", "1e300"}},
     /* unclear errors */
     {"unclear", 1, "is empty", {"model", "simulate", "@/model_empty.json", "@/out.tif"}},
@@ -303,7 +304,6 @@ static const full_case full_cases[] = {
     {"f.png", 1000, {"hillshade", VOLCANO, "@out"}},
     {"f.tif", 4000, {"hillshade", VOLCANO, "@out"}},
     {"f.tif", 4000, {"synth", "@out", "--dim", "2.3", "--size", "64x64"}},
-    {"f.png", 200, {"synth", "@out", "--dim", "2.3", "--size", "64x64"}},
     {"f.tif", 300, {"dim", "map", VOLCANO, "@out", "--window", "16", "--step", "8"}},
     {"f.json", 1000, {"model", "fit", VOLCANO, "-o", "@out"}},
     {"f.tif", 4000, {"model", "simulate", "@/model.json", "@out"}},
