@@ -45,6 +45,19 @@ static int check_band(GDALDatasetH ds, const char *path, int band)
     return FT_OK;
 }
 
+/* GDAL reads whole blocks, and a pixel-interleaved GeoTIFF one block of every band at once: a small file
+ * may declare a block far larger than the band (found by fuzzing: 31,232 bands of 36,352-cell rows, a
+ * 2.3 GB buffer for one row), which must be refused, not allocated. */
+static int check_block(GDALDatasetH ds, GDALRasterBandH band, const char *path)
+{
+    int bx = 0, by = 0, nb = GDALGetRasterCount(ds);
+    GDALGetBlockSize(band, &bx, &by);
+    double bytes = (double)bx * (double)by * GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band)) * (nb > 0 ? nb : 1);
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "reading '%s' (one block of %d x %d cells in %d bands)", path, bx, by, nb);
+    return ft_check_memory(bytes, what);
+}
+
 static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
 {
     int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
@@ -176,8 +189,10 @@ int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opt
         rc = grid_from_dataset(ds, path, &r.g);
     if (rc == FT_OK) {
         r.band = GDALGetRasterBand(ds, o.band);
-        rc = read_band(&r);
+        rc = check_block(ds, r.band, path);
     }
+    if (rc == FT_OK)
+        rc = read_band(&r);
     free(r.mbuf);
     if (rc != FT_OK) {
         ft_grid_free(r.g);
