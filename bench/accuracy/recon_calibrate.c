@@ -38,6 +38,7 @@ static double yokoya(const ft_grid *g)
 {
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.fit_whole_range = 1;
+    o.noise.mode = -1; /* the paper's estimator on noise-free surfaces: no nugget model */
     ft_dim_result *r = NULL;
     if (ft_surface_dim(g, FT_SURFACE_YOKOYA, &o, &r) != FT_OK) {
         fprintf(stderr, "yokoya: %s\n", ft_last_error());

@@ -208,6 +208,7 @@ static double yokoya(const ft_grid *g)
 {
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.fit_whole_range = 1;
+    o.noise.mode = -1; /* the paper's estimator on noise-free surfaces: no nugget model */
     ft_dim_result *r = NULL;
     double D = ft_surface_dim(g, FT_SURFACE_YOKOYA, &o, &r) == FT_OK ? r->D : NAN;
     ft_dim_result_free(r);

@@ -52,6 +52,10 @@ int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out)
 {
     ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
     o.method = pentland ? FT_POINTS_PENTLAND : FT_POINTS_YOKOYA;
+    /* The estimator k = 9.4 was calibrated with (Arakawa & Krotkov eq. 11): no nugget model. A nugget
+     * "detected" on noise-free data would move sigma0 and D by the model, not by the terrain; data with a
+     * known sigma enter through the discrepancy principle instead. */
+    o.noise_mode = -1;
     ft_dim_result *r = NULL;
     int rc = ft_surface_dim_points(p, &o, &r);
     if (rc != FT_OK)
@@ -64,6 +68,7 @@ int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out)
 int ft_recon_fit_grid(const ft_grid *g, int pentland, ft_recon_line *out)
 {
     ft_variogram_opts o = FT_VARIOGRAM_OPTS_DEFAULT;
+    o.noise.mode = -1; /* as for the points: the calibrated estimator, no nugget model */
     ft_dim_result *r = NULL;
     int rc = pentland ? ft_surface_dim_pentland(g, &o, &r) : ft_surface_dim_yokoya(g, &o, &r);
     if (rc != FT_OK)
