@@ -282,12 +282,37 @@ SEGMENT_DTYPE = np.dtype([("first", "i8"), ("last", "i8"), ("n", "i8"), ("scale_
                           ("max_err", "f8"), ("D_minimax", "f8")])
 
 
+_NONE = ctypes.c_size_t(-1).value
+
+
+def _noise_model(m):
+    """The white-noise (nugget) model of a lag estimator as the CLI's JSON "noise" member, or None when
+    none was fitted (docs/surface-noise.md)."""
+    if not m.fitted:
+        return None
+    d = {"detected": bool(m.detected or m.applied), "removed": bool(m.applied), "sigma_z": m.sigma_z}
+    if m.s > 0.0 or m.sigma_xy > 0.0:
+        d["sigma_xy"] = m.sigma_xy
+    d.update(nugget=m.c0, H=m.H, F=m.F, floor=m.floor)
+    return d
+
+
+def _regime_dicts(regimes, chosen):
+    return [{"min_scale": float(s["scale_lo"]), "max_scale": float(s["scale_hi"]), "D": float(s["D"]),
+             "se": float(s["stderr_D"]), "r2": float(s["r2"]), "rows": int(s["n"]), "chosen": i == chosen}
+            for i, s in enumerate(regimes)]
+
+
 class DimResult:
     """A fractal dimension with everything needed to judge it (docs/loglog.md): D, stderr (of D), r2,
     range (the scales of the first and last used rows), units, method, segmentation, noise, max_err,
     table (a NumPy structured array: scale, value, count, slope, used), segments (structured array of
-    the minimax segments), best (index of the segment that gave D, or None), warnings (list of str),
-    slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
+    the minimax segments), best (index of the segment that gave D, or None), regimes (structured
+    array of the straight runs by increasing scale, same fields as segments), regime (index in regimes
+    of the one that gave D, or None), breaks (scales where neighbouring regimes meet, len(regimes) - 1),
+    choice (why these rows give D), noise (the noise level of the segmentation), noise_model (dict of the
+    lag estimators' nugget model: detected, removed, sigma_z, [sigma_xy,] nugget, H, F, floor; None when
+    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
 
     def __init__(self, ptr):
         r = ptr.contents
@@ -312,7 +337,15 @@ class DimResult:
         for i in range(r.nsegments):
             s = r.segments[i]
             self.segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
-        self.best = None if r.best == ctypes.c_size_t(-1).value else int(r.best)
+        self.best = None if r.best == _NONE else int(r.best)
+        self.regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
+        for i in range(r.nregimes):
+            s = r.regimes[i]
+            self.regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self.regime = None if r.regime == _NONE or r.nregimes == 0 else int(r.regime)
+        self.breaks = [float(r.breaks[i]) for i in range(r.nregimes - 1)] if r.breaks and r.nregimes > 1 else []
+        self.choice = r.choice.decode() if r.choice else ""
+        self.noise_model = _noise_model(r.nugget)
         self.warnings = [r.warnings[i].decode("utf-8", "replace") for i in range(r.nwarnings)]
         self.extra = {}
 
@@ -320,9 +353,13 @@ class DimResult:
         """The result as plain Python values (the CLI's JSON members of the same names)."""
         return {"method": self.method, "segmentation": self.segmentation, "D": self.D, "r2": self.r2,
                 "stderr": self.stderr, "range": list(self.range), "units": self.units,
+                "max_err": self.max_err, "choice": self.choice,
+                "regime": None if self.regime is None else self.regime + 1,
+                "regimes": _regime_dicts(self.regimes, self.regime), "breaks": list(self.breaks),
                 "warnings": list(self.warnings),
                 "table": [dict(zip(TABLE_DTYPE.names, (float(a), float(b), float(c), float(d), bool(e))))
-                          for a, b, c, d, e in self.table.tolist()]}
+                          for a, b, c, d, e in self.table.tolist()],
+                **({"noise": dict(self.noise_model)} if self.noise_model is not None else {})}
 
     def __repr__(self):
         return "DimResult(method=%r, D=%.4f, stderr=%.4f, r2=%.4f, range=%.6g..%.6g%s%s)" % (
