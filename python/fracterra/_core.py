@@ -5,7 +5,7 @@ import ctypes
 import numpy as np
 
 from . import _structs as S
-from ._lib import lib, check, check_ptr
+from ._lib import lib, check, check_ptr, c_free, c_strdup
 
 __all__ = ["Grid", "DimResult"]
 
@@ -367,12 +367,98 @@ class DimResult:
             " " + self.units if self.units else "", ", %d warning(s)" % len(self.warnings) if self.warnings else "")
 
 
-def take_result(out):
-    """A DimResult from an ft_dim_result ** the library filled; frees the C result."""
+def take_result(out, crs=None):
+    """A DimResult from an ft_dim_result ** the library filled; frees the C result. With crs (an
+    ft_crs_info from crs_info), the units and the no-CRS warning as the CLI sets them (cli_geo_units)."""
     try:
+        if crs is not None:
+            geo_units(out, crs)
         return DimResult(out)
     finally:
         lib.ft_dim_result_free(out)
+
+
+# ---- geographic input (the CLI's cli_geo.c) ----
+
+FT_LOCAL_LAEA, FT_LOCAL_TMERC = 0, 1
+NO_CRS_WARNING = "the input has no CRS: scales are in its own coordinate unit, taken as planar"
+
+
+def crs_info(wkt):
+    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): an ft_crs_info."""
+    info = S.ft_crs_info()
+    check(lib.ft_io_crs_info(wkt.encode() if isinstance(wkt, str) else wkt, ctypes.byref(info)))
+    return info
+
+
+def geo_units(out, crs):
+    """Sets the result's units from the CRS ("m" for lon/lat and metre CRSs, "ft", ...), or without a
+    CRS warns that the scales are in the data's own unit; nothing if the estimator set units."""
+    if out.contents.units:
+        return
+    if crs.scale_unit:
+        lib.ft_dim_result_set_units(out, crs.scale_unit)
+    elif not crs.has_crs:
+        lib.ft_dim_result_warn(out, b"%s", NO_CRS_WARNING.encode())
+
+
+def _local_crs(wkt, kind, x0, y0, x1, y1):
+    p = ctypes.c_void_p()
+    check(lib.ft_io_local_crs(wkt.encode(), kind, 0.5 * (x0 + x1), 0.5 * (y0 + y1), ctypes.byref(p)))
+    try:
+        return ctypes.string_at(p.value)
+    finally:
+        c_free(p.value)
+
+
+def grid_ground(grid, crs):
+    """A lon/lat grid warped to a transverse Mercator centred on it, cells of the same ground area
+    (cli_geo_grid_local); other grids unchanged."""
+    if not crs.geographic:
+        return grid
+    cg = _CGrid(grid)
+    e = [ctypes.c_double() for _ in range(4)]
+    lib.ft_grid_extent(cg.ref, *(ctypes.byref(v) for v in e))
+    x0, y0, x1, y1 = (v.value for v in e)
+    local = _local_crs(grid.wkt, FT_LOCAL_TMERC, x0, y0, x1, y1)
+    per_lon, per_lat = ctypes.c_double(), ctypes.c_double()
+    lib.ft_ellipsoid_metres_per_degree(ctypes.byref(crs.ellipsoid), 0.5 * (y0 + y1), ctypes.byref(per_lon),
+                                       ctypes.byref(per_lat))
+    gt = grid.geotransform
+    cell = (abs(gt[1]) * per_lon.value * abs(gt[5]) * per_lat.value) ** 0.5
+    out = ctypes.POINTER(S.ft_grid)()
+    check(lib.ft_io_grid_reproject(cg.ref, local, cell, ctypes.byref(out)))
+    return grid_from_c(out)
+
+
+def layer_ground(lp, crs, kind=FT_LOCAL_LAEA):
+    """Reprojects a library layer (ft_layer *) in lon/lat in place to a local projection centred on its
+    bounding box (cli_geo_layer_ground); other layers unchanged."""
+    if not crs.geographic:
+        return
+    e = [ctypes.c_double() for _ in range(4)]
+    check(lib.ft_layer_bbox(lp, *(ctypes.byref(v) for v in e)))
+    local = _local_crs(lp.contents.crs_wkt.decode(), kind, *(v.value for v in e))
+    check(lib.ft_io_layer_reproject(lp, local))
+
+
+def points_ground(x, y, wkt, crs, kind=FT_LOCAL_TMERC, bbox=None):
+    """(x, y) of lon/lat points projected to a local projection (transverse Mercator for points, as
+    cli_geo_points_ground; Lambert equal-area for box counts, as cli_geo_layer_local) centred on bbox
+    (default: theirs), in metres; other points unchanged."""
+    if not crs.geographic or len(x) == 0:
+        return x, y
+    x = np.array(x, dtype=np.float64).ravel()
+    y = np.array(y, dtype=np.float64).ravel()
+    local = _local_crs(wkt, kind, *(bbox or (x.min(), y.min(), x.max(), y.max())))
+    p = _CPoints(x, y, np.zeros_like(x))
+    addr = c_strdup(wkt.encode())
+    p.struct.crs_wkt = ctypes.cast(addr, ctypes.c_char_p)
+    try:
+        check(lib.ft_io_points_reproject(p.ref, local))
+    finally:
+        c_free(ctypes.c_void_p.from_buffer(p.struct, S.ft_points.crs_wkt.offset).value)
+    return p._keep[0], p._keep[1]
 
 
 # ---- progress ----

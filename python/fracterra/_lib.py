@@ -94,6 +94,7 @@ _PROTOTYPES = [
     ("ft_points_free", None, [_P(S.ft_points)]),
     ("ft_layer_free", None, [_P(S.ft_layer)]),
     ("ft_dim_result_free", None, [_P(S.ft_dim_result)]),
+    ("ft_grid_extent", None, [_P(S.ft_grid), _P(_dbl), _P(_dbl), _P(_dbl), _P(_dbl)]),
     # io
     ("ft_io_read_grid", _int, [_str, _P(S.ft_read_grid_opts), _P(_P(S.ft_grid))]),
     ("ft_io_write_grid", _int, [_str, _P(S.ft_grid), _P(S.ft_write_grid_opts)]),
@@ -101,6 +102,15 @@ _PROTOTYPES = [
     ("ft_io_read_points", _int, [_str, _P(S.ft_read_points_opts), _P(_P(S.ft_points))]),
     ("ft_io_hillshade", _int, [_str, _str, _P(S.ft_io_hillshade_opts)]),
     ("ft_io_crs_to_wkt", _int, [_str, _P(_vp)]),
+    ("ft_io_crs_info", _int, [_str, _P(S.ft_crs_info)]),
+    ("ft_io_local_crs", _int, [_str, _int, _dbl, _dbl, _P(_vp)]),
+    ("ft_io_grid_reproject", _int, [_P(S.ft_grid), _str, _dbl, _P(_P(S.ft_grid))]),
+    ("ft_io_points_reproject", _int, [_P(S.ft_points), _str]),
+    ("ft_io_layer_reproject", _int, [_P(S.ft_layer), _str]),
+    ("ft_layer_bbox", _int, [_P(S.ft_layer), _P(_dbl), _P(_dbl), _P(_dbl), _P(_dbl)]),
+    ("ft_ellipsoid_metres_per_degree", None, [_P(S.ft_ellipsoid), _dbl, _P(_dbl), _P(_dbl)]),
+    ("ft_dim_result_set_units", None, [_P(S.ft_dim_result), _str]),
+    ("ft_dim_result_warn", _int, [_P(S.ft_dim_result), _str, _str]),
     # surface
     ("ft_surface_method_parse", _int, [_str, _P(_int)]),
     ("ft_surface_method_name", _str, [_int]),
@@ -161,6 +171,13 @@ for _name, _res, _args in _PROTOTYPES:
 _libc = ctypes.CDLL(None)
 _libc.free.argtypes = [_vp]
 _libc.free.restype = None
+_libc.strdup.argtypes = [_str]
+_libc.strdup.restype = _vp
+
+
+def c_strdup(b):
+    """A malloc'd copy of bytes b (for a field the library may free())."""
+    return _libc.strdup(b)
 
 
 def c_free(ptr):

@@ -217,6 +217,14 @@ class ft_io_hillshade_opts(_Opts):
     _defaults_ = dict(azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=0, band=1)
 
 
+@_mirror
+class ft_crs_info(c.Structure):
+    _c_name_ = "ft_crs_info"
+    _fields_ = [("has_crs", _int), ("geographic", _int), ("name", c.c_char * 128), ("unit", c.c_char * 48),
+                ("scale_unit", c.c_char * 16), ("metres_per_unit", _dbl), ("ellipsoid", ft_ellipsoid),
+                ("ellipsoid_name", c.c_char * 64)]
+
+
 # ---- render.h ----
 
 @_mirror
@@ -281,6 +289,9 @@ class ft_points_dim_opts(_Opts):
 
 
 # ---- line.h ----
+
+FT_LINE_R2_FLOOR = 0.5  # line.h: the least r² the CLI accepts
+
 
 @_mirror
 class ft_line_dim_opts(_Opts):

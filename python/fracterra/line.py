@@ -11,13 +11,14 @@ import numpy as np
 from . import _structs as S
 from ._lib import lib, check, parse_enum, FracterraError, FT_E_FORMAT, FT_E_EMPTY, FT_E_NOMEM, FT_E_CANCELLED
 from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
-                    Progress)
+                    Progress, crs_info, points_ground, FT_LOCAL_LAEA)
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
            "edit_file", "LINE_METHODS"]
 
-LINE_METHODS = ("divider", "equipaced", "hybrid", "box")
+LINE_METHODS = ("divider", "equipaced", "hybrid", "box", "box-min")
+FT_LINE_BOX, FT_LINE_BOX_MIN = 3, 4
 
 
 def _read_layer(path, layer=None, where=None, fields=False):
@@ -67,9 +68,9 @@ def _chain_list(coords, y, closed):
     return [(_coords(c), bool(f)) for c, f in zip(items, flags)]
 
 
-def dim_line(coords, y=None, *, closed=False, method="divider", by=None, layer=None, where=None,
+def dim_line(coords, y=None, *, closed=False, method="divider", by=None, layer=None, where=None, wkt=None,
              min_scale=None, max_scale=None, nscales=None, fit_whole_range=None, both_ends=True, box_offsets=None,
-             fit=None, progress=None, progress_arg=None):
+             min_r2=S.FT_LINE_R2_FLOOR, fit=None, regime=None, progress=None, progress_arg=None, _bbox=None):
     """Fractal dimension D (1..2) of a set of chains, as `fracterra dim line`: the values at each scale
     are summed over the chains and one log-log table is fitted.
 
@@ -77,34 +78,61 @@ def dim_line(coords, y=None, *, closed=False, method="divider", by=None, layer=N
     (n, 2) array, or a list of (n, 2) arrays (closed: one flag or one per chain). method: one of
     LINE_METHODS. Returns a DimResult. With a path and by=FIELD (the CLI's --by; "fid" per feature when
     the layer has no such field): a list of (value, result) pairs, one per distinct value in order of
-    first appearance, a group that cannot be measured giving its FracterraError instead of a result."""
+    first appearance, a group that cannot be measured giving its FracterraError instead of a result.
+    wkt: the CRS of coordinates given as arrays (a file's own CRS is used otherwise). As the CLI: chains
+    in longitude/latitude are walked on the CRS's ellipsoid (scales in metres) and box-counted in a
+    Lambert equal-area projection centred on the layer; a fit with r² below min_r2 (the CLI's floor,
+    FT_LINE_R2_FLOOR = 0.5; 0 = off) fails; units come from the CRS (no CRS: a warning says the scales
+    are in the data's own unit). regime: D from the N-th regime (the CLI's --regime)."""
     if isinstance(coords, (str, bytes, os.PathLike)):
         if by is not None:
             return _dim_line_by(coords, by, layer, where, dict(method=method, min_scale=min_scale,
                                 max_scale=max_scale, nscales=nscales, fit_whole_range=fit_whole_range,
-                                both_ends=both_ends, box_offsets=box_offsets, fit=fit, progress=progress,
-                                progress_arg=progress_arg))
-        chains, _ = read_chains(coords, layer=layer, where=where)
+                                both_ends=both_ends, box_offsets=box_offsets, min_r2=min_r2, fit=fit,
+                                regime=regime, progress=progress, progress_arg=progress_arg))
+        chains, wkt = read_chains(coords, layer=layer, where=where)
         items = [(c, cl) for c, cl, _f in chains if len(c) >= 2]
     else:
         if by is not None:
             raise ValueError("by= groups the features of a file; got coordinates")
         items = _chain_list(coords, y, closed)
     m = parse_enum(lib.ft_line_method_parse, method, "method")
+    crs = crs_info(wkt)
+    if crs.geographic and m in (FT_LINE_BOX, FT_LINE_BOX_MIN):
+        items = _project_chains(items, wkt, crs, _bbox)
     o = S.ft_line_dim_opts.default()
     set_scales(o, min_scale, max_scale, nscales, fit_whole_range)
     o.both_ends = 1 if both_ends else 0
     if box_offsets is not None:
         o.box_offsets = int(box_offsets)
+    o.min_r2 = float(min_r2 or 0.0)
     set_fit(o.fit, fit)
+    if regime:
+        o.fit.regime = int(regime)
+    if crs.geographic and m not in (FT_LINE_BOX, FT_LINE_BOX_MIN):
+        o.ellipsoid = ctypes.pointer(crs.ellipsoid)
     pr = Progress(progress, progress_arg)
     pr.install(o)
     out = ctypes.POINTER(S.ft_dim_result)()
     with ChainSet(items) as cs:
         pr.check(lib.ft_line_dim(cs.array, len(cs.ptrs), m, ctypes.byref(o), ctypes.byref(out)))
-    r = take_result(out)
+    r = take_result(out, crs)
     r.method = LINE_METHODS[m]
     return r
+
+
+def _project_chains(items, wkt, crs, bbox):
+    """Lon/lat chains in the Lambert equal-area projection centred on bbox (default: theirs), as the CLI
+    box-counts them (cli_geo_layer_local)."""
+    if not items:
+        return items
+    xy = np.concatenate([c for c, _ in items])
+    x, y = points_ground(xy[:, 0], xy[:, 1], wkt, crs, FT_LOCAL_LAEA, bbox)
+    out, k = [], 0
+    for c, cl in items:
+        out.append((np.column_stack((x[k:k + len(c)], y[k:k + len(c)])), cl))
+        k += len(c)
+    return out
 
 
 def _feature_keys(lay, by, path):
@@ -131,6 +159,11 @@ def _dim_line_by(path, by, layer, where, kw):
     lay = _read_layer(path, layer, where, fields=True)
     try:
         L = lay.contents
+        kw["wkt"] = L.crs_wkt.decode() if L.crs_wkt else None
+        parts = [chain_to_numpy(L.parts[p].chain) for p in range(L.nparts) if L.parts[p].chain]
+        if parts:
+            allxy = np.concatenate(parts)
+            kw["_bbox"] = (allxy[:, 0].min(), allxy[:, 1].min(), allxy[:, 0].max(), allxy[:, 1].max())
         groups = {}
         for f, key in enumerate(_feature_keys(lay, by, path)):
             groups.setdefault(key, []).append(f)  # insertion order = order of first appearance
