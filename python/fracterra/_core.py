@@ -1,6 +1,7 @@
 """Conversions between NumPy and the library's types: grids, chains, points, dimension results, and
 the progress callback."""
 import ctypes
+import math
 
 import numpy as np
 
@@ -425,7 +426,7 @@ def grid_ground(grid, crs):
     lib.ft_ellipsoid_metres_per_degree(ctypes.byref(crs.ellipsoid), 0.5 * (y0 + y1), ctypes.byref(per_lon),
                                        ctypes.byref(per_lat))
     gt = grid.geotransform
-    cell = (abs(gt[1]) * per_lon.value * abs(gt[5]) * per_lat.value) ** 0.5
+    cell = math.sqrt(abs(gt[1]) * per_lon.value * abs(gt[5]) * per_lat.value)
     out = ctypes.POINTER(S.ft_grid)()
     check(lib.ft_io_grid_reproject(cg.ref, local, cell, ctypes.byref(out)))
     return grid_from_c(out)

@@ -78,6 +78,7 @@ _int = _c.c_int
 _dbl = _c.c_double
 _str = _c.c_char_p
 _vp = _c.c_void_p
+_i64 = _c.c_int64
 
 # (name, restype, argtypes): every function the package calls, declared once.
 _PROTOTYPES = [
@@ -130,6 +131,12 @@ _PROTOTYPES = [
     ("ft_line_simplify", _int, [_P(S.ft_chain), _dbl, _P(_P(S.ft_chain))]),
     ("ft_line_remove_loops", _int, [_P(S.ft_chain), _P(_P(S.ft_chain))]),
     ("ft_line_apply_layer", _int, [_P(S.ft_layer), _vp, _vp, _int]),
+    ("ft_line_enhance_layer", _int, [_P(S.ft_layer), _P(S.ft_dutton_opts), _int, _vp, _vp]),
+    ("ft_line_smooth_layer", _int, [_P(S.ft_layer), _P(S.ft_smooth_opts), _int, _vp]),
+    ("ft_urban_boundary_layer", _int, [_P(S.ft_layer), _P(S.ft_boundary_opts), _int, _vp]),
+    ("ft_layer_create", _P(S.ft_layer), [_str, _str]),
+    ("ft_layer_add_feature", _i64, [_P(S.ft_layer), _i64, _int, _int]),
+    ("ft_layer_add_part", _int, [_P(S.ft_layer), _P(S.ft_chain), _int, _int]),
     ("ft_layer_check_finite", _int, [_P(S.ft_layer)]),
     ("ft_layer_vertex_count", _sz, [_P(S.ft_layer)]),
     ("ft_io_write_layer", _int, [_str, _P(S.ft_layer), _P(S.ft_write_layer_opts)]),

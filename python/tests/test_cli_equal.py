@@ -46,9 +46,11 @@ def test_dim_surface(cli, data, method):
 
 
 def test_dim_surface_scale_range_and_gdal_grid(cli, data):
-    js = cli("dim", "surface", data(LUX), "--min-scale", "0.01", "--max-scale", "0.1")
-    py = ft.dim_surface(ft.from_gdal(data(LUX)), min_scale=0.01, max_scale=0.1)
+    # a lon/lat DEM: measured on its warp to a local transverse Mercator, scales in metres
+    js = cli("dim", "surface", data(LUX), "--min-scale", "2000", "--max-scale", "12000")
+    py = ft.dim_surface(ft.from_gdal(data(LUX)), min_scale=2000, max_scale=12000)
     same_result(py, js)
+    assert py.units == "m" and js["geographic"]["crs"]
 
 
 def test_dim_line_file_and_arrays(cli, data):
@@ -58,9 +60,12 @@ def test_dim_line_file_and_arrays(cli, data):
     chains, wkt = ft.read_chains(path)
     assert "UTM zone 21N" in wkt and len(chains) == 1 and chains[0][0].shape == (64193, 2)
     coords, closed, _ = chains[0]
-    same_result(ft.dim_line(coords, closed=closed), js)
+    same_result(ft.dim_line(coords, closed=closed, wkt=wkt), js)
     js_box = cli("dim", "line", path, "--method", "box")
-    same_result(ft.dim_line(coords[:, 0], coords[:, 1], closed=closed, method="box"), js_box)
+    same_result(ft.dim_line(coords[:, 0], coords[:, 1], closed=closed, method="box", wkt=wkt), js_box)
+    # without the CRS the scales are in an unknown unit: the result says so, as the CLI does
+    bare = ft.dim_line(coords, closed=closed)
+    assert bare.units == "" and any("no CRS" in w for w in bare.warnings)
 
 
 def test_dim_points(cli, data):
