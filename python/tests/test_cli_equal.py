@@ -24,6 +24,15 @@ def same_result(py, js):
     assert py.segmentation == js["segmentation"]
     assert py.warnings == js["warnings"]
     assert py.units == js.get("units", "")
+    d = py.as_dict()
+    assert d["choice"] == js["choice"] and d["regime"] == js["regime"]
+    assert [printed(b) for b in d["breaks"]] == js["breaks"]
+    assert len(d["regimes"]) == len(js["regimes"])
+    for reg, jreg in zip(d["regimes"], js["regimes"]):
+        assert {k: printed(v) if isinstance(v, float) else v for k, v in reg.items()} == jreg
+    assert (py.noise_model is None) == ("noise" not in js)
+    if py.noise_model is not None:
+        assert {k: printed(v) if isinstance(v, float) else v for k, v in py.noise_model.items()} == js["noise"]
     assert len(py.table) == len(js["table"])
     for row, jrow in zip(py.table, js["table"]):
         assert (printed(row["scale"]), printed(row["value"]), printed(row["count"]), bool(row["used"])) == \
@@ -66,6 +75,27 @@ def test_dim_line_file_and_arrays(cli, data):
     # without the CRS the scales are in an unknown unit: the result says so, as the CLI does
     bare = ft.dim_line(coords, closed=closed)
     assert bare.units == "" and any("no CRS" in w for w in bare.warnings)
+
+
+@pytest.mark.parametrize("method", ["divider", "box"])
+def test_dim_line_lonlat_as_the_cli(cli, data, method):
+    """Lon/lat lines: walked on the ellipsoid, box-counted in a local equal-area projection; metres."""
+    path = data("gshhg_newfoundland_lonlat.geojson")
+    js = cli("dim", "line", path, "--method", method)
+    py = ft.dim_line(path, method=method)
+    same_result(py, js)
+    assert py.units == "m"
+    chains, wkt = ft.read_chains(path)
+    same_result(ft.dim_line([c for c, _, _ in chains], closed=[cl for _, cl, _ in chains], wkt=wkt, method=method),
+                js)
+
+
+def test_dim_area_lonlat_as_the_cli(cli, data):
+    path = data("dcw_us_states_small_lonlat.geojson")
+    js = cli("dim", "area", path)
+    py = ft.dim_area(path)
+    same_result(py, js)
+    assert py.units == "m"
 
 
 def test_dim_points(cli, data):
