@@ -121,6 +121,11 @@ _PROTOTYPES = [
     ("ft_points_method_parse", _int, [_str, _P(_int)]),
     ("ft_surface_dim_points", _int, [_P(S.ft_points), _P(S.ft_points_dim_opts), _P(_P(S.ft_dim_result))]),
     ("ft_points_counters_free", None, [_P(S.ft_points_counters)]),
+    ("ft_profile_dim", _int, [_P(_dbl), _sz, _dbl, _int, _P(_P(S.ft_dim_result))]),
+    ("ft_profile_from_grid_row", _int, [_P(S.ft_grid), _sz, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_profile_transect", _int, [_P(S.ft_grid), _dbl, _dbl, _dbl, _dbl, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_profile_resample", _int, [_P(_dbl), _P(_dbl), _P(_dbl), _sz, _dbl, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_io_read_line_z", _int, [_str, _str, _P(_P(_dbl)), _P(_P(_dbl)), _P(_P(_dbl)), _P(_sz)]),
     # line
     ("ft_line_method_parse", _int, [_str, _P(_int)]),
     ("ft_line_method_name", _str, [_int]),

@@ -12,8 +12,8 @@ LUX = "dem_luxembourg_terra_30s.tif"
 
 
 def printed(v):
-    """v as the CLI's JSON prints it, read back."""
-    return float("%.15g" % v)
+    """v as the CLI's JSON prints it, read back (null for a value that is not finite)."""
+    return float("%.15g" % v) if np.isfinite(v) else None
 
 
 def same_result(py, js):
@@ -241,3 +241,38 @@ def test_edit_file_same_geometry(cli, data, tmp_path, args, steps, coverage):
     assert wa == wb and len(ca) == len(cb)
     for (xa, ra, fa), (xb, rb, fb) in zip(ca, cb):
         assert (ra, fa) == (rb, fb) and np.array_equal(xa, xb)
+
+
+def test_dim_profile_row_transect_line(cli, data, tmp_path):
+    dem = data(VOLCANO)
+    js = cli("dim", "profile", dem, "--row", "30")
+    py = ft.dim_profile(dem, row=30, method="both")
+    assert [r.method for r in py] == [j["method"] for j in js["results"]] == ["madogram", "variogram"]
+    for r, j in zip(py, js["results"]):
+        same_result(r, j)
+    assert py[0].extra["samples"] == js["samples"] and printed(py[0].extra["spacing"]) == js["spacing"]
+    # the same row given as a Grid, and as a bare array with its spacing
+    g = ft.read_grid(dem)
+    same_result(ft.dim_profile(g, row=30, method="madogram"), js["results"][0])
+    same_result(ft.dim_profile(g.z[30].astype(float), spacing=abs(g.geotransform[1]), method="madogram"),
+                js["results"][0])
+    x0, dx, _, y0, _, dy = g.geotransform
+    a = (x0 + 5.5 * dx, y0 + 10.5 * dy)
+    b = (x0 + 50.5 * dx, y0 + 70.5 * dy)
+    jt = cli("dim", "profile", dem, "--from", "%r,%r" % a, "--to", "%r,%r" % b, "--method", "variogram")
+    pt = ft.dim_profile(dem, start=a, end=b)
+    same_result(pt, jt)
+    assert pt.extra["profile"] == jt["profile"] == "transect"
+    # a 3-D line: z resampled along its horizontal length
+    t = np.linspace(0.0, 900.0, 181)
+    line = tmp_path / "line3d.geojson"
+    zz = 10 * np.sin(t / 37.0) + np.cos(t / 5.3) + 0.3 * np.sin(t * 1.7)
+    line.write_text('{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {}, '
+                    '"geometry": {"type": "LineString", "coordinates": [%s]}}]}'
+                    % ", ".join("[%r, %r, %r]" % (v, 0.5 * v, w) for v, w in zip(t, zz)))
+    jl = cli("dim", "profile", line, "--method", "madogram")
+    pl = ft.dim_profile(line, method="madogram")
+    same_result(pl, jl)
+    assert pl.extra["samples"] == jl["samples"]
+    with pytest.raises(ValueError, match="spacing"):
+        ft.dim_profile(np.arange(10.0))
