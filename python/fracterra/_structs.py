@@ -335,6 +335,30 @@ class ft_synth_opts(_Opts):
 
 
 @_mirror
+class ft_fill_opts(_Opts):
+    _c_name_ = "ft_fill_opts"
+    _c_default_ = "FT_FILL_OPTS_DEFAULT"
+    _fields_ = [("max_void", _dbl), ("mean", _int), ("realizations", _int), ("dim", _dbl), ("ring", _int),
+                ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
+    _defaults_ = dict(max_void=100.0, mean=0, realizations=1, dim=0.0, ring=0, seed=1)
+
+
+@_mirror
+class ft_fill_void(c.Structure):
+    _c_name_ = "ft_fill_void"
+    _fields_ = [("x0", _sz), ("y0", _sz), ("x1", _sz), ("y1", _sz), ("cells", _sz), ("edge", _int), ("filled", _int),
+                ("D", _dbl), ("amplitude", _dbl), ("r2", _dbl), ("clamped", _int), ("source", _int),
+                ("ring_cells", _sz), ("conditioning", _sz)]
+
+
+@_mirror
+class ft_fill_result(c.Structure):
+    _c_name_ = "ft_fill_result"
+    _fields_ = [("voids", _P(ft_fill_void)), ("nvoids", _sz), ("voids_filled", _sz), ("cells_filled", _sz),
+                ("cells_left", _sz)]
+
+
+@_mirror
 class ft_clarke_harmonic(c.Structure):
     _c_name_ = "ft_clarke_harmonic"
     _fields_ = [("k", _int), ("l", _int), ("a", _dbl), ("b", _dbl), ("power", _dbl), ("share", _dbl),

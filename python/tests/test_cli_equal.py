@@ -276,3 +276,33 @@ def test_dim_profile_row_transect_line(cli, data, tmp_path):
     assert pl.extra["samples"] == jl["samples"]
     with pytest.raises(ValueError, match="spacing"):
         ft.dim_profile(np.arange(10.0))
+
+
+@pytest.mark.parametrize("args,kw", [([], {}), (["--mean"], dict(mean=True)),
+                                     (["--realizations", "3", "--seed", "5"], dict(realizations=3, seed=5)),
+                                     (["--max-void", "6", "--dim", "2.3"], dict(max_void=6, dim=2.3))])
+def test_fill_same_cells(cli, data, tmp_path, args, kw):
+    g = ft.read_grid(data(VOLCANO))
+    z = g.z.copy()
+    z[20:24, 30:33] = np.nan   # an inner void of 12 cells
+    z[50:60, 10:20] = np.nan   # one of 10 x 10 (left nodata with --max-void 6)
+    z[0:2, 0:3] = np.nan       # one on the edge
+    holes = ft.Grid(z, mask=np.isfinite(z), geotransform=g.geotransform, wkt=g.wkt, nodata=-9999.0)
+    src, dst = tmp_path / "holes.tif", tmp_path / "filled.tif"
+    ft.write_grid(src, holes)
+    js = cli("fill", src, dst, *args)
+    out, sd, info = ft.fill(ft.read_grid(src), **kw)
+    for k in ("voids_found", "voids_filled", "cells_filled", "cells_left"):
+        assert info[k] == js[k]
+    assert len(info["voids"]) == len(js["voids"]) == 3
+    for v, jv in zip(info["voids"], js["voids"]):
+        assert {k: printed(x) if isinstance(x, float) else x for k, x in v.items()} == jv
+    cz, valid, gt = read_band(dst)
+    pm = np.ones(out.z.shape, bool) if out.mask is None else out.mask
+    assert gt == out.geotransform and np.array_equal(valid, pm) and np.array_equal(cz[valid], out.z[pm])
+    assert np.array_equal(out.z[np.isfinite(z)], z[np.isfinite(z)])  # valid cells kept bit for bit
+    if kw.get("realizations", 1) > 1:
+        csd, _, _ = read_band(dst, 2)
+        assert np.array_equal(csd[valid], sd.z[pm])
+    else:
+        assert sd is None
