@@ -27,11 +27,12 @@
 #define BENCH_SEED UINT64_C(20240501)
 #define BENCH_EPSG 32632
 
-/* Creation options of every GeoTIFF the workloads write, ours and the peer's alike: ft_io_write_grid's
- * GeoTIFF defaults for Float32, spelt out so that both sides do the same work even if those change. */
-#define TIF_CO_TEXT "TILED=YES COMPRESS=DEFLATE PREDICTOR=3 BIGTIFF=IF_SAFER"
+/* Creation options of the GeoTIFFs the copy workloads write, ours and the peer's alike (DEFLATE level 6,
+ * the codec every reader has), spelt out so that both sides do the same work; io.geotiff.write.default
+ * measures ft_io_write_grid's own defaults. */
+#define TIF_CO_TEXT "TILED=YES COMPRESS=DEFLATE PREDICTOR=3 BIGTIFF=IF_SAFER NUM_THREADS=ALL_CPUS"
 static const char *const tif_co[] = {"TILED=YES", "COMPRESS=DEFLATE", "PREDICTOR=3", "BIGTIFF=IF_SAFER",
-                                     NULL};
+                                     "NUM_THREADS=ALL_CPUS", NULL};
 
 static const double pi = 3.14159265358979323846;
 
@@ -97,7 +98,9 @@ static int make_grid(void *arg)
         memcpy(g->gt, gt, sizeof gt);
         g->has_nodata = 1;
         g->nodata_value = -9999.0;
-        rc = ft_io_write_grid(path, g, NULL);
+        ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+        o.co = tif_co; /* DEFLATE, the codec of the files users read most */
+        rc = ft_io_write_grid(path, g, &o);
     }
     ft_grid_free(g);
     return rc;
@@ -266,6 +269,12 @@ static int geotiff_write_run(ft_bench_case *c)
     return ft_io_write_grid(c->scratch, held_grid, &o);
 }
 
+/* io.geotiff.write.default: ft_io_write_grid's GeoTIFF defaults (ZSTD level 1 or DEFLATE level 1, all cores) */
+static int geotiff_write_default_run(ft_bench_case *c)
+{
+    return ft_io_write_grid(c->scratch, held_grid, NULL);
+}
+
 /* ------------------------------------------------------------------------------------------------
  * io.geotiff.copy: read + write, the work of gdal_translate
  * --------------------------------------------------------------------------------------------- */
@@ -280,7 +289,7 @@ static int geotiff_copy_setup(ft_bench_case *c)
     if (c->scratch == NULL)
         return ft_last_error_code();
     return set_argv(c->peer_argv, "gdal_translate", "-q", "-of", "GTiff", "-co", tif_co[0], "-co", tif_co[1],
-                    "-co", tif_co[2], "-co", tif_co[3], tif_path, c->scratch, (const char *)NULL);
+                    "-co", tif_co[2], "-co", tif_co[3], "-co", tif_co[4], tif_path, c->scratch, (const char *)NULL);
 }
 
 static int geotiff_copy_run(ft_bench_case *c)
@@ -367,6 +376,8 @@ static const ft_bench_workload io_workloads[] = {
      geotiff_read_setup, NULL, geotiff_read_run, NULL},
     {"io.geotiff.write", "ft_io_write_grid of that grid, " TIF_CO_TEXT, FT_BENCH_CELLS,
      geotiff_write_setup, geotiff_prepare, geotiff_write_run, NULL},
+    {"io.geotiff.write.default", "ft_io_write_grid of that grid with its GeoTIFF defaults", FT_BENCH_CELLS,
+     geotiff_write_setup, geotiff_prepare, geotiff_write_default_run, NULL},
     {"io.geotiff.copy", "ft_io_read_grid + ft_io_write_grid, " TIF_CO_TEXT, FT_BENCH_CELLS,
      geotiff_copy_setup, NULL, geotiff_copy_run, NULL},
     {"io.geojson.read", "ft_io_read_layer of line1m.geojson (one LineString, 1,000,000 vertices)",

@@ -30,10 +30,10 @@
 static ft_grid *held_grid;      /* in the child only */
 static fftw_complex *held_spec; /* in the child only */
 
-static int grass_peer(ft_bench_case *c, double dim)
+static int grass_peer_n(ft_bench_case *c, double dim, int n)
 {
     char *script = ft_bench_strf("g.region rows=%d cols=%d && r.surf.fractal output=fracterra_bench "
-                                 "dimension=%g --overwrite --quiet", SYNTH_N, SYNTH_N, dim);
+                                 "dimension=%g --overwrite --quiet", n, n, dim);
     if (script == NULL)
         return ft_error(FT_E_NOMEM, "out of memory");
     const char *args[] = {"grass", "--tmp-location", "XY", "--exec", "sh", "-c", script};
@@ -41,6 +41,11 @@ static int grass_peer(ft_bench_case *c, double dim)
         if ((c->peer_argv[i] = i == 6 ? script : ft_bench_strdup(args[i])) == NULL)
             return ft_error(FT_E_NOMEM, "out of memory");
     return FT_OK;
+}
+
+static int grass_peer(ft_bench_case *c, double dim)
+{
+    return grass_peer_n(c, dim, SYNTH_N);
 }
 
 static int one_thread(ft_bench_case *c)
@@ -115,6 +120,45 @@ static int c2r_run(ft_bench_case *c)
     return ft_fft_c2r_2d(SYNTH_N, SYNTH_N, held_spec, (double *)held_spec);
 }
 
+/* cli.synth.fft.*: the built `fracterra synth` program, whole process (start-up, synthesis, the GeoTIFF
+ * written with the default creation options, or raw ENVI), against the whole GRASS session that runs
+ * r.surf.fractal into its own raster store. */
+static int cli_synth_setup(ft_bench_case *c, int n, const char *ext, const char *driver)
+{
+    const char *prog = ft_bench_fracterra_program();
+    if (prog == NULL)
+        return ft_error(FT_E_IO, "no fracterra program beside fracterra_bench (build the target fracterra_cli)");
+    char *name = ft_bench_strf("synth_out.%s", ext);
+    c->scratch = name ? ft_bench_path(name) : NULL;
+    free(name);
+    char *size = ft_bench_strf("%dx%d", n, n), *seed = ft_bench_strf("%llu", (unsigned long long)BENCH_SEED);
+    const char *args[] = {prog, "synth", c->scratch, "--dim", "2.3", "--size", size, "--seed", seed,
+                          "-f", driver};
+    int rc = c->scratch && size && seed ? FT_OK : ft_error(FT_E_NOMEM, "out of memory");
+    for (size_t i = 0; rc == FT_OK && i < sizeof args / sizeof args[0]; i++)
+        if ((c->argv[i] = ft_bench_strdup(args[i])) == NULL)
+            rc = ft_error(FT_E_NOMEM, "out of memory");
+    free(size);
+    free(seed);
+    c->work = (double)n * n;
+    return rc == FT_OK ? grass_peer_n(c, SYNTH_DIM, n) : rc;
+}
+
+static int cli_synth_4096(ft_bench_case *c)
+{
+    return cli_synth_setup(c, 4096, "tif", "GTiff");
+}
+
+static int cli_synth_2048(ft_bench_case *c)
+{
+    return cli_synth_setup(c, 2048, "tif", "GTiff");
+}
+
+static int cli_synth_4096_envi(ft_bench_case *c)
+{
+    return cli_synth_setup(c, 4096, "envi", "ENVI");
+}
+
 /* surface.variogram.32k */
 static int variogram_setup(ft_bench_case *c)
 {
@@ -154,6 +198,12 @@ static const ft_bench_workload terrain_workloads[] = {
      FT_BENCH_CELLS, c2r_setup, c2r_prepare, c2r_run, NULL},
     {"terrain.synth.sra.4096", "successive random addition, 4096x4096, D=2.3, one thread", FT_BENCH_CELLS,
      synth_setup, one_thread, synth_sra_run, NULL},
+    {"cli.synth.fft.4096", "fracterra synth out.tif --dim 2.3 --size 4096x4096, whole process (GeoTIFF defaults)",
+     FT_BENCH_CELLS, cli_synth_4096, NULL, NULL, NULL},
+    {"cli.synth.fft.2048", "fracterra synth out.tif --dim 2.3 --size 2048x2048, whole process (GeoTIFF defaults)",
+     FT_BENCH_CELLS, cli_synth_2048, NULL, NULL, NULL},
+    {"cli.synth.fft.4096.envi", "fracterra synth out.envi -f ENVI, 4096x4096, whole process (raw, no compression)",
+     FT_BENCH_CELLS, cli_synth_4096_envi, NULL, NULL, NULL},
     {"surface.variogram.32k", "variogram D of a 4096x4096 grid from 32,000 random points, lags 1-512 cells",
      FT_BENCH_CELLS, variogram_setup, variogram_prepare, variogram_run, NULL},
 };

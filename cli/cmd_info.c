@@ -122,10 +122,11 @@ static void warnings_last(json_object *o)
     }
 }
 
-static int describe_grid(const ft_grid *g, int band, json_object *o)
+static int describe_grid(const ft_grid_summary *s, int band, json_object *o)
 {
-    size_t cells = g->nx * g->ny, valid = ft_grid_count_valid(g);
-    double zmin, zmax, x0, y0, x1, y1;
+    const ft_grid *g = &s->header;
+    size_t cells = g->nx * g->ny, valid = s->valid;
+    double x0, y0, x1, y1;
     json_object_object_add(o, "band", json_object_new_int(band));
     json_object_object_add(o, "size", json_pair(json_object_new_int64((int64_t)g->nx),
                                                 json_object_new_int64((int64_t)g->ny)));
@@ -133,8 +134,8 @@ static int describe_grid(const ft_grid *g, int band, json_object *o)
     add_size(o, "valid", valid);
     add_size(o, "nodata", cells - valid);
     json_object_object_add(o, "nodata_value", g->has_nodata ? cli_json_double(g->nodata_value) : NULL);
-    if (ft_grid_minmax(g, &zmin, &zmax) == FT_OK) {
-        json_object_object_add(o, "z_range", json_pair(cli_json_double(zmin), cli_json_double(zmax)));
+    if (valid > 0) {
+        json_object_object_add(o, "z_range", json_pair(cli_json_double(s->zmin), cli_json_double(s->zmax)));
     } else {
         char msg[96];
         snprintf(msg, sizeof msg, "the grid has no valid cell: all %zu cells are nodata", cells);
@@ -237,15 +238,17 @@ int cli_info_describe(const char *path, const char *layer, int band, json_object
     ft_read_layer_opts lo = FT_READ_LAYER_OPTS_DEFAULT;
     ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
     ft_data data;
+    ft_grid_summary grid; /* a grid's statistics come strip by strip: the grid is never held */
     lo.layer = layer;
     if (band > 0)
         go.band = band;
-    int rc = ft_io_read_any(path, &lo, &go, NULL, &data);
+    int rc = ft_io_read_any_summary(path, &lo, &go, NULL, &data, &grid);
     if (rc != FT_OK)
         return rc;
     ft_file_kind kind = data.kind;
     if (kind != FT_KIND_GRID && band > 0) {
         ft_data_clear(&data);
+        ft_grid_summary_clear(&grid);
         return ft_error(FT_E_INVALID, "--band applies to grids, but %s holds %s", path, kind_name(kind));
     }
 
@@ -255,12 +258,13 @@ int cli_info_describe(const char *path, const char *layer, int band, json_object
     json_object_object_add(o, "kind", json_object_new_string(kind_name(kind)));
     json_object_object_add(o, "driver", driver ? json_object_new_string(driver) : NULL);
     if (kind == FT_KIND_GRID)
-        rc = describe_grid(data.grid, go.band, o);
+        rc = describe_grid(&grid, go.band, o);
     else if (kind == FT_KIND_CHAINS)
         rc = describe_chains(data.layer, o);
     else
         rc = describe_points(data.points, o);
     ft_data_clear(&data);
+    ft_grid_summary_clear(&grid);
     if (rc != FT_OK) {
         json_object_put(o);
         return rc;

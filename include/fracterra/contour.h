@@ -33,28 +33,28 @@ typedef struct {
     size_t n, cap;
 } ft_polygon_set;
 
-ft_polygon_set *ft_polygon_set_create(void);
-ft_polygon_set *ft_polygon_set_copy(const ft_polygon_set *s);
-void ft_polygon_set_free(ft_polygon_set *s);
+FT_API ft_polygon_set *ft_polygon_set_create(void);
+FT_API ft_polygon_set *ft_polygon_set_copy(const ft_polygon_set *s);
+FT_API void ft_polygon_set_free(ft_polygon_set *s);
 /** Appends a polygon, taking ownership of outer and holes (holes array included; may be NULL when
  *  nholes == 0). Rings are reoriented to the convention. On failure nothing is taken. */
-int ft_polygon_set_add(ft_polygon_set *s, ft_chain *outer, ft_chain **holes, size_t nholes);
+FT_API int ft_polygon_set_add(ft_polygon_set *s, ft_chain *outer, ft_chain **holes, size_t nholes);
 /** Total area (outer areas minus hole areas), ground units². */
-double ft_polygon_set_area(const ft_polygon_set *s);
+FT_API double ft_polygon_set_area(const ft_polygon_set *s);
 /** Total vertices over every ring. */
-size_t ft_polygon_set_vertices(const ft_polygon_set *s);
+FT_API size_t ft_polygon_set_vertices(const ft_polygon_set *s);
 /** The polygons of a layer: polygon features (outer + inner parts), or line features whose parts are
  *  closed rings (the first and last vertices equal, or the chain flagged closed), each ring one outer.
  *  FT_E_EMPTY if there is none; FT_E_FORMAT naming the feature for an open line. */
-int ft_polygon_set_from_layer(const ft_layer *l, ft_polygon_set **out);
+FT_API int ft_polygon_set_from_layer(const ft_layer *l, ft_polygon_set **out);
 
 /** 1 if every ring is simple (no self-intersection), outer rings are counter-clockwise with a positive
  *  area, holes clockwise inside their outer ring, and no two polygons overlap (GEOS validity);
  *  0 otherwise, with the reason in *why (static text, may be NULL). */
-int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why);
+FT_API int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why);
 
 /** 1 if every polygon of inner lies inside outer (GEOS covers), 0 otherwise. */
-int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *outer);
+FT_API int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *outer);
 
 /* ------------------------------------------------------------------------------------------------
  * Polygon shrinking (§2–3): offset every edge inward by d, join the corners, node, keep the faces
@@ -79,18 +79,18 @@ typedef struct {
 } ft_shrink_opts;
 #define FT_SHRINK_OPTS_DEFAULT {FT_JOIN_DPRIME, 1.2, 8, 0.5}
 
-const char *ft_contour_join_name(ft_contour_join j);
+FT_API const char *ft_contour_join_name(ft_contour_join j);
 /** "dprime", "mitre" (or "miter"), "bevel", "round"; FT_E_INVALID naming the text otherwise. */
-int ft_contour_join_parse(const char *name, ft_contour_join *j);
+FT_API int ft_contour_join_parse(const char *name, ft_contour_join *j);
 
 /** The polygons of `in` shrunk by d (> 0) or grown by -d (< 0); d must be finite and non-zero. The
  *  result may be empty (n == 0): the contour vanished. The result is valid (ft_polygon_set_is_valid). */
-int ft_contour_shrink(const ft_polygon_set *in, double d, const ft_shrink_opts *opts, ft_polygon_set **out);
+FT_API int ft_contour_shrink(const ft_polygon_set *in, double d, const ft_shrink_opts *opts, ft_polygon_set **out);
 
 /** Twists and loops (§4.4): nodes the rings, keeps the faces of positive winding number (a
  *  counter-clockwise loop of an outer ring, a clockwise one of a hole), drops faces smaller than
  *  min_area (ground units², >= 0). The result is valid; it may be empty. */
-int ft_contour_clean(const ft_polygon_set *in, double min_area, ft_polygon_set **out);
+FT_API int ft_contour_clean(const ft_polygon_set *in, double min_area, ft_polygon_set **out);
 
 /* ------------------------------------------------------------------------------------------------
  * Shape operators on one ring (§4.1, §4.2) and their companion.
@@ -108,7 +108,7 @@ typedef struct {
  *  midpoint, displaced perpendicularly to a random side by min(max_offset, |l tan theta|), theta uniform
  *  in [theta_min, theta_max], recursively until every segment is at most max_seg. Works on rings and
  *  open chains. The same (seed, stream) gives the same chain. */
-int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_opts *opts, uint64_t seed,
+FT_API int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_opts *opts, uint64_t seed,
                                  uint64_t stream, ft_chain **out);
 
 typedef struct {
@@ -123,12 +123,12 @@ typedef struct {
  *  phase keeping its magnitude, invert and rebuild the closed ring with the original perimeter,
  *  centroid and orientation (the closure error is spread evenly). The result has n vertices; it may
  *  self-intersect (ft_contour_clean removes the loops). */
-int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
+FT_API int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
                                  uint64_t stream, ft_chain **out);
 
 /** Removes nearly collinear vertices: a vertex whose turning angle is below angle_deg (degrees, >= 0)
  *  is dropped, greedily along the ring, keeping at least 3 vertices of a ring. */
-int ft_contour_remove_collinear(const ft_chain *in, double angle_deg, ft_chain **out);
+FT_API int ft_contour_remove_collinear(const ft_chain *in, double angle_deg, ft_chain **out);
 
 /* ------------------------------------------------------------------------------------------------
  * The mountain: every contour from seed contour(s) (§3–4.3).
@@ -169,12 +169,12 @@ typedef struct {
     {FT_MOUNTAIN_IMPROVED, 10.0, 0.0, 0.0, -1, 0, {FT_JOIN_DPRIME, 0.0, 8, 0.5}, 0.5, 20.0, 40.0,           \
      FT_FOURIER_OPTS_DEFAULT, 0.0, 1, 1, NULL, NULL}
 
-const char *ft_mountain_method_name(ft_mountain_method m);
+FT_API const char *ft_mountain_method_name(ft_mountain_method m);
 /** The d' (a multiple of d) ft_mountain_generate applies when shrink.dprime is 0: 3 for the improved
  *  method (Misawa et al. §4.3), 1.4 for midpoint and fourier (their Figs. 12 and 15), 1.2 for simple. */
-double ft_mountain_default_dprime(ft_mountain_method m);
+FT_API double ft_mountain_default_dprime(ft_mountain_method m);
 /** "simple", "midpoint", "fourier", "improved"; FT_E_INVALID naming the text otherwise. */
-int ft_mountain_method_parse(const char *name, ft_mountain_method *m);
+FT_API int ft_mountain_method_parse(const char *name, ft_mountain_method *m);
 
 /** One contour level: its elevation and polygons. */
 typedef struct {
@@ -191,20 +191,20 @@ typedef struct {
     double dprime;    /**< d' used, as a multiple of d (0 when no generator made the stack) */
 } ft_contour_stack;
 
-void ft_contour_stack_free(ft_contour_stack *s);
+FT_API void ft_contour_stack_free(ft_contour_stack *s);
 
 /** Grows the mountain from seed contour(s) at opts->seed_elevation: levels_down grown outward (merged
  *  where they meet), the seed level, and the levels above it until levels_up or until nothing is
  *  left. Same seed polygons, options and seed => identical stack. */
-int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opts, ft_contour_stack **out);
+FT_API int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opts, ft_contour_stack **out);
 
 /** A contour layer: one feature per polygon (outer + holes) with a real field `elev` (as
  *  gdal_contour -p -amin elev), or with as_lines = 1 one line feature per ring. crs_wkt may be NULL. */
-int ft_contour_stack_to_layer(const ft_contour_stack *s, int as_lines, const char *crs_wkt, ft_layer **out);
+FT_API int ft_contour_stack_to_layer(const ft_contour_stack *s, int as_lines, const char *crs_wkt, ft_layer **out);
 
 /** A contour stack from a layer of polygons with an elevation field (levels = the distinct values,
  *  sorted). FT_E_FORMAT naming the field if it is missing or not numeric. */
-int ft_contour_stack_from_layer(const ft_layer *l, const char *field, ft_contour_stack **out);
+FT_API int ft_contour_stack_from_layer(const ft_layer *l, const char *field, ft_contour_stack **out);
 
 /* ------------------------------------------------------------------------------------------------
  * The DEM of a contour stack (as GRASS r.surf.contour): a cell between the contour of its level and
@@ -225,7 +225,7 @@ typedef struct {
 #define FT_CONTOUR_DEM_OPTS_DEFAULT {0.0, 0.0, 0.5, NULL, NULL}
 
 /** A north-up grid covering the lowest level (crs_wkt copied if not NULL). */
-int ft_contour_stack_to_dem(const ft_contour_stack *s, const ft_contour_dem_opts *opts, const char *crs_wkt,
+FT_API int ft_contour_stack_to_dem(const ft_contour_stack *s, const ft_contour_dem_opts *opts, const char *crs_wkt,
                             ft_grid **out);
 
 #ifdef __cplusplus

@@ -17,9 +17,9 @@ extern "C" {
 #endif
 
 /** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it. */
-void ft_io_init(void);
+FT_API void ft_io_init(void);
 /** Releases GDAL's global state (call at program exit; optional). */
-void ft_io_cleanup(void);
+FT_API void ft_io_cleanup(void);
 
 /* What a path holds, as far as fracterra is concerned. */
 typedef enum {
@@ -31,7 +31,7 @@ typedef enum {
 
 /** Decides what a file holds without reading it all. FT_E_IO if it cannot be opened, FT_E_FORMAT if
  *  it is neither a raster nor a vector nor a known text format. layer may be NULL (first layer). */
-int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind);
+FT_API int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind);
 
 /** What a file held, as read by ft_io_read_any: exactly one of grid, layer, points is set. */
 typedef struct {
@@ -42,9 +42,9 @@ typedef struct {
 } ft_data;
 
 /** 1 if the path names a plain-text chain file by its extension (.gmt, .xy, .txt). */
-int ft_io_is_text_chains(const char *path);
+FT_API int ft_io_is_text_chains(const char *path);
 /** 1 if the path names a plain-text point file by its extension (.csv, .xyz). */
-int ft_io_is_text_points(const char *path);
+FT_API int ft_io_is_text_points(const char *path);
 
 /* ------------------------------------------------------------------------------------------------
  * Chains and polygons
@@ -61,7 +61,7 @@ typedef struct {
  *  (by extension). Rings lose their repeated closing vertex. Errors: FT_E_IO (missing/unreadable),
  *  FT_E_FORMAT (a raster, a point layer, unknown layer or field), FT_E_EMPTY (no chain at all),
  *  FT_E_NUMERIC (NaN/Inf coordinate, named). Chains with fewer than 2 vertices are kept. */
-int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out);
+FT_API int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out);
 
 typedef struct {
     const char *driver;      /**< OGR driver short name; NULL = from the extension */
@@ -72,16 +72,16 @@ typedef struct {
 
 /** Writes a layer (geometry type per feature, fields, CRS) through OGR, or as GMT text (by extension or
  *  driver "GMT-text"). Replaces an existing file only when the whole write succeeded. */
-int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts);
+FT_API int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts);
 
 /** GMT-style text: `x y` per line (extra columns ignored), `>` lines separate segments, `#` comments.
  *  A segment whose last vertex equals its first becomes a ring. "-" reads stdin / writes stdout. */
 /** The vertices (x, y, z) of the first line (LineString, or first part of a MultiLineString) of a vector
  *  layer (NULL = the first layer), for a profile along a 3-D line. A 2-D line is FT_E_FORMAT, fewer than 3
  *  vertices FT_E_EMPTY, a NaN/Inf coordinate FT_E_NUMERIC. x, y and z are allocated (free them). */
-int ft_io_read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n);
-int ft_io_read_text_chains(const char *path, ft_layer **out);
-int ft_io_write_text_chains(const char *path, const ft_layer *layer);
+FT_API int ft_io_read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n);
+FT_API int ft_io_read_text_chains(const char *path, ft_layer **out);
+FT_API int ft_io_write_text_chains(const char *path, const ft_layer *layer);
 
 /* ------------------------------------------------------------------------------------------------
  * Grids
@@ -94,22 +94,37 @@ typedef struct {
 
 /** Reads one band as float with its geotransform, CRS and nodata mask (the band's nodata value, its
  *  mask band, and NaN cells are nodata). FT_E_FORMAT for a vector file or a bad band number. */
-int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out);
+FT_API int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out);
+
+/** A band's header and cell statistics, computed strip by strip without holding its cells (the memory of
+ *  one strip of about 4 M cells): what ft_io_read_grid would give, then ft_grid_count_valid and
+ *  ft_grid_minmax, without the grid. */
+typedef struct {
+    ft_grid header;   /**< size, geotransform, CRS and nodata of the band; z and mask are NULL */
+    size_t valid;     /**< cells that are not nodata */
+    double zmin, zmax;/**< range of the valid cells, in the band's physical units; NaN when valid is 0 */
+} ft_grid_summary;
+
+/** Summarizes band opts->band of a raster file (opts may be NULL). Same errors as ft_io_read_grid.
+ *  Release with ft_grid_summary_clear. */
+FT_API int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out);
+/** Frees the summary's CRS and zeroes it; NULL is a no-op. */
+FT_API void ft_grid_summary_clear(ft_grid_summary *s);
 
 typedef struct {
     const char *driver;       /**< GDAL driver short name; NULL = from the extension (GTiff default) */
-    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, DEFLATE) */
+    const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, ZSTD-1 or DEFLATE-1) */
     int type;                 /**< GDALDataType of the output band; 0 = Float32 */
 } ft_write_grid_opts;
 #define FT_WRITE_GRID_OPTS_DEFAULT {NULL, NULL, 0}
 
 /** Writes a grid with its geotransform, CRS and nodata (masked cells get nodata_value, or NaN/-9999
  *  chosen for the type if the grid has none). Drivers without Create use CreateCopy from memory. */
-int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts);
+FT_API int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts);
 /** Writes n >= 1 grids as bands 1 .. n of one raster (e.g. a D map and its r²): every grid must have the
  *  first's size and geotransform (the error names the band at fault); CRS from the first grid, nodata per
  *  band as ft_io_write_grid. */
-int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
+FT_API int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
 
 /* ------------------------------------------------------------------------------------------------
  * Points
@@ -126,9 +141,9 @@ typedef struct {
 /** Reads scattered points from CSV (header row; .csv), whitespace XYZ text (.xyz, `x y z` per line,
  *  `#` comments), or an OGR point layer. Errors name the file, line and column of a non-numeric or
  *  non-finite value, and a missing column. */
-int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out);
+FT_API int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out);
 /** Writes points as CSV (x,y,z[,w]) or XYZ text by extension, or through OGR otherwise. */
-int ft_io_write_points(const char *path, const ft_points *p);
+FT_API int ft_io_write_points(const char *path, const ft_points *p);
 
 /* ------------------------------------------------------------------------------------------------
  * Any kind
@@ -137,17 +152,21 @@ int ft_io_write_points(const char *path, const ft_points *p);
 /** Opens a file once and reads what it holds: a grid (band go->band) when it is a raster and no layer is
  *  named, else the layer's lines/polygons or points. Options may be NULL (defaults); the layer name is taken
  *  from lo, else po. Same errors as the single-kind readers. Release with ft_data_clear. */
-int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+FT_API int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
                    const ft_read_points_opts *po, ft_data *out);
+/** As ft_io_read_any, except that a grid is summarized (ft_io_summarize_grid) into *summary instead of
+ *  read: out->grid stays NULL. Clear both. */
+FT_API int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                           const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary);
 /** Frees what ft_io_read_any read and zeroes *d; NULL is a no-op. */
-void ft_data_clear(ft_data *d);
+FT_API void ft_data_clear(ft_data *d);
 
 /* ------------------------------------------------------------------------------------------------
  * Files
  * --------------------------------------------------------------------------------------------- */
 
 /** FT_OK if path can be created: its folder exists and is writable (FT_E_IO naming it otherwise). */
-int ft_io_check_writable(const char *path);
+FT_API int ft_io_check_writable(const char *path);
 
 /* ------------------------------------------------------------------------------------------------
  * DEM processing through GDAL (GDALDEMProcessing) and CRS definitions
@@ -168,16 +187,16 @@ typedef struct {
 /** gdaldem's hillshade of a DEM file (edges computed, nodata 0), optionally times a colour relief (RGBA,
  *  nodata transparent), written through the driver of the output's extension (PNG, GeoTIFF, ...) under a
  *  temporary name renamed on success. */
-int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
+FT_API int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
 
 /** Contour polygons of a DEM (GDALContourGenerateEx with POLYGONIZE=YES, as gdal_contour -p -amin elev):
  *  one polygon feature per band between two levels base + i x interval, with a real field `elev` holding
  *  its lower level; nodata cells are excluded. The layer carries the grid's CRS. */
-int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out);
+FT_API int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out);
 
 /** A CRS given as "EPSG:n", WKT, a PROJ string or anything OSRSetFromUserInput accepts, as malloc'd WKT
  *  (free()). FT_E_INVALID naming the input if GDAL does not know it. */
-int ft_io_crs_to_wkt(const char *user_input, char **wkt);
+FT_API int ft_io_crs_to_wkt(const char *user_input, char **wkt);
 
 /* ------------------------------------------------------------------------------------------------
  * The CRS service (crs.c, grid_reproject.c): the one place that reads a CRS. Geographic data are measured
@@ -199,7 +218,7 @@ typedef struct {
 
 /** What a WKT (or anything OSRSetFromUserInput reads) says; NULL or "" gives has_crs = 0 and FT_OK.
  *  FT_E_INVALID for a CRS GDAL does not know, FT_E_FORMAT for a geographic CRS without an ellipsoid. */
-int ft_io_crs_info(const char *wkt, ft_crs_info *out);
+FT_API int ft_io_crs_info(const char *wkt, ft_crs_info *out);
 
 typedef enum {
     FT_LOCAL_LAEA = 0,  /**< Lambert azimuthal equal-area: areas and box counts */
@@ -208,15 +227,15 @@ typedef enum {
 
 /** WKT (malloc'd) of a projection in metres centred on (lon0, lat0), on the datum of the geographic (or
  *  any) CRS geo_wkt; its name says what it is ("Lambert azimuthal equal-area centred on 49.6000N ..."). */
-int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt);
+FT_API int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt);
 /** Reprojects every part (and topology arc) of the layer from its CRS to dst_wkt in place (OCT, x =
  *  longitude order) and sets its CRS. FT_E_NUMERIC naming a vertex that cannot be transformed. */
-int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt);
+FT_API int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt);
 /** The same for points (x, y change; z and weights stay). */
-int ft_io_points_reproject(ft_points *p, const char *dst_wkt);
+FT_API int ft_io_points_reproject(ft_points *p, const char *dst_wkt);
 /** The grid warped to dst_wkt with square cells of side `cell` (target units), bilinear, nodata kept
  *  (as `gdalwarp -t_srs -tr cell cell -r bilinear`). */
-int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out);
+FT_API int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out);
 
 #ifdef __cplusplus
 }

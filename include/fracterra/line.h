@@ -67,19 +67,19 @@ typedef struct {
  *  are shorter than one ruler (no whole step: the value is only the chord) are not used; fewer than 3 usable
  *  rows, or a fit with r² below opts.min_r2, fail with FT_E_INVALID naming the range and the chains'
  *  length and extent in the same unit. */
-int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
+FT_API int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out);
 /** The method's name as used by the CLI and the JSON ("divider", "equipaced", "hybrid", "box", "box-min"). */
-const char *ft_line_method_name(ft_line_method m);
+FT_API const char *ft_line_method_name(ft_line_method m);
 /** Parses a method name; FT_E_INVALID naming it otherwise. */
-int ft_line_method_parse(const char *name, ft_line_method *m);
+FT_API int ft_line_method_parse(const char *name, ft_line_method *m);
 
 /** One divider walk with a fixed ruler from the start (from_end = 0) or the end (1) of a chain: the walked
  *  length including the fractional last step, and the number of whole steps. */
-int ft_line_divider_walk(const ft_chain *c, double ruler, int from_end, double *length, size_t *steps);
+FT_API int ft_line_divider_walk(const ft_chain *c, double ruler, int from_end, double *length, size_t *steps);
 /** Number of grid cells of side `size`, with origin (ox, oy), crossed by the chain's segments (exact cell
  *  traversal). */
-int ft_line_box_count(const ft_chain *const *chains, size_t n, double size, double ox, double oy,
+FT_API int ft_line_box_count(const ft_chain *const *chains, size_t n, double size, double ox, double oy,
                       uint64_t *count);
 
 /* ------------------------------------------------------------------------------------------------
@@ -119,19 +119,19 @@ typedef struct {
 
 /** Resolves opts against the input chains (measures D_in if needed). FT_E_INVALID if the target cannot be
  *  reached (above ft_dutton_max_dimension(uc)) or D_in cannot be measured. */
-int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *opts, ft_dutton_plan *plan);
+FT_API int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *opts, ft_dutton_plan *plan);
 /** The UC rule: D_in + uc (sd - D_in). */
-double ft_dutton_target_dimension(double sd, double uc, double input_dim);
+FT_API double ft_dutton_target_dimension(double sd, double uc, double input_dim);
 /** The steady-state divider dimension of the enhancement with apex `apex` and uniformity uc in (0, 1]; NaN
  *  outside. uc = 1 is ft_dutton_steady_dimension. */
-double ft_dutton_steady_dimension_uc(double apex, double uc);
+FT_API double ft_dutton_steady_dimension_uc(double apex, double uc);
 /** The largest dimension calibrated mode reaches with uniformity uc (at FT_DUTTON_APEX_MIN). */
-double ft_dutton_max_dimension(double uc);
+FT_API double ft_dutton_max_dimension(double uc);
 /** The apex angle whose steady-state dimension with uniformity uc is target_dim; NaN if out of reach. */
-double ft_dutton_apex_for_target(double target_dim, double uc);
+FT_API double ft_dutton_apex_for_target(double target_dim, double uc);
 
 /** The apex angle (radians) that a sinuosity dimension implies: pi - 2a with cos a = 2^(1/sd - 1). */
-double ft_dutton_apex_angle(double sd);
+FT_API double ft_dutton_apex_angle(double sd);
 
 /** The smallest apex angle of calibrated mode, 60 degrees: below it the enhanced chain overlaps itself and
  *  its measured dimension stops rising. */
@@ -141,13 +141,13 @@ double ft_dutton_apex_angle(double sd);
  *  a canonical junction (deterministic; a few hundred microseconds). Decreasing in apex; 1 at pi. NaN
  *  outside [FT_DUTTON_APEX_MIN, pi]. SD's literal angle gives ft_dutton_steady_dimension(
  *  ft_dutton_apex_angle(1.3)) = 1.12, not 1.3. */
-double ft_dutton_steady_dimension(double apex);
+FT_API double ft_dutton_steady_dimension(double apex);
 /** Calibrated mode: the apex angle (radians) whose steady-state divider dimension is target_dim (the
  *  inverse of ft_dutton_steady_dimension, by bisection). NaN outside [1, ft_dutton_steady_dimension(
  *  FT_DUTTON_APEX_MIN)]. */
-double ft_dutton_apex_for_dimension(double target_dim);
+FT_API double ft_dutton_apex_for_dimension(double target_dim);
 /** Dutton enhancement of one chain. End points of open chains never move. */
-int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out);
+FT_API int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out);
 
 typedef struct {
     int passes;        /**< corner-cutting passes; default 1 */
@@ -159,16 +159,16 @@ typedef struct {
 #define FT_SMOOTH_OPTS_DEFAULT {1, 0.5, INFINITY, 0.0, 0}
 
 /** Roundness smoothing (corner cutting; R = 0.5 is Chaikin's quarter points). */
-int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out);
+FT_API int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out);
 /** Weeding: drops vertices so that no segment is shorter than min_seg (end points of open chains kept). */
-int ft_line_weed(const ft_chain *in, double min_seg, ft_chain **out);
+FT_API int ft_line_weed(const ft_chain *in, double min_seg, ft_chain **out);
 /** Douglas-Peucker simplification with a distance tolerance (rings keep at least 3 vertices). */
-int ft_line_simplify(const ft_chain *in, double tolerance, ft_chain **out);
+FT_API int ft_line_simplify(const ft_chain *in, double tolerance, ft_chain **out);
 
 /** Number of proper self-intersections of a chain (pairs of non-adjacent segments that cross). */
-int ft_line_count_self_intersections(const ft_chain *c, size_t *count);
+FT_API int ft_line_count_self_intersections(const ft_chain *c, size_t *count);
 /** Removes the loops that self-intersections make (keeps the part of the chain that does not loop back). */
-int ft_line_remove_loops(const ft_chain *in, ft_chain **out);
+FT_API int ft_line_remove_loops(const ft_chain *in, ft_chain **out);
 
 /* ------------------------------------------------------------------------------------------------
  * The crossing guard (move_guard.c, segment_index.c): operations that move vertices work in passes; each pass
@@ -196,32 +196,32 @@ enum {
 /** chains[c] holds the base positions and receives the result; raw[c] the raw ones (same vertex count and
  *  closedness). If the base geometry has no contact between segments (but shared end points), neither has
  *  the result. Serial and deterministic. stats (may be NULL) is added to. */
-int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
+FT_API int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
                         ft_line_guard_stats *stats);
 
 /** One pass of a vertex-moving operation: allocates *base and *raw (same vertex count); base may be NULL
  *  (unguarded: only raw is wanted). */
 typedef int (*ft_line_pass_fn)(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
 /** A pass of Dutton's enhancement; ctx is a const ft_dutton_plan *. */
-int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
+FT_API int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
 /** A pass of roundness smoothing; ctx is a const ft_smooth_opts * (passes ignored). Duplicate consecutive
  *  vertices are left in: ft_line_run_passes removes them. */
-int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
+FT_API int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw);
 /** `passes` passes over the chain set chains[0..n) (replaced in place; on failure unchanged), guarded in
  *  mode `guard` (FT_GUARD_*; FT_GUARD_OFF takes the raw positions); consecutive duplicate vertices are removed
  *  after each. */
-int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
+FT_API int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
                        ft_line_guard_stats *stats);
 /** ft_line_run_passes over a whole layer: every part, or on coverages (coverage != 0 and rings) every arc of
  *  the arc-node topology once and the line parts, all in one chain set, so no part crosses another. */
-int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ctx, int passes, int coverage,
+FT_API int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ctx, int passes, int coverage,
                                int guard, ft_line_guard_stats *stats);
 /** Dutton's enhancement of a layer: one plan for the whole layer (D_in measured over all its parts), then
  *  opts->iterations guarded passes (unless opts->allow_crossings). plan and stats may be NULL. */
-int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage, ft_dutton_plan *plan,
+FT_API int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage, ft_dutton_plan *plan,
                           ft_line_guard_stats *stats);
 /** Roundness smoothing of a layer, guarded unless opts->allow_crossings. stats may be NULL. */
-int ft_line_smooth_layer(ft_layer *l, const ft_smooth_opts *opts, int coverage, ft_line_guard_stats *stats);
+FT_API int ft_line_smooth_layer(ft_layer *l, const ft_smooth_opts *opts, int coverage, ft_line_guard_stats *stats);
 
 /** A chain operation, for the layer-level driver: reads in, allocates *out. */
 typedef int (*ft_line_op)(const ft_chain *in, const void *opts, ft_chain **out);
@@ -229,15 +229,15 @@ typedef int (*ft_line_op)(const ft_chain *in, const void *opts, ft_chain **out);
 /** Applies op to every part of the layer. If the layer has rings and coverage is nonzero, builds the
  *  arc-node topology, applies op to each arc once (arc end points, the nodes, are kept in place) and
  *  rebuilds the rings from the edited arcs, so adjacent polygons stay coincident. */
-int ft_line_apply_layer(ft_layer *l, ft_line_op op, const void *opts, int coverage);
+FT_API int ft_line_apply_layer(ft_layer *l, ft_line_op op, const void *opts, int coverage);
 
 /* The chain operations as ft_line_op, for ft_line_apply_layer: opts points to what the operation takes.
  * Each keeps the end points of open chains, so on a coverage the nodes stay in place. */
-int ft_line_op_enhance(const ft_chain *in, const void *opts /* const ft_dutton_opts * */, ft_chain **out);
-int ft_line_op_smooth(const ft_chain *in, const void *opts /* const ft_smooth_opts * */, ft_chain **out);
-int ft_line_op_weed(const ft_chain *in, const void *opts /* const double *min_seg */, ft_chain **out);
-int ft_line_op_simplify(const ft_chain *in, const void *opts /* const double *tolerance */, ft_chain **out);
-int ft_line_op_remove_loops(const ft_chain *in, const void *opts /* ignored, may be NULL */, ft_chain **out);
+FT_API int ft_line_op_enhance(const ft_chain *in, const void *opts /* const ft_dutton_opts * */, ft_chain **out);
+FT_API int ft_line_op_smooth(const ft_chain *in, const void *opts /* const ft_smooth_opts * */, ft_chain **out);
+FT_API int ft_line_op_weed(const ft_chain *in, const void *opts /* const double *min_seg */, ft_chain **out);
+FT_API int ft_line_op_simplify(const ft_chain *in, const void *opts /* const double *tolerance */, ft_chain **out);
+FT_API int ft_line_op_remove_loops(const ft_chain *in, const void *opts /* ignored, may be NULL */, ft_chain **out);
 
 #ifdef __cplusplus
 }

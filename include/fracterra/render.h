@@ -21,7 +21,7 @@ typedef struct {
 
 /** Hillshade (Horn's 3x3 slope and aspect, as gdaldem) in [0, 255]; cells whose window touches
  *  nodata are nodata. The output keeps the input's geotransform and CRS. */
-int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out);
+FT_API int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out);
 
 typedef struct {
     int width;              /**< image width in pixels; 0 = one pixel per cell (height follows) */
@@ -31,7 +31,7 @@ typedef struct {
 #define FT_GRID_IMAGE_OPTS_DEFAULT {0, NULL, 0}
 
 /** Writes a grid as a PNG image, stretched between its minimum and maximum; nodata is transparent. */
-int ft_render_grid_png(const ft_grid *g, const char *path, const ft_grid_image_opts *opts);
+FT_API int ft_render_grid_png(const ft_grid *g, const char *path, const ft_grid_image_opts *opts);
 
 typedef struct {
     int width, height;       /**< canvas size in points/pixels; default 800 x 600 (aspect kept) */
@@ -46,7 +46,7 @@ typedef struct {
 #define FT_MAP_OPTS_DEFAULT {800, 600, 0.8, "#1f3b73", "#e8eef5", NULL, 1, {0.0, 0.0, 0.0, 0.0}}
 
 /** Draws a layer's chains (polygons filled even-odd, lines stroked) to SVG, PNG or PDF by extension. */
-int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
+FT_API int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
 
 /** One layer of a multi-layer map. */
 typedef struct {
@@ -62,7 +62,7 @@ typedef struct {
  *  on the union of their extents; the labelled layers get a legend in the corner of the map that hides
  *  the fewest vertices. The map options give the size, title, scale bar (in the first layer's CRS units) and
  *  the default stroke and line width (opts->fill is not used: each layer gives its own). */
-int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts);
+FT_API int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts);
 
 typedef struct {
     int width, height;  /**< canvas size in points/pixels; default 720 x 540 */
@@ -77,7 +77,7 @@ typedef struct {
  *  ticks, used rows filled and the others hollow, the fitted range shaded, the fitted line over it,
  *  every segment's line, and a legend "D = 1.262 ± 0.004, r² = 0.999, range 10–1000". The file is
  *  written under a temporary name and renamed when complete. */
-int ft_render_loglog_plot(const ft_dim_result *r, const char *path, const ft_plot_opts *opts);
+FT_API int ft_render_loglog_plot(const ft_dim_result *r, const char *path, const ft_plot_opts *opts);
 
 /** One series of a chart: points (x[i], y[i]) joined in order; a non-finite y leaves a gap. */
 typedef struct {
@@ -99,7 +99,7 @@ typedef struct {
 /** A line chart of several series (SVG, PNG or PDF by extension): linear axes with round ticks (or one
  *  tick per category), each series a line with dots in its own colour, a legend of the named series in
  *  the corner hiding the fewest points. Written under a temporary name, renamed when complete. */
-int ft_render_series_chart(const ft_series *series, size_t n, const char *path, const ft_chart_opts *opts);
+FT_API int ft_render_series_chart(const ft_series *series, size_t n, const char *path, const ft_chart_opts *opts);
 
 /* ------------------------------------------------------------------------------------------------
  * Perspective (bird's-eye) view of a DEM (docs/render-perspective.md)
@@ -124,7 +124,7 @@ typedef struct {
  *  two triangles, z-buffered, coloured by hypsometric tints times Lambert shading with a little aerial
  *  haze, on a sky gradient; nodata cells leave holes. Written under a temporary name, renamed when
  *  complete. */
-int ft_render_perspective(const ft_grid *dem, const char *path, const ft_perspective_opts *opts);
+FT_API int ft_render_perspective(const ft_grid *dem, const char *path, const ft_perspective_opts *opts);
 
 #ifdef __cplusplus
 }

@@ -39,29 +39,29 @@ typedef struct {
  *  weights 1/value^(2 power), profiling H; with sigma_z > 0, c0 is held at the nugget that sigma_z gives.
  *  m receives c0, a, H, the F statistic of c0 (automatic case) and the sigma_z c0 implies. Needs 4 rows
  *  (3 with sigma_z); FT_E_NUMERIC when no increasing power law fits. */
-int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m);
+FT_API int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m);
 /** 1 if the fitted model m of t holds a significant nugget: F >= 10 and c0 >= 2% of the smallest lag's
  *  value^power. */
-int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
+FT_API int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
 /** A new table of t with c0 removed from each value^power (rows with nothing left dropped); sets
  *  m->applied and m->floor = max(min_floor, the scale where a scale^(2H) = c0). */
-int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out);
+FT_API int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out);
 /** Scattered points with noise on x, y (sd sigma_p) and z: E Δz²(d) = c0 + a E|d + δ|^(2H), δ ~ N(0, s² I₂),
  *  s = sqrt(2) sigma_p, fitted to the mean squared differences q at the n increasing distances d
  *  (profiling H and s; c0 = 2 sigma_z² and s held when sigma_z, sigma_xy > 0 are given). m->detected
  *  says whether the noise terms are significant (F >= 10 on the two extra parameters and the noise >= 2%
  *  of q at the smallest lag) or given. Needs 6 lags. docs/surface-noise.md. */
-int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
+FT_API int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
                             ft_noise_model *m);
 /** E|d + δ|^(2H) for δ ~ N(0, s² I₂) (d^(2H) when s = 0). */
-double ft_nugget_eiv_moment(double H, double d, double s);
+FT_API double ft_nugget_eiv_moment(double H, double d, double s);
 /** The model of ft_nugget_fit_positions at distance d: c0 + a E|d + δ|^(2H). */
-double ft_nugget_model_value(const ft_noise_model *m, double d);
+FT_API double ft_nugget_model_value(const ft_noise_model *m, double d);
 
 /** The fit of a lag estimator's table with the noise model of no: a nugget detected (or given) is removed
  *  and the fit starts at the floor (whole: least squares from there; otherwise ft_loglog_fit_auto from
  *  there); result->nugget holds the model and "warnings" say what was done. */
-int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structure_stat stat, int whole,
+FT_API int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structure_stat stat, int whole,
                          const ft_loglog_opts *fit, const ft_dim_map *map, ft_dim_result **out);
 
 typedef struct {
@@ -81,7 +81,7 @@ typedef struct {
 
 /** Variogram dimension of a grid: mean squared elevation difference against lag (in ground units),
  *  D = 3 - slope/2. Pairs touching nodata are skipped. */
-int ft_surface_dim_variogram(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_variogram(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
 
 /* ------------------------------------------------------------------------------------------------
  * Grids: Yokoya, Pentland, power spectrum, triangular prisms, cube counting; one dispatcher over them
@@ -90,10 +90,10 @@ int ft_surface_dim_variogram(const ft_grid *g, const ft_variogram_opts *opts, ft
 
 /** Yokoya's estimator on a grid: mean |Δz| of the pairs at each lag (the variogram's lags, pairs and
  *  nodata rules: ft_variogram_opts), E|Δz| ~ d^H, D = 3 - H. result->method is "yokoya". */
-int ft_surface_dim_yokoya(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_yokoya(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
 /** Pentland's: the sample standard deviation of |Δz| at each lag, sqrt((B - A²/C) / (C - 1)) with
  *  A = Σ|Δz|, B = Σ(Δz)², C = pairs (Arakawa & Krotkov §2.4), ~ d^H, D = 3 - H. "pentland". */
-int ft_surface_dim_pentland(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_pentland(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
 
 typedef struct {
     double min_wavelength; /**< shortest wavelength fitted, cells, >= 2; 0 = 8 (the band near the Nyquist
@@ -124,7 +124,7 @@ typedef struct {
  *  radially averaged in log-spaced frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
  *  the frequency in cycles per ground unit. A plane (nothing left after detrending) or a surface smoother
  *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". "spectrum". */
-int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);
 
 /** Options of the estimators measuring at cell sizes by powers of two (prism, cubes). */
 typedef struct {
@@ -145,12 +145,12 @@ typedef struct {
 /** Clarke's (1986) triangular prism surface area: squares of side s = 2^k cells, four triangles from
  *  the edges to the centre (mean of the corners); surface area over planimetric area against s,
  *  A(s) ~ s^(2-D) (FT_DIM_MAP_PRISM). Squares with a nodata corner are skipped. "prism". */
-int ft_surface_dim_prism(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_prism(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
 /** Cube counting: blocks of (s+1) x (s+1) cells (s = 2^k, neighbouring blocks share an edge), each
  *  covered by the cubes of side s it meets, z scaled as zscale says; the cubes per block times the
  *  blocks tiling the grid, N(s) ~ s^-D (FT_DIM_MAP_BOXCOUNT_SURFACE). Blocks touching nodata are
  *  skipped. "cubes". */
-int ft_surface_dim_cubes(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_cubes(const ft_grid *g, const ft_dyadic_opts *opts, ft_dim_result **out);
 
 typedef enum {
     FT_SURFACE_VARIOGRAM = 0,
@@ -185,11 +185,11 @@ typedef struct {
                                      FT_NOISE_OPTS_DEFAULT}
 
 /** "variogram", "yokoya", "pentland", "spectrum", "prism", "cubes" ("?" for a bad value). */
-const char *ft_surface_method_name(ft_surface_method m);
+FT_API const char *ft_surface_method_name(ft_surface_method m);
 /** The method named (case-insensitive); FT_E_INVALID naming the text otherwise. */
-int ft_surface_method_parse(const char *name, ft_surface_method *m);
+FT_API int ft_surface_method_parse(const char *name, ft_surface_method *m);
 /** Fractal dimension of a grid by one method. result->method is the method's name. */
-int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_opts *opts, ft_dim_result **out);
 
 /** A local D map: ft_surface_dim in every window of window x window cells whose upper-left cell is a
  *  multiple of step along both axes (windows inside the grid). D_out and r2_out (either may be NULL)
@@ -197,7 +197,7 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
  *  window centres: each output cell is step x step input cells centred on its window's centre, with the
  *  input's CRS. A window with fewer valid cells than opts->min_valid, or where the method fails, is
  *  nodata. OpenMP over windows; the same on every thread count. Progress from 0 to 1. */
-int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+FT_API int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
                        const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out);
 
 /* ------------------------------------------------------------------------------------------------
@@ -252,7 +252,7 @@ typedef struct {
                               ft_surface_dim_points), 0 otherwise */
 } ft_points_counters;
 
-void ft_points_counters_free(ft_points_counters *c);
+FT_API void ft_points_counters_free(ft_points_counters *c);
 
 typedef struct {
     ft_points_method method;
@@ -286,18 +286,18 @@ typedef struct {
     {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, \
      0.0, 0}
 
-const char *ft_points_method_name(ft_points_method m);
+FT_API const char *ft_points_method_name(ft_points_method m);
 /** "yokoya" or "pentland" (case-insensitive); FT_E_INVALID naming the text otherwise. */
-int ft_points_method_parse(const char *name, ft_points_method *m);
+FT_API int ft_points_method_parse(const char *name, ft_points_method *m);
 
 /** Step 1 of §2.4 alone: the counters A, B, C per lag, the statistic of opts->method and each lag's
  *  status. Needs >= 3 points with finite x, y, z (the error names the first bad point). */
-int ft_surface_points_counters(const ft_points *p, const ft_points_dim_opts *opts, ft_points_counters **out);
+FT_API int ft_surface_points_counters(const ft_points *p, const ft_points_dim_opts *opts, ft_points_counters **out);
 
 /** Fractal dimension of scattered elevations: the counters, then log statistic against log mean
  *  separation of the kept lags, D = 3 - H. Fewer than opts->fit.min_points kept lags is FT_E_EMPTY with
  *  a message listing the dropped lags. result->method is "yokoya" or "pentland". */
-int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out);
+FT_API int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out);
 
 /** Scattered points from a grid, as in Arakawa & Krotkov §2.5 and Table 1: a random `fraction` of the
  *  valid cells (exactly round(fraction x valid) cells, without replacement), each at its cell centre with
@@ -313,7 +313,7 @@ typedef struct {
 } ft_grid_sample_opts;
 #define FT_GRID_SAMPLE_OPTS_DEFAULT {0.05, 0, 0.0, 0.0, 1}
 
-int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opts, ft_points **out);
+FT_API int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opts, ft_points **out);
 
 /* ------------------------------------------------------------------------------------------------
  * Profiles: elevation z along a line at a regular spacing (a transect, a raster row, a 3-D line), whose
@@ -330,30 +330,30 @@ typedef enum {
 } ft_profile_method;
 
 /** "variogram" or "madogram"; "?" otherwise. */
-const char *ft_profile_method_name(ft_profile_method m);
+FT_API const char *ft_profile_method_name(ft_profile_method m);
 /** Parses a method name (case-insensitive); FT_E_INVALID naming it otherwise. */
-int ft_profile_method_parse(const char *name, ft_profile_method *m);
+FT_API int ft_profile_method_parse(const char *name, ft_profile_method *m);
 
 /** Dimension of a profile of n >= 3 finite elevations at a regular spacing > 0 (ground units): the
  *  log-log table of V_p at lags 1 and 2 (scale = lag x spacing, value = V_p, count = pairs), D by the
  *  estimator of Gneiting et al. A D outside [1, 2] is an error; a constant profile is FT_E_NUMERIC. */
-int ft_profile_dim(const double *z, size_t n, double spacing, ft_profile_method m, ft_dim_result **out);
+FT_API int ft_profile_dim(const double *z, size_t n, double spacing, ft_profile_method m, ft_dim_result **out);
 
 /** Row `row` of a grid as a profile: its n = nx values at the spacing |gt[1]| (x cell size). Nodata in
  *  the row is an error naming the first such column. *z is allocated (free it). */
-int ft_profile_from_grid_row(const ft_grid *g, size_t row, double **z, size_t *n, double *spacing);
+FT_API int ft_profile_from_grid_row(const ft_grid *g, size_t row, double **z, size_t *n, double *spacing);
 
 /** The transect from (x0, y0) to (x1, y1) (ground coordinates) across a grid, sampled by bilinear
  *  interpolation of the cell centres at the spacing of the smaller cell side (the last sample at the
  *  end point's distance rounded down). Both ends must lie within the cell centres' hull; a sample next
  *  to nodata is an error naming the point. *z is allocated (free it). */
-int ft_profile_transect(const ft_grid *g, double x0, double y0, double x1, double y1, double **z, size_t *n,
+FT_API int ft_profile_transect(const ft_grid *g, double x0, double y0, double x1, double y1, double **z, size_t *n,
                         double *spacing);
 
 /** A 3-D line (x, y, z of n >= 3 vertices) as a profile: z linearly interpolated at a regular spacing
  *  along the horizontal length, the spacing the median horizontal segment (spacing <= 0) or the one
  *  given. *zout is allocated (free it). */
-int ft_profile_resample(const double *x, const double *y, const double *z, size_t n, double spacing,
+FT_API int ft_profile_resample(const double *x, const double *y, const double *z, size_t n, double spacing,
                         double **zout, size_t *nout, double *step);
 
 #ifdef __cplusplus

@@ -48,13 +48,13 @@ typedef struct {
 
 /** A new nx x ny grid of a fractional Brownian surface. Same options and seed => bit-identical cells on
  *  any thread count. */
-int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out);
-const char *ft_synth_method_name(ft_synth_method m);
-int ft_synth_method_parse(const char *name, ft_synth_method *m);
+FT_API int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out);
+FT_API const char *ft_synth_method_name(ft_synth_method m);
+FT_API int ft_synth_method_parse(const char *name, ft_synth_method *m);
 /** The D the raw algorithm runs at (H = 3 - raw D) when sra or midpoint is asked for D on an nx x ny grid
  *  (sra: from its exact expected variogram, which depends on the size; midpoint: its measured table;
  *  src/terrain/synth_calibration.c); D itself for the other methods. */
-double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
+FT_API double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
 
 
 /* ------------------------------------------------------------------------------------------------
@@ -120,11 +120,11 @@ typedef struct {
 /** Fits Clarke's model to a DEM of any size (at least 4 x 4 cells with 3 valid ones not on a line).
  *  Nodata cells are filled with the trend before the Fourier analysis (model->nodata_filled says how
  *  many); the statistics and the trend use the valid cells only. */
-int ft_clarke_fit(const ft_grid *dem, const ft_clarke_opts *opts, ft_clarke_model **out);
+FT_API int ft_clarke_fit(const ft_grid *dem, const ft_clarke_opts *opts, ft_clarke_model **out);
 /** A zeroed model with room for nharmonics harmonics (nharmonics set), for readers of saved models;
  *  NULL (error set) if out of memory. */
-ft_clarke_model *ft_clarke_model_create(size_t nharmonics);
-void ft_clarke_model_free(ft_clarke_model *m);
+FT_API ft_clarke_model *ft_clarke_model_create(size_t nharmonics);
+FT_API void ft_clarke_model_free(ft_clarke_model *m);
 
 typedef struct {
     int refine;             /**< K >= 1: K times more cells along each axis over the same extent; default 1 */
@@ -142,7 +142,7 @@ typedef struct {
  *  harmonic of the new grid except the DC term and those of H. c is chosen on this realization so that
  *  the cells covering the fitted extent have the original's mean and variance (Clarke's procedure).
  *  Same model, options and seed => bit-identical cells. */
-int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts *opts, ft_grid **out);
+FT_API int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts *opts, ft_grid **out);
 
 
 /* ------------------------------------------------------------------------------------------------
@@ -216,9 +216,9 @@ typedef struct {
 /** Fixed by the eq. 11 calibration (docs/terrain-reconstruct.md says how it was measured). */
 extern const double FT_RECON_K_DEFAULT;
 
-const char *ft_recon_method_name(ft_recon_method m);
+FT_API const char *ft_recon_method_name(ft_recon_method m);
 /** "fractal", "conditional" or "smooth" (case-insensitive); FT_E_INVALID naming the text otherwise. */
-int ft_recon_method_parse(const char *name, ft_recon_method *m);
+FT_API int ft_recon_method_parse(const char *name, ft_recon_method *m);
 
 /** Reconstructs a grid shaped like `target` (its nx, ny, gt and crs; its cells and mask are ignored)
  *  from scattered points (p->w, when present, is each point's confidence 1/sigma). Points outside the
@@ -226,12 +226,12 @@ int ft_recon_method_parse(const char *name, ft_recon_method *m);
  *  reconstruction (the mean if realizations > 1); sd_out, if not NULL, the per-cell standard deviation
  *  over the realizations (zero with one realization or the smooth method). info may be NULL.
  *  Same data, options and seed => bit-identical cells on any thread count. */
-int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_recon_opts *opts,
+FT_API int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_recon_opts *opts,
                           ft_grid **out, ft_grid **sd_out, ft_recon_info *info);
 
 /** Fills the nodata cells of a DEM; the valid cells are kept exactly. The output has no mask. A grid
  *  without nodata is returned as a copy (info->filled = 0). All-nodata is FT_E_EMPTY. */
-int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid **out, ft_grid **sd_out,
+FT_API int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid **out, ft_grid **sd_out,
                          ft_recon_info *info);
 
 /* ------------------------------------------------------------------------------------------------
@@ -295,10 +295,10 @@ typedef struct {
  *  with realizations > 1 the per-cell sd (0 on valid cells), else zero on filled cells. *res (may be
  *  NULL): the voids and totals (ft_fill_result_free). Valid cells are copied bit for bit. Same DEM,
  *  options and seed => bit-identical cells. Errors: FT_E_EMPTY if no cell is valid. */
-int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
+FT_API int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
                     ft_grid **sd_out, ft_fill_result **res);
-void ft_fill_result_free(ft_fill_result *r);
-const char *ft_fill_d_source_name(ft_fill_d_source s);
+FT_API void ft_fill_result_free(ft_fill_result *r);
+FT_API const char *ft_fill_d_source_name(ft_fill_d_source s);
 
 #ifdef __cplusplus
 }

@@ -47,9 +47,9 @@ typedef enum {
 } ft_area_what;
 
 /** "boundary" or "area" (the CLI's --what and the JSON's "what"); "unknown" otherwise. */
-const char *ft_area_what_name(ft_area_what w);
+FT_API const char *ft_area_what_name(ft_area_what w);
 /** Parses "boundary" or "area" (case-insensitive); FT_E_INVALID naming the word otherwise. */
-int ft_area_what_parse(const char *name, ft_area_what *w);
+FT_API int ft_area_what_parse(const char *name, ft_area_what *w);
 
 typedef struct {
     ft_area_what what;   /**< default FT_AREA_BOUNDARY */
@@ -74,7 +74,7 @@ typedef struct {
  *  have no geometry (skipped); coordinates must be finite. The result's method is "box-boundary" or
  *  "box-area"; each table row holds the side, the count (value and count) and the local slope.
  *  *out is allocated; free with ft_dim_result_free. */
-int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeatures, const ft_area_dim_opts *o,
+FT_API int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeatures, const ft_area_dim_opts *o,
                       ft_dim_result **out);
 
 /** The same on a classified raster (one class per cell value): the set is the valid cells whose value
@@ -86,7 +86,7 @@ int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeature
  *  least 8 cells or a quarter of the diagonal); the
  *  table's scale is s times the
  *  cell side sqrt(|gt[1] gt[5] - gt[2] gt[4]|); offsets are multiples of s / offsets cells. */
-int ft_urban_dim_area_grid(const ft_grid *classes, double class_value, const ft_area_dim_opts *o,
+FT_API int ft_urban_dim_area_grid(const ft_grid *classes, double class_value, const ft_area_dim_opts *o,
                            ft_dim_result **out);
 
 /** What a class holds, for the per-year table (the paper's Tables 1 and 2). */
@@ -101,9 +101,9 @@ typedef struct {
 
 /** Area, perimeter and counts of the polygons of features[0 .. nfeatures) (NULL = every feature); features
  *  that are not polygons are not counted. */
-int ft_urban_layer_stats(const ft_layer *l, const size_t *features, size_t nfeatures, ft_urban_stats *out);
+FT_API int ft_urban_layer_stats(const ft_layer *l, const size_t *features, size_t nfeatures, ft_urban_stats *out);
 /** The same for the cells of one class of a classified raster. */
-int ft_urban_grid_stats(const ft_grid *classes, double class_value, ft_urban_stats *out);
+FT_API int ft_urban_grid_stats(const ft_grid *classes, double class_value, ft_urban_stats *out);
 
 /** The features of a layer grouped by the value of one field (residential, industrial, ...). */
 typedef struct {
@@ -121,8 +121,8 @@ typedef struct {
 /** Groups the layer's polygon features (FT_GEOM_POLYGON) by the value of field `field` (name,
  *  case-insensitive; FT_E_INVALID naming it and listing the layer's fields if absent). Features of other
  *  types are left out. *out is allocated; free with ft_urban_classes_free. */
-int ft_urban_classes_by_field(const ft_layer *l, const char *field, ft_urban_classes **out);
-void ft_urban_classes_free(ft_urban_classes *c);
+FT_API int ft_urban_classes_by_field(const ft_layer *l, const char *field, ft_urban_classes **out);
+FT_API void ft_urban_classes_free(ft_urban_classes *c);
 
 /* ------------------------------------------------------------------------------------------------
  * Regression across years (§1.2, Eq. 5: ln Area = a + b D): ordinary least squares of y (or ln y) on x.
@@ -145,7 +145,7 @@ typedef struct {
 /** Fits y = intercept + slope * x over n >= 3 rows (log_y: ln y instead of y, every y > 0). x and y
  *  finite, x not all equal, y not all equal; errors name the row and the value. On the paper's Table 2
  *  (ln area on D) r = 0.954. */
-int ft_urban_regress(const double *x, const double *y, size_t n, int log_y, ft_urban_regression *out);
+FT_API int ft_urban_regress(const double *x, const double *y, size_t n, int log_y, ft_urban_regression *out);
 
 /* ------------------------------------------------------------------------------------------------
  * Midpoint-subdivision generator (§2, Eqs. 6-13). A segment B -> C of length r is replaced by the two
@@ -190,24 +190,24 @@ typedef struct {
 
 /** The generator's base angle a (radians) for dimension D: acos(2^(1/D - 1)) (Eq. 9); 0 at D = 1, pi/4 at
  *  D = 2; NaN outside [1, 2]. */
-double ft_urban_angle_for_dim(double D);
+FT_API double ft_urban_angle_for_dim(double D);
 /** The inverse: D = ln 2 / ln(2 cos a) (Eq. 8), for a in [0, pi/4]; NaN outside. */
-double ft_urban_dim_for_angle(double a);
+FT_API double ft_urban_dim_for_angle(double a);
 /** The largest jitter (exclusive) for dimension D: below it every leg is shorter than its segment by a fixed
  *  factor whatever the draws, so the iteration ends: (1 - 1/(2 cos a)) sqrt(2) / tan a, capped at
  *  1/sqrt(2) (which keeps the apex on side J). NaN outside (1, 2). */
-double ft_urban_jitter_max(double D);
+FT_API double ft_urban_jitter_max(double D);
 /** The average chord length of a chain, Eqs. 11-13: its length over its number of segments (a ring's
  *  closing segment included); 0 if it has fewer than 2 vertices. */
-double ft_urban_chord_avg(const ft_chain *c);
+FT_API double ft_urban_chord_avg(const ft_chain *c);
 /** The average chord length over every part of the layer (every chord of every chain and ring). */
-int ft_urban_layer_chord_avg(const ft_layer *l, double *avg);
+FT_API int ft_urban_layer_chord_avg(const ft_layer *l, double *avg);
 
 /** Runs the generator on one chain (open or ring, >= 2 vertices, finite coordinates). *out is a new chain
  *  with the same closed flag; every input vertex is kept, in order. Fails with FT_E_INVALID naming the
  *  value for dim outside (1, 2), min <= 0, max < min, jitter outside [0, ft_urban_jitter_max(dim)), NaN,
  *  or output beyond FT_BOUNDARY_MAX_VERTICES. */
-int ft_urban_boundary(const ft_chain *in, const ft_boundary_opts *o, ft_chain **out);
+FT_API int ft_urban_boundary(const ft_chain *in, const ft_boundary_opts *o, ft_chain **out);
 
 /** The most vertices one output chain may have (about 4 GB of coordinates). */
 #define FT_BOUNDARY_MAX_VERTICES ((size_t)1 << 28)
@@ -215,7 +215,7 @@ int ft_urban_boundary(const ft_chain *in, const ft_boundary_opts *o, ft_chain **
 /** ft_urban_boundary as an ft_line_op (opts: const ft_boundary_opts *), for ft_line_apply_layer: on a
  *  coverage it runs once per arc with the arc's end points (nodes) fixed; max = 0 means each arc's own
  *  average chord. */
-int ft_urban_op_boundary(const ft_chain *in, const void *opts, ft_chain **out);
+FT_API int ft_urban_op_boundary(const ft_chain *in, const void *opts, ft_chain **out);
 
 /** What ft_urban_boundary_layer did, for the CLI's JSON. */
 typedef struct {
@@ -231,7 +231,7 @@ typedef struct {
  *  by level through the crossing guard (every segment in the window split at once, each apex reduced if its
  *  legs would cross: the output is simple and crosses no other part). On failure the layer is unchanged.
  *  info may be NULL. */
-int ft_urban_boundary_layer(ft_layer *l, const ft_boundary_opts *o, int coverage, ft_boundary_info *info);
+FT_API int ft_urban_boundary_layer(ft_layer *l, const ft_boundary_opts *o, int coverage, ft_boundary_info *info);
 
 #ifdef __cplusplus
 }

@@ -25,7 +25,8 @@ def read_grid(path, band=1):
 
 def write_grid(path, grid, *, driver=None, geotransform=None, wkt=None):
     """Writes a Grid (or array) with its geotransform, CRS and nodata through the library's writer
-    (driver from the extension, GeoTIFF tiled and DEFLATE by default); replaces path only on success."""
+    (driver from the extension, GeoTIFF tiled, ZSTD or DEFLATE level 1 on every core by default); replaces
+    path only on success."""
     o = S.ft_write_grid_opts.default()
     keep = driver.encode() if driver else None
     o.driver = keep

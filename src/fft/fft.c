@@ -98,7 +98,7 @@ void ft_fft_free(void *p)
 /* Large arrays are walked column-wise by the 2-D transforms: transparent huge pages (where the kernel
  * offers them on request, madvise mode) cut both the page faults of the first touch and the TLB misses
  * of the column pass. Only a hint: failure changes nothing. */
-static void advise_huge_pages(void *p, size_t bytes)
+void ft_fft_advise_huge(void *p, size_t bytes)
 {
 #ifdef MADV_HUGEPAGE
     const uintptr_t huge = (uintptr_t)2 << 20;
@@ -123,7 +123,7 @@ fftwf_complex *ft_fft_alloc_complexf(size_t n)
     if (p == NULL)
         ft_error(FT_E_NOMEM, "fft: out of memory allocating %zu bytes", n * sizeof(fftwf_complex));
     else
-        advise_huge_pages(p, n * sizeof(fftwf_complex));
+        ft_fft_advise_huge(p, n * sizeof(fftwf_complex));
     return p;
 }
 

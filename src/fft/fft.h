@@ -49,6 +49,10 @@ void ft_fft_free(void *p);
  *  SIMD-aligned array of n fftwf_complex (fftwf_malloc), NULL (FT_E_NOMEM set) on failure; release
  *  with ft_fft_freef. */
 fftwf_complex *ft_fft_alloc_complexf(size_t n);
+/** Asks for transparent huge pages over the whole 2 MB pages inside [p, p + bytes) of a large array not
+ *  yet written (a hint, as ft_fft_alloc_complexf gives its arrays): its first touch then takes one fault
+ *  per 2 MB instead of one per 4 kB. */
+void ft_fft_advise_huge(void *p, size_t bytes);
 void ft_fft_freef(void *p);
 
 /** Forward 2-D real-to-complex transform: ny x nx reals -> ny x (nx/2+1) complex (unnormalised).

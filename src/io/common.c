@@ -85,6 +85,21 @@ int ft_io_check_readable(const char *path)
     return FT_OK;
 }
 
+char *ft_io_threads_begin(void)
+{
+    const char *old = CPLGetThreadLocalConfigOption("GDAL_NUM_THREADS", NULL);
+    char *prev = old != NULL ? CPLStrdup(old) : NULL;
+    if (CPLGetConfigOption("GDAL_NUM_THREADS", NULL) == NULL)
+        CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", "ALL_CPUS");
+    return prev;
+}
+
+void ft_io_threads_end(char *prev)
+{
+    CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", prev);
+    CPLFree(prev);
+}
+
 int ft_io_open(const char *path, unsigned int kind, GDALDatasetH *ds)
 {
     *ds = NULL;
@@ -93,7 +108,10 @@ int ft_io_open(const char *path, unsigned int kind, GDALDatasetH *ds)
     if (rc != FT_OK)
         return rc;
     ft_io_gdal_reset();
+    char *prev = (kind & GDAL_OF_RASTER) ? ft_io_threads_begin() : NULL;
     *ds = GDALOpenEx(path, kind | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, NULL, NULL, NULL);
+    if (kind & GDAL_OF_RASTER)
+        ft_io_threads_end(prev);
     if (*ds != NULL)
         return FT_OK;
     char reason[1024];

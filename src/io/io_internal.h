@@ -24,6 +24,12 @@ int ft_io_fail(int code, const char *fmt, ...)
 #endif
     ;
 
+/* GDAL's worker threads (common.c): between begin and end, this thread's GDAL calls may use every core
+ * for (de)compression (GDAL_NUM_THREADS=ALL_CPUS, thread-local), unless the user set GDAL_NUM_THREADS.
+ * begin returns what end restores (the previous thread-local value, or NULL). */
+char *ft_io_threads_begin(void);
+void ft_io_threads_end(char *prev);
+
 /* Paths (common.c). */
 const char *ft_io_ext(const char *path);             /* extension after the last dot of the file name, "" if none */
 int ft_io_ext_in(const char *path, const char *list); /* 1 if the extension is one of the space-separated list */
@@ -43,6 +49,7 @@ int ft_io_get_layer(GDALDatasetH ds, const char *path, const char *name, OGRLaye
 int ft_io_read_layer_ds(GDALDatasetH ds, const char *path, const ft_read_layer_opts *o, ft_layer **out);
 int ft_io_read_points_ds(GDALDatasetH ds, const char *path, const ft_read_points_opts *o, ft_points **out);
 int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *o, ft_grid **out);
+int ft_io_summarize_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *o, ft_grid_summary *out);
 /* What an open dataset holds (probe.c): a grid unless a layer is named, else the kind of the layer. */
 int ft_io_dataset_kind(GDALDatasetH ds, const char *path, const char *layer, ft_file_kind *kind);
 

@@ -85,7 +85,9 @@ static int open_any(const char *path, GDALDatasetH *ds)
 {
     ft_io_init();
     ft_io_gdal_reset();
+    char *prev = ft_io_threads_begin(); /* a GeoTIFF decodes its blocks on every core */
     *ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    ft_io_threads_end(prev);
     if (*ds == NULL)
         return ft_error(FT_E_FORMAT, "'%s' is neither a raster nor a vector format GDAL reads", path);
     return FT_OK;
@@ -126,8 +128,9 @@ static int read_text(const char *path, ft_file_kind kind, const ft_read_points_o
     return ft_io_read_text_chains(path, &out->layer);
 }
 
-int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
-                   const ft_read_points_opts *po, ft_data *out)
+/* ft_io_read_any, a grid summarized into *summary when summary is not NULL. */
+static int read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                    const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary)
 {
     ft_read_layer_opts l = FT_READ_LAYER_OPTS_DEFAULT;
     ft_read_grid_opts g = FT_READ_GRID_OPTS_DEFAULT;
@@ -152,7 +155,9 @@ int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read
             return rc;
         rc = ft_io_dataset_kind(ds, path, layer, &out->kind);
         l.layer = p.layer = layer;
-        if (rc == FT_OK && out->kind == FT_KIND_GRID)
+        if (rc == FT_OK && out->kind == FT_KIND_GRID && summary != NULL)
+            rc = ft_io_summarize_grid_ds(ds, path, &g, summary);
+        else if (rc == FT_OK && out->kind == FT_KIND_GRID)
             rc = ft_io_read_grid_ds(ds, path, &g, &out->grid);
         else if (rc == FT_OK && out->kind == FT_KIND_CHAINS)
             rc = ft_io_read_layer_ds(ds, path, &l, &out->layer);
@@ -162,6 +167,22 @@ int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read
     }
     if (rc != FT_OK)
         ft_data_clear(out);
+    return rc;
+}
+
+int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                   const ft_read_points_opts *po, ft_data *out)
+{
+    return read_any(path, lo, go, po, out, NULL);
+}
+
+int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                           const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary)
+{
+    memset(summary, 0, sizeof *summary);
+    int rc = read_any(path, lo, go, po, out, summary);
+    if (rc != FT_OK)
+        ft_grid_summary_clear(summary);
     return rc;
 }
 

@@ -23,7 +23,8 @@ typedef struct {
     const char *path;
     GDALRasterBandH band;
     GDALRasterBandH mask;  /* NULL when GDAL says every cell is valid */
-    ft_grid *g;
+    ft_grid *g;            /* the whole band, or one strip of it (summaries) */
+    int row_base;          /* band row held in g's row 0 */
     uint8_t *mbuf;         /* one block of mask rows */
     double scale, offset;
 } grid_reader;
@@ -45,14 +46,18 @@ static int check_band(GDALDatasetH ds, const char *path, int band)
     return FT_OK;
 }
 
-static int grid_from_dataset(GDALDatasetH ds, const char *path, ft_grid **out)
+/* The grid of the dataset's size, georeferencing and CRS; with header_only its cells are one (nx and ny
+ * still say the dataset's size), for a caller that keeps only the header. */
+static int grid_from_dataset(GDALDatasetH ds, const char *path, int header_only, ft_grid **out)
 {
     int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
     if (nx <= 0 || ny <= 0)
         return ft_error(FT_E_FORMAT, "'%s' has an empty raster (%d x %d)", path, nx, ny);
-    ft_grid *g = ft_grid_create((size_t)nx, (size_t)ny);
+    ft_grid *g = header_only ? ft_grid_create(1, 1) : ft_grid_create((size_t)nx, (size_t)ny);
     if (g == NULL)
         return FT_E_NOMEM;
+    g->nx = (size_t)nx;
+    g->ny = (size_t)ny;
     double gt[6];
     if (GDALGetGeoTransform(ds, gt) == CE_None)
         memcpy(g->gt, gt, sizeof gt);
@@ -82,7 +87,7 @@ static int set_invalid(ft_grid *g, size_t i)
 static int read_rows(grid_reader *r, int row0, int rows)
 {
     ft_grid *g = r->g;
-    size_t nx = g->nx, base = (size_t)row0 * nx, n = (size_t)rows * nx;
+    size_t nx = g->nx, base = (size_t)(row0 - r->row_base) * nx, n = (size_t)rows * nx;
     int inx = (int)nx;
     ft_io_gdal_reset();
     if (GDALRasterIO(r->band, GF_Read, 0, row0, inx, rows, g->z + base, inx, rows, GDT_Float32, 0, 0) != CE_None)
@@ -103,14 +108,14 @@ static int read_rows(grid_reader *r, int row0, int rows)
     return FT_OK;
 }
 
-/* Rows per read: whole blocks, about 4 M cells at a time. */
-static int rows_per_chunk(GDALRasterBandH band, size_t nx)
+/* Rows per read: whole blocks, about `cells` cells at a time. */
+static int rows_per_chunk(GDALRasterBandH band, size_t nx, size_t cells)
 {
     int bx, by;
     GDALGetBlockSize(band, &bx, &by);
     if (by < 1)
         by = 1;
-    size_t want = ((size_t)1 << 22) / (nx ? nx : 1);
+    size_t want = cells / (nx ? nx : 1);
     size_t blocks = want / (size_t)by;
     if (blocks < 1)
         blocks = 1;
@@ -118,7 +123,8 @@ static int rows_per_chunk(GDALRasterBandH band, size_t nx)
     return rows > INT_MAX ? INT_MAX : (int)rows;
 }
 
-static int read_band(grid_reader *r)
+/* The band's nodata value, scale and offset into g and r. */
+static void band_header(grid_reader *r)
 {
     ft_grid *g = r->g;
     int flags = GDALGetMaskFlags(r->band);
@@ -133,15 +139,19 @@ static int read_band(grid_reader *r)
     r->offset = GDALGetRasterOffset(r->band, &ok);
     if (!ok)
         r->offset = 0.0;
-    int chunk = rows_per_chunk(r->band, g->nx), ny = (int)g->ny;
+}
+
+static int read_band(grid_reader *r)
+{
+    ft_grid *g = r->g;
+    band_header(r);
+    int chunk = rows_per_chunk(r->band, g->nx, (size_t)1 << 22), ny = (int)g->ny;
     if (r->mask != NULL && (r->mbuf = ft_malloc((size_t)chunk * g->nx)) == NULL)
         return FT_E_NOMEM;
-    for (int row = 0; row < ny; row += chunk) {
-        int rc = read_rows(r, row, row + chunk <= ny ? chunk : ny - row);
-        if (rc != FT_OK)
-            return rc;
-    }
-    return FT_OK;
+    int rc = FT_OK;
+    for (int row = 0; rc == FT_OK && row < ny; row += chunk)
+        rc = read_rows(r, row, row + chunk <= ny ? chunk : ny - row);
+    return rc;
 }
 
 int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
@@ -166,7 +176,7 @@ int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opt
     grid_reader r = {.path = path};
     int rc = check_band(ds, path, o.band);
     if (rc == FT_OK)
-        rc = grid_from_dataset(ds, path, &r.g);
+        rc = grid_from_dataset(ds, path, 0, &r.g);
     if (rc == FT_OK) {
         r.band = GDALGetRasterBand(ds, o.band);
         rc = read_band(&r);
@@ -178,4 +188,104 @@ int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opt
     }
     *out = r.g;
     return FT_OK;
+}
+
+/* ---- summaries: the band strip by strip (about 1 M cells, whole blocks) through one strip-sized grid ---- */
+
+/* Adds the valid cells of the strip's first `rows` rows to s. */
+static void add_strip(ft_grid *strip, size_t rows, ft_grid_summary *s)
+{
+    size_t full = strip->ny;
+    strip->ny = rows;
+    s->valid += ft_grid_count_valid(strip);
+    double lo, hi;
+    if (ft_grid_minmax(strip, &lo, &hi) == FT_OK) {
+        s->zmin = lo < s->zmin ? lo : s->zmin;
+        s->zmax = hi > s->zmax ? hi : s->zmax;
+    }
+    strip->ny = full;
+    if (strip->mask != NULL)
+        memset(strip->mask, 1, strip->nx * strip->ny);
+}
+
+static int summarize_band(grid_reader *r, const ft_grid *header, ft_grid_summary *s)
+{
+    int ny = (int)header->ny;
+    int chunk = rows_per_chunk(r->band, header->nx, (size_t)1 << 20);
+    if (chunk > ny)
+        chunk = ny;
+    r->g = ft_grid_create(header->nx, (size_t)chunk);
+    if (r->g == NULL)
+        return FT_E_NOMEM;
+    band_header(r);
+    s->header.has_nodata = r->g->has_nodata;
+    s->header.nodata_value = r->g->nodata_value;
+    if (r->mask != NULL && (r->mbuf = ft_malloc((size_t)chunk * header->nx)) == NULL)
+        return FT_E_NOMEM;
+    s->valid = 0;
+    s->zmin = INFINITY;
+    s->zmax = -INFINITY;
+    int rc = FT_OK;
+    for (int row = 0; rc == FT_OK && row < ny; row += chunk) {
+        int rows = row + chunk <= ny ? chunk : ny - row;
+        r->row_base = row;
+        rc = read_rows(r, row, rows);
+        if (rc == FT_OK)
+            add_strip(r->g, (size_t)rows, s);
+        /* the strip's blocks are not needed again: GDAL's cache keeps no more than one strip */
+        GDALFlushRasterCache(r->band);
+        if (r->mask != NULL)
+            GDALFlushRasterCache(r->mask);
+    }
+    if (s->valid == 0)
+        s->zmin = s->zmax = NAN;
+    return rc;
+}
+
+int ft_io_summarize_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *opts,
+                            ft_grid_summary *out)
+{
+    memset(out, 0, sizeof *out);
+    ft_grid *header = NULL;
+    grid_reader r = {.path = path};
+    int rc = check_band(ds, path, opts->band);
+    if (rc == FT_OK)
+        rc = grid_from_dataset(ds, path, 0, &header);
+    if (rc == FT_OK) {
+        out->header = *header;
+        out->header.z = NULL;
+        out->header.mask = NULL;
+        header->crs_wkt = NULL; /* now the summary's */
+        r.band = GDALGetRasterBand(ds, opts->band);
+        rc = summarize_band(&r, header, out);
+    }
+    ft_grid_free(header);
+    ft_grid_free(r.g);
+    free(r.mbuf);
+    if (rc != FT_OK)
+        ft_grid_summary_clear(out);
+    return rc;
+}
+
+int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out)
+{
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    if (opts != NULL)
+        o = *opts;
+    memset(out, 0, sizeof *out);
+    GDALDatasetH ds;
+    int rc = ft_io_open(path, GDAL_OF_RASTER, &ds);
+    if (rc != FT_OK)
+        return rc;
+    rc = ft_io_summarize_grid_ds(ds, path, &o, out);
+    GDALClose(ds);
+    return rc;
+}
+
+void ft_grid_summary_clear(ft_grid_summary *s)
+{
+    if (s == NULL)
+        return;
+    free(s->header.crs_wkt);
+    memset(s, 0, sizeof *s);
 }

@@ -75,7 +75,7 @@ int ft_surface_dyadic_setup(const ft_grid *g, const ft_dyadic_opts *o, const cha
     if (*kmax - *kmin < 1)
         return ft_error(FT_E_INVALID, "%s: needs at least two powers of two between min_size %g and max_size %g "
                         "cells on a %zux%zu grid", name, o->min_size > 0.0 ? o->min_size : 1.0, hi, g->nx, g->ny);
-    double zmax;
+    double zmax = 0.0;
     if ((rc = ft_surface_valid_range(g, name, zmin, &zmax)) != FT_OK)
         return rc;
     double cx, cy;

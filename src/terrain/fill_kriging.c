@@ -156,9 +156,10 @@ int ft_fill_krige_create(const uint8_t *role, size_t bw, size_t bh, double H, ft
         ok = cholesky(k->L, k->m - 1);
     }
     if (ok != 0) {
+        size_t m = k->m;
         ft_fill_krige_free(k);
         return ft_error(FT_E_NUMERIC, "fill: the kriging system of a void (%zu conditioning cells, H = %g) "
-                        "is not positive definite", k->m, H);
+                        "is not positive definite", m, H);
     }
     *out = k;
     return FT_OK;

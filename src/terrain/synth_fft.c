@@ -313,6 +313,7 @@ int ft_synth_fft_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, fl
     if (px == 0 || py == 0 || px > INT_MAX || py > INT_MAX || py > SIZE_MAX / (px / 2 + 1))
         return ft_error(FT_E_INVALID, "synth: fft grid for %zu x %zu is too large", nx, ny);
     size_t ncx = px / 2 + 1, rs = ft_fft_real_stride(px);
+    ft_fft_advise_huge(z, nx * ny * sizeof *z); /* the output is first touched below, like the spectrum */
     fftwf_complex *spec = ft_fft_alloc_complexf(py * ncx);
     if (spec == NULL)
         return FT_E_NOMEM;

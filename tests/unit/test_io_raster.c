@@ -239,6 +239,84 @@ static void test_nodata_rules(void **state)
     ft_grid_free(g);
 }
 
+/* ---- summaries: strip by strip, equal to the read grid's count and range -------------------------- */
+
+static void assert_summary_of(const char *path, int band)
+{
+    ft_grid *g = read_ok(path, band);
+    ft_grid_summary s;
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    o.band = band;
+    if (ft_io_summarize_grid(path, &o, &s) != FT_OK)
+        fail_msg("%s: %s", path, ft_last_error());
+    assert_int_equal(s.header.nx, g->nx);
+    assert_int_equal(s.header.ny, g->ny);
+    assert_null(s.header.z);
+    assert_null(s.header.mask);
+    for (int i = 0; i < 6; i++)
+        assert_true(s.header.gt[i] == g->gt[i]);
+    assert_true((s.header.crs_wkt == NULL) == (g->crs_wkt == NULL));
+    if (g->crs_wkt != NULL)
+        assert_string_equal(s.header.crs_wkt, g->crs_wkt);
+    assert_int_equal(s.header.has_nodata, g->has_nodata);
+    assert_true(s.header.nodata_value == g->nodata_value);
+    assert_int_equal(s.valid, ft_grid_count_valid(g));
+    double lo, hi;
+    if (ft_grid_minmax(g, &lo, &hi) == FT_OK) {
+        assert_true(s.zmin == lo);
+        assert_true(s.zmax == hi);
+    } else {
+        assert_int_equal(s.valid, 0);
+        assert_true(isnan(s.zmin) && isnan(s.zmax));
+    }
+    ft_grid_summary_clear(&s);
+    assert_null(s.header.crs_wkt);
+    ft_grid_free(g);
+}
+
+static void test_summary(void **state)
+{
+    (void)state;
+    assert_summary_of(VOLCANO, 1);
+    assert_summary_of(LUXEMBOURG, 1);
+    /* 1500 x 1400 cells: several strips of about 1 M cells; nodata and NaN cells in the first and the last
+     * strip, the extremes in the last one, so that a strip lost or counted twice shows */
+    ft_grid *g = ft_grid_create(1500, 1400);
+    ft_grid_ensure_mask(g);
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        g->z[i] = (float)((i * 7919) % 10007) * 0.25f;
+    g->mask[3] = 0;
+    g->mask[g->nx * g->ny - 2] = 0;
+    g->z[10] = NAN;
+    g->z[g->nx * 1399 + 5] = -123.5f;
+    g->z[g->nx * 1399 + 6] = 9999.75f;
+    g->has_nodata = 1;
+    g->nodata_value = -32768.0;
+    const char *path = ft_test_tmp("strips.tif");
+    write_ok(path, g, NULL);
+    assert_summary_of(path, 1);
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.type = GDT_Int16; /* nodata compared in the band's own type */
+    path = ft_test_tmp("strips16.tif");
+    write_ok(path, g, &o);
+    assert_summary_of(path, 1);
+    /* all nodata: 0 valid, NaN range */
+    memset(g->mask, 0, g->nx * g->ny);
+    path = ft_test_tmp("strips_none.tif");
+    write_ok(path, g, NULL);
+    assert_summary_of(path, 1);
+    ft_grid_free(g);
+
+    ft_grid_summary s;
+    ft_read_grid_opts bo = FT_READ_GRID_OPTS_DEFAULT;
+    bo.band = 2;
+    assert_int_equal(ft_io_summarize_grid(VOLCANO, &bo, &s), FT_E_FORMAT);
+    assert_non_null(strstr(ft_last_error(), "band 2"));
+    assert_null(s.header.crs_wkt);
+    assert_int_equal(ft_io_summarize_grid("/tmp/ft-missing-file.tif", NULL, &s), FT_E_IO);
+    assert_int_equal(ft_io_summarize_grid(STATES, NULL, &s), FT_E_FORMAT);
+}
+
 /* ---- failures ---------------------------------------------------------------------------------- */
 
 static void test_bad_inputs(void **state)
@@ -337,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_round_trip_geotiff),
         cmocka_unit_test(test_round_trip_ascii),
         cmocka_unit_test(test_nodata_rules),
+        cmocka_unit_test(test_summary),
         cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_write_failures_leave_nothing),
         cmocka_unit_test(test_driver_choice),
