@@ -306,3 +306,17 @@ def test_fill_same_cells(cli, data, tmp_path, args, kw):
         assert np.array_equal(csd[valid], sd.z[pm])
     else:
         assert sd is None
+
+
+def test_dim_points_lonlat_as_the_cli(cli, data, tmp_path):
+    """Lon/lat points (a GeoJSON point layer in WGS 84): lags in metres in a local transverse Mercator."""
+    x, y, z, _, _ = ft.read_points(data("points_mass_topo_davis1973.csv"))
+    lon, lat = -71.0 + x * 0.004, 42.0 + y * 0.003
+    path = tmp_path / "pts.geojson"
+    path.write_text('{"type": "FeatureCollection", "features": [%s]}' % ", ".join(
+        '{"type": "Feature", "properties": {"z": %r}, "geometry": {"type": "Point", "coordinates": [%r, %r]}}'
+        % (c, a, b) for a, b, c in zip(lon, lat, z)))
+    js = cli("dim", "points", path, "--zfield", "z", "--min-pairs", "5")
+    py = ft.dim_points(path, zfield="z", min_pairs=5)
+    same_result(py, js)
+    assert py.units == "m" and js["geographic"]
