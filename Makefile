@@ -50,3 +50,16 @@ install: build
 
 clean:
 	rm -rf $(BUILD) out
+
+# libFuzzer harnesses (fuzz/, clang + ASan + UBSan): each runs FUZZ_SECONDS from its seed corpus
+# (fuzz/corpus/<target>/); a finding fails the run and leaves its reproducer in $(FUZZ_BUILD)/findings/.
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?= points_text text_chains clarke_json urban_table cli_options gdal_vector gdal_raster
+.PHONY: fuzz fuzz-build
+fuzz-build: deps
+	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFT_FUZZ=ON -DFT_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+
+fuzz: fuzz-build
+	bash scripts/run-fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)

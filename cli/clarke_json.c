@@ -14,6 +14,7 @@
 #include "clarke_json.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -176,12 +177,17 @@ static double num(reader *r, json_object *o, const char *parent, const char *key
     return d;
 }
 
-static long long integer(reader *r, json_object *o, const char *parent, const char *key, long long min)
+/* An integer in [min, max]; 0 (and the error set) when it is missing or out of range. json-c saturates
+ * integers beyond 64 bits, so those too are reported as out of range rather than read as some other value. */
+static long long integer(reader *r, json_object *o, const char *parent, const char *key, long long min, long long max)
 {
     json_object *v = get(r, o, parent, key, json_type_int);
     long long i = v ? (long long)json_object_get_int64(v) : 0;
-    if (v && i < min)
-        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s.%s\" must be >= %lld, got %lld", r->what, parent, key, min, i);
+    if (v && (i < min || i > max)) {
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s.%s\" must be an integer in [%lld, %lld], got %s", r->what, parent,
+                         key, min, max, json_object_to_json_string(v));
+        return 0;
+    }
     return i;
 }
 
@@ -206,8 +212,10 @@ static void read_grid(reader *r, json_object *o, ft_clarke_model *m)
     double nx = element(r, size, "grid.size", 0), ny = element(r, size, "grid.size", 1);
     if (r->rc == FT_OK && (!(nx >= 2.0 && nx <= 1e9) || !(ny >= 2.0 && ny <= 1e9) || nx != floor(nx) || ny != floor(ny)))
         r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.size\" must be two integers >= 2, got [%g, %g]", r->what, nx, ny);
-    m->nx = (size_t)nx;
-    m->ny = (size_t)ny;
+    if (r->rc == FT_OK) {
+        m->nx = (size_t)nx;
+        m->ny = (size_t)ny;
+    }
     for (size_t i = 0; i < 6; i++)
         m->gt[i] = element(r, gt, "grid.geotransform", i);
     json_object *crs = NULL;
@@ -221,8 +229,8 @@ static void read_grid(reader *r, json_object *o, ft_clarke_model *m)
 
 static void read_harmonic(reader *r, json_object *h, ft_clarke_harmonic *out)
 {
-    out->k = (int)integer(r, h, "harmonics.list[]", "k", 0);
-    out->l = (int)integer(r, h, "harmonics.list[]", "l", -(long long)INT32_MAX);
+    out->k = (int)integer(r, h, "harmonics.list[]", "k", 0, INT32_MAX);
+    out->l = (int)integer(r, h, "harmonics.list[]", "l", -(long long)INT32_MAX, INT32_MAX);
     out->a = num(r, h, "harmonics.list[]", "a");
     out->b = num(r, h, "harmonics.list[]", "b");
     out->power = out->a * out->a + out->b * out->b;
@@ -263,13 +271,13 @@ static void read_scalars(reader *r, json_object *o, ft_clarke_model *m)
     m->trend_r2 = num(r, t, "trend", "r2");
     m->mean = num(r, orig, "original", "mean");
     m->sd = num(r, orig, "original", "sd");
-    m->valid = (size_t)integer(r, orig, "original", "valid", 0);
-    m->nodata_filled = (size_t)integer(r, orig, "original", "nodata_filled", 0);
+    m->valid = (size_t)integer(r, orig, "original", "valid", 0, LLONG_MAX);
+    m->nodata_filled = (size_t)integer(r, orig, "original", "nodata_filled", 0, LLONG_MAX);
     m->slope = num(r, reg, "regression", "slope");
     m->intercept = num(r, reg, "regression", "intercept");
     m->r2 = num(r, reg, "regression", "r2");
     m->stderr_slope = num(r, reg, "regression", "stderr_slope");
-    m->npairs = (size_t)integer(r, reg, "regression", "pairs", 0);
+    m->npairs = (size_t)integer(r, reg, "regression", "pairs", 0, LLONG_MAX);
     json_object *taper = get(r, reg, "regression", "taper", json_type_string);
     m->taper = taper && strcmp(json_object_get_string(taper), "hann") == 0;
     m->min_wavelength = num(r, reg, "regression", "min_wavelength_cells");
@@ -301,17 +309,87 @@ int clarke_model_from_json(json_object *o, const char *what, ft_clarke_model **o
     return FT_OK;
 }
 
+/* The whole file into a malloc'd, NUL-terminated buffer. */
+static int slurp(const char *path, char **buf, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return ft_error(FT_E_IO, "cannot open '%s': %s", path, strerror(errno));
+    size_t n = 0, cap = 4096;
+    char *b = malloc(cap);
+    size_t got;
+    while (b != NULL && (got = fread(b + n, 1, cap - n - 1, f)) > 0) {
+        n += got;
+        if (n + 1 == cap) {
+            char *more = cap < ((size_t)1 << 30) ? realloc(b, 2 * cap) : NULL;
+            if (more == NULL)
+                free(b);
+            b = more;
+            cap *= 2;
+        }
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (b == NULL || bad) {
+        free(b);
+        return b == NULL ? ft_error(FT_E_NOMEM, "%s: too large for a model file", path)
+                         : ft_error(FT_E_IO, "cannot read '%s': %s", path, strerror(errno));
+    }
+    b[n] = '\0';
+    *buf = b;
+    *len = n;
+    return FT_OK;
+}
+
+/* Parses a model file with messages in the user's terms: empty, cut short, or broken at a byte offset. */
+static int parse_file(const char *path, json_object **out)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    int rc = slurp(path, &buf, &len);
+    if (rc != FT_OK)
+        return rc;
+    size_t lead = strspn(buf, " \t\r\n");
+    if (lead == len) {
+        free(buf);
+        return ft_error(FT_E_FORMAT, "%s is empty: a model file is the JSON object 'fracterra model fit -o' writes",
+                        path);
+    }
+    if (strlen(buf) != len) {
+        free(buf);
+        return ft_error(FT_E_FORMAT, "%s is not a text file (it holds a NUL byte): not a model file", path);
+    }
+    json_tokener *tok = json_tokener_new();
+    if (tok == NULL) {
+        free(buf);
+        return ft_error(FT_E_NOMEM, "out of memory reading %s", path);
+    }
+    json_object *o = json_tokener_parse_ex(tok, buf, (int)(len > INT_MAX ? INT_MAX : len));
+    enum json_tokener_error err = json_tokener_get_error(tok);
+    size_t at = json_tokener_get_parse_end(tok);
+    if (o != NULL && at + strspn(buf + at, " \t\r\n") != len) {
+        json_object_put(o);
+        o = NULL;
+        rc = ft_error(FT_E_FORMAT, "%s: unexpected text after the model's JSON object at byte %zu", path, at);
+    } else if (o == NULL && err == json_tokener_continue) {
+        rc = ft_error(FT_E_FORMAT, "%s ends before its JSON is complete (%zu bytes): the file is truncated", path, len);
+    } else if (o == NULL) {
+        rc = ft_error(FT_E_FORMAT, "%s is not valid JSON: the text breaks off at byte %zu", path, at);
+    }
+    json_tokener_free(tok);
+    free(buf);
+    *out = o;
+    return rc;
+}
+
 int clarke_model_read(const char *path, ft_clarke_model **out)
 {
     *out = NULL;
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return ft_error(FT_E_IO, "cannot open '%s': %s", path, strerror(errno));
-    fclose(f);
-    json_object *o = json_object_from_file(path);
-    if (o == NULL)
-        return ft_error(FT_E_FORMAT, "%s is not valid JSON: %s", path, json_util_get_last_err());
-    int rc = json_object_is_type(o, json_type_object)
+    json_object *o = NULL;
+    int rc = parse_file(path, &o);
+    if (rc != FT_OK)
+        return rc;
+    rc = json_object_is_type(o, json_type_object)
                  ? clarke_model_from_json(o, path, out)
                  : ft_error(FT_E_FORMAT, "%s: a model must be a JSON object", path);
     json_object_put(o);

@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,10 +17,34 @@
 #include <strings.h>
 #include <unistd.h>
 
+static volatile sig_atomic_t interrupted;
+
+/* The first Ctrl-C (or TERM) asks the running computation to stop at its next progress report, so that
+ * it unwinds and removes its temporary files; a second one ends the process at once. */
+static void on_interrupt(int sig)
+{
+    if (interrupted) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
+    interrupted = sig;
+}
+
 void cli_init(void)
 {
     /* 15 significant digits: exact for every value a file stores in decimal, without 0.1 -> 0.1000000000001. */
     json_c_set_serialization_double_format("%.15g", JSON_C_OPTION_GLOBAL);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+int cli_interrupted(void)
+{
+    return interrupted != 0;
 }
 
 static void vmessage(const cli_command *cmd, const char *prefix, const char *fmt, va_list ap)
@@ -51,7 +76,11 @@ int cli_fail(const cli_command *cmd)
     const char *msg = ft_last_error();
     if (msg == NULL || *msg == '\0')
         msg = ft_strerror(ft_last_error_code());
-    cli_error(cmd, "%s", msg);
+    if (interrupted && ft_last_error_code() == FT_E_CANCELLED)
+        cli_error(cmd, "interrupted (%s): stopped, no output written (%s)", interrupted == SIGINT ? "Ctrl-C" : "TERM",
+                  msg);
+    else
+        cli_error(cmd, "%s", msg);
     return CLI_FAIL;
 }
 
@@ -94,7 +123,7 @@ int cli_parse_options(const cli_command *cmd, int argc, char **argv, const struc
     char optstring[128];
     snprintf(optstring, sizeof optstring, ":h%s", shortopts ? shortopts : "");
     opterr = 0;
-    optind = 1;
+    optind = 0; /* glibc: 0 resets getopt's whole state, including a half-read cluster of a previous parse */
     int c;
     while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
         char name[96];
@@ -202,24 +231,34 @@ int cli_json_fput(json_object *o, FILE *f)
     return fputs(json_object_to_json_string_ext(o, flags), f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
 }
 
+int cli_check_grid_work(const cli_command *cmd, const char *path, const ft_grid *g)
+{
+    double cells = (double)g->nx * (double)g->ny, side = (double)(g->nx > g->ny ? g->nx : g->ny);
+    double levels = fmax(1.0, log2(side));
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "'%s' (%zu x %zu cells, %.0f levels)", path, g->nx, g->ny, ceil(levels));
+    return ft_check_work(cells * levels, what) == FT_OK ? CLI_CONTINUE : cli_fail(cmd);
+}
+
+int cli_refuse_overwrite(const cli_command *cmd, const char *what, const char *out, ...)
+{
+    if (out == NULL)
+        return CLI_CONTINUE;
+    va_list ap;
+    va_start(ap, out);
+    const char *in;
+    int rc = CLI_CONTINUE;
+    while (rc == CLI_CONTINUE && (in = va_arg(ap, const char *)) != NULL)
+        if (*in != '\0' && ft_io_same_file(in, out))
+            rc = cli_usage_error(cmd, "%s '%s' is the input file '%s': it would be overwritten; choose another name",
+                                 what, out, in);
+    va_end(ap);
+    return rc;
+}
+
 int cli_write_file(const char *path, cli_write_fn fn, const void *arg)
 {
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL) {
-        int rc = ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno));
-        free(tmp);
-        return rc;
-    }
-    int bad = fn(f, arg) != FT_OK || ferror(f);
-    bad |= fclose(f) != 0;
-    int rc = bad ? ft_error(FT_E_IO, "cannot write %s: %s", path, strerror(errno)) : ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    return ft_io_atomic_write(path, fn, arg);
 }
 
 int cli_print_json(const cli_command *cmd, json_object *o)
@@ -238,9 +277,19 @@ json_object *cli_json_double(double v)
     return isfinite(v) ? json_object_new_double(v) : NULL;
 }
 
+static int progress_tty(double frac, const char *msg, void *arg)
+{
+    return interrupted ? 0 : GDALTermProgress(frac, msg, arg);
+}
+
+static int progress_quiet(double frac, const char *msg, void *arg)
+{
+    return !interrupted;
+}
+
 ft_progress_fn cli_progress(void)
 {
-    return isatty(STDERR_FILENO) ? GDALTermProgress : NULL;
+    return isatty(STDERR_FILENO) ? progress_tty : progress_quiet;
 }
 
 /* Copies the quoted WKT string starting at s (at its opening quote; "" escapes a quote) into buf and
@@ -339,6 +388,17 @@ int cli_read_layer(const cli_command *cmd, const char *path, const char *layer, 
     int rc = ft_io_read_layer(path, &lo, out);
     if (rc == FT_OK)
         rc = ft_layer_check_finite(*out);
+    double x0, y0, x1, y1;
+    /* Lengths and areas square the coordinates' differences: beyond 1e150 they overflow to inf. */
+    if (rc == FT_OK && ft_layer_bbox(*out, &x0, &y0, &x1, &y1) == FT_OK &&
+        !(fmax(x1 - x0, y1 - y0) <= 1e150 && fmax(fmax(fabs(x0), fabs(x1)), fmax(fabs(y0), fabs(y1))) <= 1e150))
+        rc = ft_error(FT_E_NUMERIC, "%s: coordinates reach %g x %g: lengths and areas would overflow double "
+                      "precision (rescale or reproject the data)", path, fmax(fabs(x0), fabs(x1)),
+                      fmax(fabs(y0), fabs(y1)));
+    if (rc != FT_OK) {
+        ft_layer_free(*out);
+        *out = NULL;
+    }
     if (rc == FT_E_INVALID)
         return cli_usage_error(cmd, "%s", ft_last_error());
     return rc == FT_OK ? CLI_CONTINUE : cli_fail(cmd);

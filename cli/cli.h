@@ -51,7 +51,7 @@ extern const cli_command cli_cmd_dim_map;
 extern const cli_command cli_cmd_dim_area;
 extern const cli_command cli_cmd_dim_points;
 
-/** Sets up output conventions (JSON number format); called once by main. */
+/** Sets up output conventions (JSON number format) and the Ctrl-C handler; called once by main. */
 void cli_init(void);
 
 /* ---- messages (stderr) ---- */
@@ -97,7 +97,16 @@ int cli_run_subcommand(const cli_command *cmd, const cli_command *const *subs, s
  *  CLI_CONTINUE or CLI_USAGE. */
 int cli_expect_args(const cli_command *cmd, int argc, char **argv, int first, const char *const *names, int n);
 
+/** Refuses (CLI_FAIL, message printed) a grid whose measurement would exceed the work bound: cells × levels,
+ *  levels = log2 of its longer side (the scales an estimator or a pyramid visits). CLI_CONTINUE otherwise. */
+int cli_check_grid_work(const cli_command *cmd, const char *path, const ft_grid *g);
+
 /* ---- output ---- */
+
+/** Refuses (CLI_USAGE, before any work) an output that is the same file as an input (ft_io_same_file):
+ *  what names the output ("OUT", "--dem", ...) and the NULL-terminated list of input paths (NULL entries
+ *  before the end may be skipped by passing "" instead). CLI_CONTINUE otherwise; out may be NULL. */
+int cli_refuse_overwrite(const cli_command *cmd, const char *what, const char *out, ...);
 
 /** Prints o pretty-printed on stdout, then releases it. CLI_OK, or CLI_FAIL if stdout cannot be written. */
 int cli_print_json(const cli_command *cmd, json_object *o);
@@ -109,8 +118,11 @@ typedef int (*cli_write_fn)(FILE *f, const void *arg);
 int cli_write_file(const char *path, cli_write_fn fn, const void *arg);
 /** A JSON number, or null when v is not finite (JSON has no NaN). */
 json_object *cli_json_double(double v);
-/** GDALTermProgress when stderr is a terminal, NULL otherwise (no progress output in pipes and logs). */
+/** A progress callback: GDALTermProgress's bar when stderr is a terminal, silent otherwise (pipes and logs);
+ *  both return 0 (stop) once Ctrl-C or TERM was received, so that the work unwinds without output. */
 ft_progress_fn cli_progress(void);
+/** 1 once Ctrl-C (SIGINT) or SIGTERM was received (cli_init installs the handler). */
+int cli_interrupted(void);
 
 /** The CRS's top-level name (first quoted string of the WKT) into name, and its top-level EPSG code
  *  into *epsg (0 if none). name becomes "" when wkt is NULL or empty. */

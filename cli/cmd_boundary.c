@@ -53,9 +53,38 @@ static int check_args(const cli_command *cmd, const boundary_args *a)
 
 /* Once the layer is read: the default --max (the average chord, Eqs. 11-13) and --min (a tenth of it), and
  * the parameters echoed in the report. */
+/* An upper bound of the vertices the subdivision makes: a segment of length r > min is halved about
+ * D·log2(r/min) times (each leg is 2^(-1/D) of its parent), so it becomes about (r/min)^D legs; twice that
+ * covers the rounding up of the levels. Refused beyond the memory bound, naming --min as the user gave it
+ * or as it was defaulted. */
+static int check_size(const ft_layer *l, const ft_boundary_opts *b, int min_given)
+{
+    double total = 0.0;
+    for (size_t p = 0; p < l->nparts; p++) {
+        const ft_chain *c = l->parts[p].chain;
+        size_t nseg = ft_chain_segments(c);
+        total += (double)c->n;
+        for (size_t i = 0; i < nseg; i++) {
+            size_t j = i + 1 == c->n ? 0 : i + 1;
+            double r = hypot(c->x[j] - c->x[i], c->y[j] - c->y[i]);
+            if (r > b->min && r <= b->max)
+                total += 2.0 * pow(r / b->min, b->dim);
+        }
+    }
+    char what[200];
+    if (min_given)
+        snprintf(what, sizeof what, "--min %g (up to %.3g vertices)", b->min, total);
+    else
+        snprintf(what, sizeof what, "the default --min %g (a tenth of the average chord; up to %.3g vertices)",
+                 b->min, total);
+    return ft_check_memory(total * LINE_BYTES_PER_VERTEX, what);
+}
+
 static int prepare(const ft_layer *l, int coverage, void *ctx, json_object *params)
 {
-    ft_boundary_opts *b = ctx;
+    boundary_args *a = ctx;
+    ft_boundary_opts *b = &a->b;
+    int min_given = b->min > 0.0;
     double avg = 0.0;
     int rc = ft_urban_layer_chord_avg(l, &avg);
     if (rc != FT_OK)
@@ -66,6 +95,8 @@ static int prepare(const ft_layer *l, int coverage, void *ctx, json_object *para
         b->max = b->min > avg ? b->min : avg;
     if (b->min == 0.0)
         b->min = fmin(FT_BOUNDARY_MIN_FRACTION * avg, b->max);
+    if ((rc = check_size(l, b, min_given)) != FT_OK)
+        return rc;
     json_object_object_add(params, "dim", cli_json_double(b->dim));
     json_object_object_add(params, "angle", cli_json_double(ft_urban_angle_for_dim(b->dim) * 180.0 / M_PI));
     json_object_object_add(params, "min", cli_json_double(b->min));
@@ -108,9 +139,9 @@ static int run_boundary(const cli_command *cmd, int argc, char **argv)
         rc = check_args(cmd, &a);
     if (rc != CLI_CONTINUE)
         return rc;
-    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b, boundary_layer_step, &a.b},
-                          {"repair", ft_line_op_remove_loops, NULL, NULL, NULL}};
-    return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, a.repair ? 2 : 1, prepare, &a.b,
+    line_step steps[2] = {{"subdivide", ft_urban_op_boundary, &a.b, boundary_layer_step, &a.b, 0.0, ""},
+                          {"repair", ft_line_op_remove_loops, NULL, NULL, NULL, 0.0, ""}};
+    return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, a.repair ? 2 : 1, prepare, &a,
                          json_object_new_object());
 }
 

@@ -86,6 +86,8 @@ static int read_input(const cli_command *cmd, const char *path, const area_args 
         rc = ft_layer_check_finite(d->layer);
     if (rc != FT_OK)
         return cli_fail(cmd);
+    if (d->grid && cli_check_grid_work(cmd, path, d->grid) != CLI_CONTINUE)
+        return CLI_FAIL;
     if (d->grid && (a->cls || a->where))
         return cli_usage_error(cmd, "%s is a raster: its classes are its cell values (--class and --where are for "
                                     "vector layers)",

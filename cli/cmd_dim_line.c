@@ -276,10 +276,44 @@ static int measure(const line_input *in, const line_group *g, const ft_line_meth
     return rc;
 }
 
+/* Scales checked against the data before any work: coordinates whose span cannot be squared in double
+ * precision (near 1e-300) are refused, and so is a --min-scale that would walk more rulers or boxes than the
+ * work bound allows (about length / min-scale steps per scale and method). */
+static int check_scales(const cli_command *cmd, const ft_layer *l, const char *path, const line_args *a, int nm)
+{
+    double x0, y0, x1, y1, len = 0.0;
+    if (ft_layer_bbox(l, &x0, &y0, &x1, &y1) != FT_OK)
+        return CLI_CONTINUE; /* empty: measure() says so */
+    double span = fmax(x1 - x0, y1 - y0);
+    if (span > 0.0 && span < 1e-150) {
+        cli_error(cmd, "%s: the lines span only %g units: too small to measure in double precision (rescale the "
+                       "coordinates)", path, span);
+        return CLI_FAIL;
+    }
+    for (size_t p = 0; p < l->nparts; p++)
+        len += ft_chain_length(l->parts[p].chain);
+    if (a->dim.min_scale > 0.0) {
+        double nscales = a->dim.nscales > 0 ? a->dim.nscales : 20.0;
+        double steps = (double)nm * nscales * len / a->dim.min_scale;
+        char what[200];
+        if (isfinite(steps))
+            snprintf(what, sizeof what, "--min-scale %g on lines %.4g units long (about %.3g rulers)",
+                     a->dim.min_scale, len, steps);
+        else
+            snprintf(what, sizeof what, "--min-scale %g on lines %.4g units long (more rulers than a double counts)",
+                     a->dim.min_scale, len);
+        if (ft_check_work(steps, what) != FT_OK)
+            return cli_fail(cmd);
+    }
+    return CLI_CONTINUE;
+}
+
 static int measure_all(const cli_command *cmd, const line_input *in, const char *path, const line_args *a,
                        const ft_line_method *ms, int nm, cli_dim_report *rep)
 {
     const ft_layer *l = in->l;
+    if (check_scales(cmd, l, path, a, nm) != CLI_CONTINUE)
+        return CLI_FAIL;
     ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
     o.min_scale = a->dim.min_scale;
     o.max_scale = a->dim.max_scale;

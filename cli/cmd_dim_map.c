@@ -89,6 +89,8 @@ static int run_dim_map(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "w:S:m:b:p:s:v:f:j", on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], (const char *)NULL);
     if (rc == CLI_CONTINUE && a.window == 0)
         rc = cli_usage_error(cmd, "--window W is required (cells, >= 4)");
     if (rc == CLI_CONTINUE && a.min_scale > 0.0 && a.max_scale > 0.0 && !(a.max_scale > a.min_scale))

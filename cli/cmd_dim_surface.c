@@ -30,6 +30,11 @@ int surface_read_dem(const cli_command *cmd, const char *path, int band, ft_grid
     ro.band = band;
     if (ft_io_read_grid(path, &ro, out) != FT_OK)
         return cli_fail(cmd);
+    if (cli_check_grid_work(cmd, path, *out) != CLI_CONTINUE) {
+        ft_grid_free(*out);
+        *out = NULL;
+        return CLI_FAIL;
+    }
     return cli_geo_grid_ground(cmd, path, out, crs);
 }
 

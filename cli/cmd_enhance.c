@@ -122,14 +122,20 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
         return rc;
     line_step steps[4];
     size_t n = 0;
-    if (a.dutton.iterations > 0)
-        steps[n++] = (line_step){"fractalize", ft_line_op_enhance, &a.dutton, enhance_layer_step, &a};
+    if (a.dutton.iterations > 0) {
+        steps[n] = (line_step){"fractalize", ft_line_op_enhance, &a.dutton, enhance_layer_step, &a,
+                               ldexp(1.0, a.dutton.iterations), ""};
+        snprintf(steps[n++].option, sizeof steps[0].option, "--iterations %d", a.dutton.iterations);
+    }
     if (a.weed)
-        steps[n++] = (line_step){"weed", ft_line_op_weed, &a.dutton.sm, NULL, NULL};
-    if (a.smooth.passes > 0)
-        steps[n++] = (line_step){"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth};
+        steps[n++] = (line_step){"weed", ft_line_op_weed, &a.dutton.sm, NULL, NULL, 0.0, ""};
+    if (a.smooth.passes > 0) {
+        steps[n] = (line_step){"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth,
+                               ldexp(1.0, a.smooth.passes), ""};
+        snprintf(steps[n++].option, sizeof steps[0].option, "--smooth %d", a.smooth.passes);
+    }
     if (a.repair)
-        steps[n++] = (line_step){"repair", ft_line_op_remove_loops, NULL, NULL, NULL};
+        steps[n++] = (line_step){"repair", ft_line_op_remove_loops, NULL, NULL, NULL, 0.0, ""};
     a.params = params_json(&a);
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, steps, n, NULL, NULL, a.params);
 }

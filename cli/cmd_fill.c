@@ -245,6 +245,8 @@ static int run_fill(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "n:d:f:j", on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE) /* the output may be neither the DEM nor the mask */
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], a.mask, (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     if (a.fo.mean && a.fo.realizations > 1)

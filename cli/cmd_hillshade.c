@@ -56,6 +56,8 @@ static int run_hillshade(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "j", on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     if (ft_io_hillshade(argv[first], argv[first + 1], &a.ho) != FT_OK)

@@ -96,6 +96,8 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "o:j", on_fit_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 1);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "--output", a.out, argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     if (a.out && ft_io_check_writable(a.out) != FT_OK)
@@ -215,6 +217,8 @@ static int run_simulate(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "f:j", on_sim_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     return simulate(cmd, &a, argv[first], argv[first + 1]);

@@ -153,6 +153,15 @@ static int check_args(const cli_command *cmd, const mountain_args *a, const char
         return cli_usage_error(cmd, "--view writes a PNG: its name must end in .png, got '%s'", a->view_path);
     if (a->map_path && !has_ext(a->map_path, "svg png pdf"))
         return cli_usage_error(cmd, "--map must end in .svg, .png or .pdf, got '%s'", a->map_path);
+    /* The outputs are staged under temporary names whose driver is found from the real name's extension. */
+    const char *dot = strrchr(out, '.');
+    if (a->driver == NULL && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "OUT '%s' has no extension: end it in .geojson, .gpkg, .shp or .gmt, or name "
+                               "a driver with -f", out);
+    dot = a->dem_path ? strrchr(a->dem_path, '.') : NULL;
+    if (a->dem_path && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "--dem '%s' has no extension: end it in .tif (or another raster format's)",
+                               a->dem_path);
     const char *paths[4] = {out, a->dem_path, a->view_path, a->map_path};
     static const char *const names[4] = {"OUT", "--dem", "--view", "--map"};
     for (int i = 0; i < 4; i++)
@@ -216,7 +225,7 @@ typedef struct {
 
 static const char *stage(staged *s, const char *path)
 {
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     if (tmp == NULL)
         return NULL;
     s->path[s->n] = path;
@@ -228,7 +237,7 @@ static int commit_all(staged *s)
 {
     int rc = FT_OK;
     for (size_t i = 0; i < s->n && rc == FT_OK; i++) {
-        rc = ft_tmp_commit(s->tmp[i], s->path[i]);
+        rc = ft_io_atomic_commit(s->tmp[i], s->path[i]);
         if (rc == FT_OK) {
             free(s->tmp[i]);
             s->tmp[i] = NULL;
@@ -241,7 +250,7 @@ static void discard_all(staged *s)
 {
     for (size_t i = 0; i < s->n; i++) {
         if (s->tmp[i] != NULL)
-            ft_tmp_discard(s->tmp[i]);
+            ft_io_atomic_discard(s->tmp[i]);
         free(s->tmp[i]);
     }
     s->n = 0;
@@ -438,10 +447,43 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
 
 static int check_outputs(const cli_command *cmd, const mountain_args *a, const char *out)
 {
+    /* The outputs are staged under temporary names whose driver is found from the real name's extension. */
+    const char *dot = strrchr(out, '.');
+    if (a->driver == NULL && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "OUT '%s' has no extension: end it in .geojson, .gpkg, .shp or .gmt, or name "
+                               "a driver with -f", out);
+    dot = a->dem_path ? strrchr(a->dem_path, '.') : NULL;
+    if (a->dem_path && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
+        return cli_usage_error(cmd, "--dem '%s' has no extension: end it in .tif (or another raster format's)",
+                               a->dem_path);
     const char *paths[4] = {out, a->dem_path, a->view_path, a->map_path};
     for (int i = 0; i < 4; i++)
         if (paths[i] != NULL && ft_io_check_writable(paths[i]) != FT_OK)
             return cli_fail(cmd);
+    return CLI_CONTINUE;
+}
+
+/* The sizes the options would reach on this seed, refused beyond the memory bound before any work: the
+ * shrinking makes in all about 2·area/d² contour vertices (a disc of radius R: R/d
+ * levels of 2πR/d vertices), and the DEM about bbox-area/cell² cells (float, mask and a double work copy). */
+static int check_sizes(const cli_command *cmd, const mountain_args *a, const ft_polygon_set *seed)
+{
+    double area = ft_polygon_set_area(seed);
+    char what[200];
+    if (a->mo.spacing > 0.0 && area > 0.0) {
+        double verts = 2.0 * area / (a->mo.spacing * a->mo.spacing);
+        snprintf(what, sizeof what, "--spacing %g on a seed of %.4g square units (about %.3g contour vertices)",
+                 a->mo.spacing, area, verts);
+        if (ft_check_memory(verts * 48.0, what) != FT_OK)
+            return cli_fail(cmd);
+    }
+    if (a->dem.cell > 0.0 && (a->dem_path || a->view_path) && area > 0.0) {
+        double cells = 2.0 * area / (a->dem.cell * a->dem.cell);
+        snprintf(what, sizeof what, "--cell %g over a seed of %.4g square units (about %.3g DEM cells)", a->dem.cell,
+                 area, cells);
+        if (ft_check_memory(cells * 13.0, what) != FT_OK)
+            return cli_fail(cmd);
+    }
     return CLI_CONTINUE;
 }
 
@@ -453,6 +495,8 @@ static int grow(const cli_command *cmd, mountain_args *a, const char *in, const 
     int status = check_outputs(cmd, a, out);
     if (status == CLI_CONTINUE)
         status = read_seed(cmd, in, a, &seed_layer, &seed);
+    if (status == CLI_CONTINUE)
+        status = check_sizes(cmd, a, seed);
     if (status == CLI_CONTINUE) {
         r.seed_layer = seed_layer;
         a->mo.progress = a->dem.progress = cli_progress();
@@ -515,6 +559,9 @@ static int run_mountain(const cli_command *cmd, int argc, char **argv)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
     if (rc == CLI_CONTINUE)
         rc = check_args(cmd, &a, argv[first + 1]);
+    const char *outs[4][2] = {{"OUT", NULL}, {"--dem", a.dem_path}, {"--view", a.view_path}, {"--map", a.map_path}};
+    for (int i = 0; i < 4 && rc == CLI_CONTINUE; i++)
+        rc = cli_refuse_overwrite(cmd, outs[i][0], i == 0 ? argv[first + 1] : outs[i][1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     return grow(cmd, &a, argv[first], argv[first + 1]);

@@ -15,6 +15,7 @@
 #include "terrain_cli.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +23,9 @@
 
 #define RECON_MAX_SIDE 65536
 #define RECON_MAX_CELLS ((double)(1u << 30))
+/* The target and its multigrid pyramid (4/3 of it), the conditioning mask, the mean and sd bands, the
+ * writer's copy: about 64 bytes a cell. */
+#define RECON_BYTES_PER_CELL 64.0
 #define RECON_MAX_REALIZATIONS 10000
 
 typedef struct {
@@ -238,6 +242,10 @@ static int target_grid(const cli_command *cmd, const recon_args *a, const ft_poi
         return cli_usage_error(cmd, "--cell %g gives a grid of %.0f x %.0f cells over %g x %g; at most %d per side "
                                "and %.0f in all", c, ceil((x1 - x0) / c), ceil((y1 - y0) / c), x1 - x0, y1 - y0,
                                RECON_MAX_SIDE, RECON_MAX_CELLS);
+    char what[200];
+    snprintf(what, sizeof what, "--cell %g over %g x %g (%zu x %zu cells)", c, x1 - x0, y1 - y0, nx, ny);
+    if (ft_check_memory((double)nx * (double)ny * RECON_BYTES_PER_CELL, what) != FT_OK)
+        return cli_fail(cmd);
     if ((t = ft_grid_create(nx, ny)) == NULL)
         return cli_fail(cmd);
     const double gt[6] = {x0, c, 0.0, y1, 0.0, -c};
@@ -340,6 +348,14 @@ static int reconstruct(const cli_command *cmd, recon_args *a, const char *in, co
     }
     if (rc == CLI_CONTINUE && d.kind == FT_KIND_POINTS)
         rc = target_grid(cmd, a, d.points, wkt, &target);
+    if (rc == CLI_CONTINUE && d.kind == FT_KIND_GRID) {
+        char what[PATH_MAX + 64];
+        snprintf(what, sizeof what, "reconstructing '%s' (%zu x %zu cells)", in, d.grid->nx, d.grid->ny);
+        if (ft_check_memory((double)d.grid->nx * (double)d.grid->ny * RECON_BYTES_PER_CELL, what) != FT_OK)
+            rc = cli_fail(cmd);
+        else
+            rc = cli_check_grid_work(cmd, in, d.grid);
+    }
     if (rc == CLI_CONTINUE) {
         a->ro.progress = cli_progress();
         ft_grid **sd_out = a->ro.realizations > 1 ? &sd : NULL;
@@ -405,6 +421,8 @@ static int run_reconstruct(const cli_command *cmd, int argc, char **argv)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
     if (rc == CLI_CONTINUE)
         rc = check_options(cmd, &a);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], a.like ? a.like : "", (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     const char *in = argv[first], *out = argv[first + 1];

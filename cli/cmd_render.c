@@ -63,6 +63,8 @@ static int run_render(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse_options(cmd, argc, argv, longopts, "j", on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUT.png", argv[first + 1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
     const char *in = argv[first], *out = argv[first + 1];

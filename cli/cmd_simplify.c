@@ -55,7 +55,7 @@ static int run_simplify(const cli_command *cmd, int argc, char **argv)
         json_object_object_add(params, "target_vertices", json_object_new_int(a.vertices));
     else
         json_object_object_add(params, "tolerance", cli_json_double(a.tolerance));
-    line_step step = {"simplify", ft_line_op_simplify, &a.tolerance, NULL, NULL};
+    line_step step = {"simplify", ft_line_op_simplify, &a.tolerance, NULL, NULL, 0.0, ""};
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, &step, 1, a.vertices ? choose_tolerance : NULL,
                          &a, params);
 }

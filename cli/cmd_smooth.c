@@ -56,7 +56,9 @@ static int run_smooth(const cli_command *cmd, int argc, char **argv)
         rc = cli_usage_error(cmd, "--sm %g must be below --st %g: no corner could be cut", a.smooth.sm, a.smooth.st);
     if (rc != CLI_CONTINUE)
         return rc;
-    line_step step = {"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth};
+    line_step step = {"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth,
+                      ldexp(1.0, a.smooth.passes), ""};
+    snprintf(step.option, sizeof step.option, "--passes %d", a.smooth.passes);
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, &step, 1, NULL, NULL, params_json(&a.smooth));
 }
 

@@ -72,7 +72,8 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 'c': return cli_parse_double(cmd, "--cell", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->so.cell);
     case 'o': return parse_origin(cmd, arg, &a->so.origin_x, &a->so.origin_y);
     case 'r': a->crs = arg; return CLI_CONTINUE;
-    case 'g': return cli_parse_double(cmd, "--sigma", arg, 0.0, INFINITY, CLI_CLOSED, &a->so.sigma);
+    /* Elevations are stored as float: a few sigmas must stay far below FLT_MAX (3.4e38). */
+    case 'g': return cli_parse_double(cmd, "--sigma", arg, 0.0, 1e30, CLI_CLOSED, &a->so.sigma);
     case 'p': a->so.periodic = 1; return CLI_CONTINUE;
     case 'S': return terrain_parse_seed(cmd, arg, &a->so.seed);
     case 'f': a->driver = arg; return CLI_CONTINUE;
@@ -148,8 +149,18 @@ static int run_synth(const cli_command *cmd, int argc, char **argv)
         rc = cli_usage_error(cmd, "missing --dim D (the fractal dimension, in (2,3))");
     if (rc == CLI_CONTINUE && !a.have_size)
         rc = cli_usage_error(cmd, "missing --size NxM (columns x rows)");
+    if (rc == CLI_CONTINUE && a.so.periodic && a.so.method != FT_SYNTH_FFT)
+        rc = cli_usage_error(cmd, "--periodic is for --method fft (only its tile wraps), got --method %s",
+                             ft_synth_method_name(a.so.method));
     if (rc != CLI_CONTINUE)
         return rc;
+    /* float output, a padded FFT grid of doubles and its complex spectrum: about 32 bytes a cell */
+    double cells = (double)a.nx * (double)a.ny;
+    char what[96];
+    snprintf(what, sizeof what, "--size %zux%zu (%.3g cells)", a.nx, a.ny, cells);
+    if (ft_check_memory(32.0 * cells, what) != FT_OK ||
+        ft_check_work(cells * fmax(1.0, log2(fmax((double)a.nx, (double)a.ny))), what) != FT_OK)
+        return cli_fail(cmd);
     return synthesize(cmd, &a, argv[first]);
 }
 

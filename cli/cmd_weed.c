@@ -36,7 +36,7 @@ static int run_weed(const cli_command *cmd, int argc, char **argv)
         return rc;
     json_object *params = json_object_new_object();
     json_object_object_add(params, "min_segment", cli_json_double(a.min_segment));
-    line_step step = {"weed", ft_line_op_weed, &a.min_segment, NULL, NULL};
+    line_step step = {"weed", ft_line_op_weed, &a.min_segment, NULL, NULL, 0.0, ""};
     return line_edit_run(cmd, argv[first], argv[first + 1], &a.io, &step, 1, NULL, NULL, params);
 }
 

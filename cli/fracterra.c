@@ -11,8 +11,11 @@
 #include "cli.h"
 
 #include <cairo.h>
+#include <errno.h>
 #include <gdal.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The dispatch table: one entry per cmd_<name>.c, in the order `fracterra --help` lists them. */
@@ -46,8 +49,14 @@ static void print_usage(FILE *f)
     for (size_t i = 0; i < NCOMMANDS; i++)
         fprintf(f, "  %-12s %s\n", commands[i]->name, commands[i]->summary);
     fprintf(f, "\nRun 'fracterra COMMAND --help' for a command's options and an example.\n"
-               "Exit status: 0 success, 1 failure while running, 2 bad usage.\n"
-               "Example:\n  fracterra info tests/data/dem_volcano_maunga_whau_10m.tif\n");
+               "Exit status: 0 success, 1 failure while running, 2 bad usage.\n\n"
+               "Every command also takes:\n"
+               "  --max-memory SIZE  the memory a command may plan to use (e.g. 2G, 512M; default: half the\n"
+               "                     machine's memory): larger work is refused before it starts\n"
+               "  --max-work N       the elementary steps it may plan (default %.0e: rulers, pairs or cells)\n"
+               "Ctrl-C stops a command cleanly: no output file is left behind.\n\n"
+               "Example:\n  fracterra info tests/data/dem_volcano_maunga_whau_10m.tif\n",
+            FT_WORK_LIMIT_DEFAULT);
 }
 
 static void print_version(void)
@@ -107,9 +116,61 @@ static int run_command(const cli_command *cmd, int argc, char **argv)
     return rc;
 }
 
+/* "2G", "512M", "1.5g", "4096" (bytes): > 0 bytes, or -1. */
+static double parse_size(const char *s)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || errno != 0 || !(v > 0.0) || !isfinite(v))
+        return -1.0;
+    const char *units = "KMGT";
+    if (*end != '\0') {
+        const char *u = strchr(units, *end >= 'a' && *end <= 'z' ? *end - 32 : *end);
+        if (u == NULL || *u == '\0' || (end[1] != '\0' && strcmp(end + 1, "B") != 0 && strcmp(end + 1, "b") != 0))
+            return -1.0;
+        v *= pow(1024.0, (double)(u - units + 1));
+    }
+    return v >= 1.0 && v < 1.8e19 ? v : -1.0;
+}
+
+/* Takes --max-memory SIZE and --max-work N (or --opt=VALUE) out of argv, wherever they stand, and sets the
+ * library's bounds. CLI_CONTINUE, or CLI_USAGE after a message. */
+static int take_global_options(int *argc, char **argv)
+{
+    int out = 0;
+    for (int i = 0; i < *argc; i++) {
+        const char *a = argv[i];
+        int mem = strncmp(a, "--max-memory", 12) == 0 && (a[12] == '\0' || a[12] == '=');
+        int work = strncmp(a, "--max-work", 10) == 0 && (a[10] == '\0' || a[10] == '=');
+        if (!mem && !work) {
+            argv[out++] = argv[i];
+            continue;
+        }
+        const char *eq = strchr(a, '='), *name = mem ? "--max-memory" : "--max-work";
+        const char *val = eq ? eq + 1 : (i + 1 < *argc ? argv[++i] : NULL);
+        double v = val ? parse_size(val) : -1.0;
+        if (v < 0.0 || (work && strpbrk(val, "KMGTkmgtBb") != NULL)) {
+            fprintf(stderr, "fracterra: %s needs %s, got '%s'\n", name,
+                    mem ? "a size such as 2G, 512M or 1048576 (bytes)" : "a number of steps such as 1e12",
+                    val ? val : "nothing");
+            return CLI_USAGE;
+        }
+        if (mem)
+            ft_set_memory_limit((size_t)v);
+        else
+            ft_set_work_limit(v);
+    }
+    argv[out] = NULL;
+    *argc = out;
+    return CLI_CONTINUE;
+}
+
 int main(int argc, char **argv)
 {
     cli_init();
+    if (take_global_options(&argc, argv) != CLI_CONTINUE)
+        return CLI_USAGE;
     if (argc < 2) {
         print_usage(stderr);
         return CLI_USAGE;

@@ -35,6 +35,8 @@ int line_edit_parse(const cli_command *cmd, int argc, char **argv, const struct 
     int rc = cli_parse_options(cmd, argc, argv, longopts, shortopts, fn, ctx, first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, *first, names, 2);
+    if (rc == CLI_CONTINUE)
+        rc = cli_refuse_overwrite(cmd, "OUTPUT", argv[*first + 1], argv[*first], (const char *)NULL);
     return rc;
 }
 
@@ -232,6 +234,23 @@ static void print_human(const char *input, const char *output, const ft_layer *l
     printf("%-19s %s: %zu -> %zu vertices\n", "wrote", output, r->vertices_in, r->vertices_out);
 }
 
+/* Refuses, before any work, steps whose output would not fit in memory, naming the option behind it. */
+static int check_growth(const line_step *steps, size_t nsteps, size_t vertices_in)
+{
+    double est = (double)vertices_in;
+    const char *why = NULL;
+    for (size_t i = 0; i < nsteps; i++)
+        if (steps[i].growth > 1.0) {
+            est *= steps[i].growth;
+            why = steps[i].option;
+        }
+    if (why == NULL)
+        return FT_OK;
+    char what[160];
+    snprintf(what, sizeof what, "%s on %zu vertices (up to %.3g vertices out)", why, vertices_in, est);
+    return ft_check_memory(est * LINE_BYTES_PER_VERTEX, what);
+}
+
 /* Everything after the input is read: prepare, edit, write, report. */
 static int edit_and_write(const cli_command *cmd, const char *input, const char *output, const line_io *io,
                           ft_layer *l, const line_step *steps, size_t nsteps, line_prepare_fn prepare, void *ctx,
@@ -242,6 +261,8 @@ static int edit_and_write(const cli_command *cmd, const char *input, const char 
     r.vertices_in = ft_layer_vertex_count(l);
     if (prepare && prepare(l, r.coverage, ctx, params) != FT_OK)
         return ft_last_error_code() == FT_E_INVALID ? cli_usage_error(cmd, "%s", ft_last_error()) : cli_fail(cmd);
+    if (check_growth(steps, nsteps, r.vertices_in) != FT_OK)
+        return cli_fail(cmd);
     r.stages = json_object_new_array();
     ft_write_layer_opts wo = FT_WRITE_LAYER_OPTS_DEFAULT;
     wo.driver = io->driver;

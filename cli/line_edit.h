@@ -55,12 +55,18 @@ typedef struct {
     const char *name; /**< "fractalize", "weed", "smooth", "simplify", "repair" */
     ft_line_op op;    /**< ft_line_op_enhance, ft_line_op_weed, ... (line.h) */
     const void *opts;
-    line_layer_fn layer;
+    line_layer_fn layer; /**< a layer-level step (coverage, crossing guard) or NULL */
     void *ctx;
+    double growth;    /**< at most this many vertices out per vertex in (0 or 1: no growth) */
+    char option[48];  /**< the option that drives the growth, as the user gave it ("--iterations 16") */
 } line_step;
 
 /** The layer step of smoothing: ctx is an ft_smooth_opts *. */
 int line_smooth_layer_step(ft_layer *l, void *ctx, int coverage, ft_line_guard_stats *stats);
+
+/* Memory per output vertex of a line edit: x and y in the edited chain, its copy in the layer, the writer's
+ * OGR geometry. */
+#define LINE_BYTES_PER_VERTEX 48.0
 
 /* Called once the input is read, before the steps (e.g. to choose a tolerance from the data); may add
  * members to params. FT_OK or an error code (error set). */

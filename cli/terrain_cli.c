@@ -25,6 +25,11 @@ int terrain_read_dem(const cli_command *cmd, const char *path, ft_grid **out)
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
     if (ft_io_read_grid(path, &ro, out) != FT_OK)
         return cli_fail(cmd);
+    if (cli_check_grid_work(cmd, path, *out) != CLI_CONTINUE) {
+        ft_grid_free(*out);
+        *out = NULL;
+        return CLI_FAIL;
+    }
     return CLI_CONTINUE;
 }
 

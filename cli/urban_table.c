@@ -173,6 +173,15 @@ static int measure_row(const cli_command *cmd, urban_tab *t, const table_args *a
         ft_layer_free(l);
         return rc;
     }
+    size_t rings = 0;
+    for (size_t i = 0; i < l->nparts; i++)
+        rings += l->parts[i].role != FT_ROLE_LINE;
+    if (rings == 0) {
+        cli_error(cmd, "%s holds no polygon (%zu line part%s): urban table measures land-use polygons", path,
+                  l->nparts, l->nparts == 1 ? "" : "s");
+        ft_layer_free(l);
+        return CLI_FAIL;
+    }
     ft_area_dim_opts o = a->box.dim;
     o.fit_whole_range = o.ncells > 0;
     o.progress = cli_progress();

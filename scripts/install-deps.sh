@@ -15,6 +15,7 @@ packages=(
   python3-numpy python3-gdal  # the Python package (python/fracterra): NumPy arrays, osgeo.gdal helpers
   python3-pytest python3-dask # its tests (make test), and the dask example
   libproj-dev                 # PROJ geodesic.h: reference ellipsoidal lengths in the tests (pulled in by GDAL too)
+  clang libclang-rt-dev libomp-dev  # make fuzz: libFuzzer harnesses (clang's runtime, OpenMP for clang)
 )
 
 missing=()

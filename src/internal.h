@@ -6,13 +6,6 @@
 
 #include <stddef.h>
 
-/* Atomic output (src/core/tmpfile.c): write to ft_tmp_path(path), then ft_tmp_commit() renames it (and
- * every sibling file sharing its stem, e.g. a Shapefile's .shx/.dbf/.prj) onto the final name, or
- * ft_tmp_discard() removes them. The temporary lives in the destination folder, so rename is atomic. */
-char *ft_tmp_path(const char *path);            /* malloc'd ".<stem>.ft-tmp-<pid>-<n><ext>" beside path */
-int ft_tmp_commit(const char *tmp, const char *path);
-void ft_tmp_discard(const char *tmp);
-
 /* Safe allocation helpers: set FT_E_NOMEM on failure. */
 void *ft_malloc(size_t size);
 void *ft_calloc(size_t n, size_t size);

@@ -69,6 +69,29 @@ typedef int (*ft_progress_fn)(double frac, const char *msg, void *arg);
 FT_API int ft_progress(ft_progress_fn fn, void *arg, double frac, const char *msg);
 
 /* ------------------------------------------------------------------------------------------------
+ * Resource bounds: every long or large computation estimates its memory and work before it starts and
+ * refuses what cannot fit, naming the option that drives it and the size it would reach.
+ * --------------------------------------------------------------------------------------------- */
+
+/** The memory bound in bytes: ft_set_memory_limit's value, else half the machine's physical memory. */
+FT_API size_t ft_memory_limit(void);
+/** Sets the process-wide memory bound (the CLI's --max-memory); 0 restores the default. */
+FT_API void ft_set_memory_limit(size_t bytes);
+/** The work bound in elementary steps (a pair, a cell visit, a vertex move): ft_set_work_limit's value,
+ *  else FT_WORK_LIMIT_DEFAULT (a ruler placement, a pair or a cell visit each: well under a minute). */
+FT_API double ft_work_limit(void);
+#define FT_WORK_LIMIT_DEFAULT 1e9
+/** Sets the process-wide work bound (the CLI's --max-work); 0 restores the default. */
+FT_API void ft_set_work_limit(double steps);
+/** FT_OK if an estimate of `bytes` (may be huge or infinite) fits ft_memory_limit(); else FT_E_NOMEM with
+ *  "<what> would need 12.5 GB of memory, more than the 11.6 GB limit (--max-memory)". what names the
+ *  option or data that drive the size, e.g. "--size 20000x20000 (4e+08 cells)". */
+FT_API int ft_check_memory(double bytes, const char *what);
+/** The same for work: FT_E_UNSUPPORTED (a valid request beyond the bound) with "<what> would take 3e+12 steps, more than the 2e+11 limit
+ *  (--max-work)" when steps exceeds ft_work_limit(). */
+FT_API int ft_check_work(double steps, const char *what);
+
+/* ------------------------------------------------------------------------------------------------
  * Chains: open polylines and rings. A ring is stored WITHOUT repeating its first vertex
  * (closed = 1); readers drop the closing vertex, writers add it back.
  * --------------------------------------------------------------------------------------------- */

@@ -10,6 +10,8 @@
 #ifndef FRACTERRA_IO_H
 #define FRACTERRA_IO_H
 
+#include <stdio.h>
+
 #include "core.h"
 
 #ifdef __cplusplus
@@ -167,6 +169,28 @@ FT_API void ft_data_clear(ft_data *d);
 
 /** FT_OK if path can be created: its folder exists and is writable (FT_E_IO naming it otherwise). */
 FT_API int ft_io_check_writable(const char *path);
+
+/* ---- atomic output (atomic_write.c) ----
+ * Every file the library writes goes through this service: the bytes go to a temporary name beside the
+ * destination, every write, flush and close is checked, the files are synced to disk (fsync) and only then
+ * renamed onto the destination. On any failure the temporaries are removed and an existing output is left
+ * untouched. */
+
+/** A temporary name beside path, "<dir>/.<stem>.ft-tmp-<pid>-<n><ext>" (malloc'd); NULL with FT_E_IO naming
+ *  the folder when it is missing. Companion files a driver adds (.shx, .dbf, ...) share its stem. */
+FT_API char *ft_io_atomic_tmp(const char *path);
+/** Syncs tmp and its companions to disk and renames them onto path (path's stem + their suffixes). On
+ *  failure removes them, leaves path as it was and returns FT_E_IO naming path and the system's reason. */
+FT_API int ft_io_atomic_commit(const char *tmp, const char *path);
+/** Removes tmp and its companions; keeps the thread's error message. NULL is a no-op. */
+FT_API void ft_io_atomic_discard(const char *tmp);
+/** Writes path through fn(f, arg) into a temporary file, checks every write, the flush and the close, and
+ *  commits it. fn returns FT_OK or an FT_E_* code (with ft_error set). */
+typedef int (*ft_io_write_fn)(FILE *f, const void *arg);
+FT_API int ft_io_atomic_write(const char *path, ft_io_write_fn fn, const void *arg);
+/** 1 if a and b name the same file: the same device and inode when both exist, else the same resolved path
+ *  (folder symlinks followed). "-" (standard input/output) is never the same as anything. */
+FT_API int ft_io_same_file(const char *a, const char *b);
 
 /* ------------------------------------------------------------------------------------------------
  * DEM processing through GDAL (GDALDEMProcessing) and CRS definitions

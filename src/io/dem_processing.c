@@ -13,6 +13,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include <limits.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -206,19 +207,18 @@ static int write_copy(GDALDatasetH ds, const char *path)
         GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) == NULL)
         return ft_error(FT_E_UNSUPPORTED, "hillshade: GDAL's %s driver cannot write %s", GDALGetDriverShortName(drv),
                         path);
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
+    ft_io_stage st;
+    if ((rc = ft_io_stage_begin(path, drv, 4.0 * GDALGetRasterXSize(ds) * GDALGetRasterYSize(ds), &st)) != FT_OK)
+        return rc;
     ft_io_gdal_reset();
-    GDALDatasetH out = GDALCreateCopy(drv, tmp, ds, FALSE, NULL, NULL, NULL);
+    GDALDatasetH out = GDALCreateCopy(drv, st.target, ds, FALSE, NULL, NULL, NULL);
     if (out != NULL)
         GDALClose(out);
     int ok = out != NULL && !ft_io_gdal_failed();
-    rc = ok ? ft_tmp_commit(tmp, path) : ft_io_fail(FT_E_IO, "cannot write %s", path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    if (!ok)
+        rc = ft_io_fail(FT_E_IO, "cannot write %s", path);
+    int end = ft_io_stage_end(&st, ok);
+    return ok ? end : rc;
 }
 
 static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *out_path,
@@ -241,6 +241,29 @@ static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, cons
     return rc;
 }
 
+/* Reads the band through the grid reader first, so that a hillshade is refused where `render` refuses the
+ * same DEM: a truncated file (a read error, not a grid of zeros), fewer than 2 x 2 cells, no valid cell, or
+ * more cells than the memory bound allows. */
+static int check_shadeable(GDALDatasetH src, const char *path, int band)
+{
+    ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
+    go.band = band;
+    ft_grid *g = NULL;
+    int rc = ft_io_read_grid_ds(src, path, &go, &g);
+    if (rc == FT_OK && (g->nx < 2 || g->ny < 2))
+        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", path, g->nx,
+                      g->ny);
+    if (rc == FT_OK) {
+        char what[PATH_MAX + 64];
+        snprintf(what, sizeof what, "shading '%s' (%zu x %zu cells)", path, g->nx, g->ny);
+        rc = ft_check_work(4.0 * (double)g->nx * (double)g->ny, what); /* read, slope, shade, encode */
+    }
+    if (rc == FT_OK && ft_grid_count_valid(g) == 0)
+        rc = ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, g->nx * g->ny);
+    ft_grid_free(g);
+    return rc;
+}
+
 static int open_and_shade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *o)
 {
     GDALDatasetH src = NULL;
@@ -250,7 +273,7 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
     if (o->band > GDALGetRasterCount(src)) {
         rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
                       o->band);
-    } else {
+    } else if ((rc = check_shadeable(src, dem_path, o->band)) == FT_OK) {
         vsimem_names n;
         names_init(&n);
         rc = shade_and_write(src, o, out_path, &n);

@@ -74,6 +74,19 @@ FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
  * and CRS are the first grid's, each band has its grid's nodata. No checks across the grids. */
 int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
 
+/* GDAL writers through the atomic service (atomic_write.c). ft_io_stage_begin picks where GDAL writes
+ * (target): the on-disk temporary for a GTiff/COG beyond 256 MB (libtiff reports failed writes), else a
+ * /vsimem/ folder whose files are copied to the temporary with every write checked. ft_io_stage_end(s, ok) commits
+ * when ok (FT_E_IO naming the path if a byte could not be written), discards otherwise, and frees s. */
+typedef struct {
+    const char *path; /* the destination */
+    char *tmp;        /* its on-disk temporary */
+    char *target;     /* the name GDAL writes */
+    char *mem_dir;    /* the /vsimem/ folder of target, or NULL */
+} ft_io_stage;
+int ft_io_stage_begin(const char *path, GDALDriverH drv, double bytes, ft_io_stage *s); /* bytes: a size hint */
+int ft_io_stage_end(ft_io_stage *s, int ok);
+
 /* Text points (points_text.c): CSV with a header row, whitespace XYZ ("-" = stdin). */
 int ft_io_read_points_csv(const char *path, const ft_read_points_opts *o, ft_points **out);
 int ft_io_read_points_xyz(const char *path, const ft_read_points_opts *o, ft_points **out);

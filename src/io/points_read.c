@@ -139,6 +139,12 @@ int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_poin
     if (opts != NULL)
         o = *opts;
     *out = NULL;
+    int text = path != NULL && (ft_io_ext_in(path, "csv xyz") || ft_io_is_stdio(path));
+    if (text && (o.layer != NULL || o.zfield != NULL))
+        return ft_error(FT_E_INVALID, "%s is a text file: a layer and a z field are for OGR point layers (name a "
+                        "CSV's z column instead)", path);
+    if (text && !ft_io_ext_in(path, "csv") && (o.x != NULL || o.y != NULL || o.z != NULL))
+        return ft_error(FT_E_INVALID, "%s is XYZ text (x y z by position): column names are for CSV files", path);
     if (path != NULL && ft_io_ext_in(path, "csv"))
         return ft_io_read_points_csv(path, &o, out);
     if (path != NULL && (ft_io_ext_in(path, "xyz") || ft_io_is_stdio(path)))

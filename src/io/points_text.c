@@ -255,11 +255,20 @@ static int read_csv_body(text_in *t, const ft_read_points_opts *o)
         if (names[k] != NULL && (rc = find_column(t, names[k], &col[k])) != FT_OK)
             return rc;
     long wcol = o->weight ? (long)col[3] : -1;
+    size_t nheader = t->nfields;
     while ((rc = next_line(t)) == 1) {
         if (is_blank(t->buf))
             continue;
         if (split_csv(t, t->buf, delim) != FT_OK)
             return FT_E_NOMEM;
+        /* More fields than the header names: columns would shift; with ',' separators the usual cause is a
+         * decimal comma ("2,5"). */
+        if (t->nfields > nheader)
+            return ft_error(FT_E_FORMAT, "%s:%ld: %zu fields but the header names %zu%s", t->path, t->line,
+                            t->nfields, nheader,
+                            delim == ',' ? ": decimal commas with ',' separators? Use ';' between the fields or "
+                                           "quote the numbers (\"2,5\")"
+                                         : "");
         if ((rc = add_point(t, col, wcol, names, delim == ';')) != FT_OK)
             return rc;
     }

@@ -33,15 +33,15 @@ static void put_points(FILE *f, const ft_points *p, int csv)
     }
 }
 
-static int write_text(const char *path, const char *tmp, const ft_points *p, int csv)
+static int put_csv(FILE *f, const void *p)
 {
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL)
-        return ft_error(FT_E_IO, "cannot create '%s': %s", path, strerror(errno));
-    put_points(f, p, csv);
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad)
-        return ft_error(FT_E_IO, "cannot write '%s': %s", path, strerror(errno ? errno : EIO));
+    put_points(f, p, 1);
+    return FT_OK;
+}
+
+static int put_xyz(FILE *f, const void *p)
+{
+    put_points(f, p, 0);
     return FT_OK;
 }
 
@@ -92,12 +92,9 @@ static int create_layer(const char *path, GDALDatasetH ds, GDALDriverH drv, cons
     return FT_OK;
 }
 
-static int write_ogr(const char *path, const char *tmp, const ft_points *p)
+static int write_ogr(const char *path, GDALDriverH drv, const char *tmp, const ft_points *p)
 {
-    GDALDriverH drv;
-    int rc = ft_io_find_driver(path, NULL, GDAL_DCAP_VECTOR, &drv);
-    if (rc != FT_OK)
-        return rc;
+    int rc;
     ft_io_gdal_reset();
     GDALDatasetH ds = GDALCreate(drv, tmp, 0, 0, 0, GDT_Unknown, NULL);
     if (ds == NULL)
@@ -131,18 +128,18 @@ int ft_io_write_points(const char *path, const ft_points *p)
         return FT_OK;
     }
     ft_io_init();
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
-    int csv = ft_io_ext_in(path, "csv");
-    if (csv || ft_io_ext_in(path, "xyz"))
-        rc = write_text(path, tmp, p, csv);
-    else
-        rc = write_ogr(path, tmp, p);
+    if (ft_io_ext_in(path, "csv"))
+        return ft_io_atomic_write(path, put_csv, p);
+    if (ft_io_ext_in(path, "xyz"))
+        return ft_io_atomic_write(path, put_xyz, p);
+    GDALDriverH drv;
+    ft_io_stage st;
+    rc = ft_io_find_driver(path, NULL, GDAL_DCAP_VECTOR, &drv);
     if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
+        rc = ft_io_stage_begin(path, drv, 0.0, &st);
     if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+        return rc;
+    rc = write_ogr(path, drv, st.target, p);
+    int end = ft_io_stage_end(&st, rc == FT_OK);
+    return rc != FT_OK ? rc : end;
 }

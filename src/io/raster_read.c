@@ -46,6 +46,19 @@ static int check_band(GDALDatasetH ds, const char *path, int band)
     return FT_OK;
 }
 
+/* GDAL reads whole blocks, and a pixel-interleaved GeoTIFF one block of every band at once: a small file
+ * may declare a block far larger than the band (found by fuzzing: 31,232 bands of 36,352-cell rows, a
+ * 2.3 GB buffer for one row), which must be refused, not allocated. */
+static int check_block(GDALDatasetH ds, GDALRasterBandH band, const char *path)
+{
+    int bx = 0, by = 0, nb = GDALGetRasterCount(ds);
+    GDALGetBlockSize(band, &bx, &by);
+    double bytes = (double)bx * (double)by * GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band)) * (nb > 0 ? nb : 1);
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "reading '%s' (one block of %d x %d cells in %d bands)", path, bx, by, nb);
+    return ft_check_memory(bytes, what);
+}
+
 /* The grid of the dataset's size, georeferencing and CRS; with header_only its cells are one (nx and ny
  * still say the dataset's size), for a caller that keeps only the header. */
 static int grid_from_dataset(GDALDatasetH ds, const char *path, int header_only, ft_grid **out)
@@ -53,6 +66,12 @@ static int grid_from_dataset(GDALDatasetH ds, const char *path, int header_only,
     int nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
     if (nx <= 0 || ny <= 0)
         return ft_error(FT_E_FORMAT, "'%s' has an empty raster (%d x %d)", path, nx, ny);
+    char what[PATH_MAX + 64];
+    snprintf(what, sizeof what, "reading '%s' (%d x %d cells)", path, nx, ny);
+    /* float elevations and a byte mask per cell (the memory bound, --max-memory, is the one that matters
+     * for reading: GDAL reads a cell in nanoseconds, so no work bound applies here) */
+    if (!header_only && ft_check_memory((double)nx * (double)ny * (sizeof(float) + 1.0), what) != FT_OK)
+        return FT_E_NOMEM;
     ft_grid *g = header_only ? ft_grid_create(1, 1) : ft_grid_create((size_t)nx, (size_t)ny);
     if (g == NULL)
         return FT_E_NOMEM;
@@ -179,8 +198,10 @@ int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opt
         rc = grid_from_dataset(ds, path, 0, &r.g);
     if (rc == FT_OK) {
         r.band = GDALGetRasterBand(ds, o.band);
-        rc = read_band(&r);
+        rc = check_block(ds, r.band, path);
     }
+    if (rc == FT_OK)
+        rc = read_band(&r);
     free(r.mbuf);
     if (rc != FT_OK) {
         ft_grid_free(r.g);

@@ -211,6 +211,22 @@ static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **c
     return rc;
 }
 
+/* A driver that cannot store the band type would convert it on the way (PNG turns Float32 elevations
+ * into a Byte image of their integer parts): refused instead of a silently different file. */
+static int check_type(const char *path, GDALDriverH drv, GDALDataType type)
+{
+    const char *types = GDALGetMetadataItem(drv, GDAL_DMD_CREATIONDATATYPES, NULL);
+    const char *name = GDALGetDataTypeName(type);
+    if (types == NULL || name == NULL)
+        return FT_OK;
+    for (const char *s = strstr(types, name); s != NULL; s = strstr(s + 1, name))
+        if ((s == types || s[-1] == ' ') && (s[strlen(name)] == ' ' || s[strlen(name)] == '\0'))
+            return FT_OK;
+    return ft_error(FT_E_UNSUPPORTED, "%s: GDAL's %s driver cannot store %s cells (it stores %s); write a GeoTIFF "
+                    "(.tif), or make a picture with `fracterra hillshade` or `render`", path,
+                    GDALGetDriverShortName(drv), name, types);
+}
+
 static int check_grid(const char *path, const ft_grid *g)
 {
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
@@ -236,15 +252,18 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
         rc = output_type(o.type, &w.type);
     if (rc == FT_OK)
         rc = ft_io_find_driver(path, o.driver, GDAL_DCAP_RASTER, &drv);
+    if (rc == FT_OK)
+        rc = check_type(path, drv, w.type);
     if (rc != FT_OK)
         return rc;
     w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);
     w.nodata = ft_malloc(n * sizeof *w.nodata);
-    char *tmp = w.use_nodata && w.nodata ? ft_tmp_path(path) : NULL;
-    if (tmp == NULL) {
+    ft_io_stage st;
+    rc = w.use_nodata && w.nodata ? ft_io_stage_begin(path, drv, 8.0 * (double)n * (double)bands[0]->nx * (double)bands[0]->ny, &st) : FT_E_NOMEM;
+    if (rc != FT_OK) {
         free(w.use_nodata);
         free(w.nodata);
-        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
+        return rc;
     }
     for (size_t k = 0; k < n; k++) {
         w.use_nodata[k] = bands[k]->has_nodata || any_invalid(bands[k]);
@@ -252,13 +271,11 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     }
     char **co = creation_options(drv, o.co, w.type);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
-    rc = direct ? write_direct(&w, drv, tmp, co) : write_copy(&w, drv, tmp, co);
+    rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
     CSLDestroy(co);
+    int end = ft_io_stage_end(&st, rc == FT_OK);
     if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
+        rc = end;
     free(w.use_nodata);
     free(w.nodata);
     return rc;

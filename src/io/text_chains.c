@@ -156,6 +156,12 @@ static void put_layer(FILE *f, const ft_layer *l)
     }
 }
 
+static int put_layer_fn(FILE *f, const void *layer)
+{
+    put_layer(f, layer);
+    return FT_OK;
+}
+
 int ft_io_write_text_chains(const char *path, const ft_layer *layer)
 {
     if (layer == NULL)
@@ -169,22 +175,5 @@ int ft_io_write_text_chains(const char *path, const ft_layer *layer)
             return ft_error(FT_E_IO, "cannot write to stdout: %s", strerror(errno));
         return FT_OK;
     }
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
-    FILE *f = fopen(tmp, "w");
-    if (f == NULL) {
-        rc = ft_error(FT_E_IO, "cannot create '%s': %s", path, strerror(errno));
-    } else {
-        put_layer(f, layer);
-        int bad = ferror(f);
-        if (fclose(f) != 0 || bad)
-            rc = ft_error(FT_E_IO, "cannot write '%s': %s", path, strerror(errno ? errno : EIO));
-    }
-    if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    return ft_io_atomic_write(path, put_layer_fn, layer);
 }

@@ -257,15 +257,11 @@ int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_la
         return rc;
     if (!GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL))
         return ft_error(FT_E_UNSUPPORTED, "driver '%s' cannot create vector files", GDALGetDriverShortName(drv));
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() ? ft_last_error_code() : FT_E_NOMEM;
+    ft_io_stage st;
+    if ((rc = ft_io_stage_begin(path, drv, 0.0, &st)) != FT_OK)
+        return rc;
     writer w = {.path = path, .l = layer};
-    rc = write_dataset(&w, drv, tmp, &o);
-    if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    rc = write_dataset(&w, drv, st.target, &o);
+    int end = ft_io_stage_end(&st, rc == FT_OK);
+    return rc != FT_OK ? rc : end;
 }

@@ -5,6 +5,7 @@
 #include "render/render_internal.h"
 
 #include "fracterra/core.h"
+#include "fracterra/io.h"
 #include "internal.h"
 
 #include <cairo-pdf.h>
@@ -28,10 +29,16 @@ int ft_canvas_format_of(const char *what, const char *path, ft_canvas_format *fm
     return FT_OK;
 }
 
-static cairo_surface_t *open_surface(ft_canvas_format fmt, const char *tmp, int w, int h)
+/* cairo's output goes through the caller's FILE, so that a failed write keeps errno for the message. */
+static cairo_status_t file_write(void *closure, const unsigned char *data, unsigned int length)
+{
+    return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+static cairo_surface_t *open_surface(ft_canvas_format fmt, FILE *f, int w, int h)
 {
     if (fmt == FT_CANVAS_SVG) {
-        cairo_surface_t *s = cairo_svg_surface_create(tmp, w, h);
+        cairo_surface_t *s = cairo_svg_surface_create_for_stream(file_write, f, w, h);
         cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
 #if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 15, 10)
         cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PX);
@@ -39,40 +46,42 @@ static cairo_surface_t *open_surface(ft_canvas_format fmt, const char *tmp, int 
         return s;
     }
     if (fmt == FT_CANVAS_PDF)
-        return cairo_pdf_surface_create(tmp, w, h);
+        return cairo_pdf_surface_create_for_stream(file_write, f, w, h);
     return cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
 }
 
-/* Draws into tmp and finishes the surface; FT_OK or FT_E_IO naming path. */
-static int draw_to(const char *tmp, const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw,
-                   const void *arg)
+typedef struct {
+    const char *path;
+    ft_canvas_format fmt;
+    int w, h;
+    ft_canvas_draw_fn draw;
+    const void *arg;
+} canvas_job;
+
+/* Draws into f and finishes the surface (through ft_io_atomic_write, which checks every write). */
+static int draw_to(FILE *f, const void *arg)
 {
-    cairo_surface_t *s = open_surface(fmt, tmp, w, h);
+    const canvas_job *j = arg;
+    cairo_surface_t *s = open_surface(j->fmt, f, j->w, j->h);
     cairo_t *cr = cairo_create(s);
-    draw(cr, arg);
+    j->draw(cr, j->arg);
     cairo_status_t st = cairo_status(cr);
     cairo_destroy(cr);
-    if (st == CAIRO_STATUS_SUCCESS && fmt == FT_CANVAS_PNG)
-        st = cairo_surface_write_to_png(s, tmp);
+    if (st == CAIRO_STATUS_SUCCESS && j->fmt == FT_CANVAS_PNG)
+        st = cairo_surface_write_to_png_stream(s, file_write, f);
     cairo_surface_finish(s);
     if (st == CAIRO_STATUS_SUCCESS)
         st = cairo_surface_status(s);
     cairo_surface_destroy(s);
+    if (st == CAIRO_STATUS_WRITE_ERROR)
+        return FT_E_IO; /* the service names the path and errno */
     if (st != CAIRO_STATUS_SUCCESS)
-        return ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
+        return ft_error(FT_E_IO, "cannot draw %s: %s", j->path, cairo_status_to_string(st));
     return FT_OK;
 }
 
 int ft_canvas_write(const char *path, ft_canvas_format fmt, int w, int h, ft_canvas_draw_fn draw, const void *arg)
 {
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL)
-        return ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    int rc = draw_to(tmp, path, fmt, w, h, draw, arg);
-    if (rc == FT_OK)
-        rc = ft_tmp_commit(tmp, path);
-    if (rc != FT_OK)
-        ft_tmp_discard(tmp);
-    free(tmp);
-    return rc;
+    canvas_job j = {path, fmt, w, h, draw, arg};
+    return ft_io_atomic_write(path, draw_to, &j);
 }

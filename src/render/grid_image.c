@@ -9,6 +9,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "fracterra/render.h"
+#include "fracterra/io.h"
 #include "internal.h"
 #include "render/render_internal.h"
 
@@ -133,6 +134,20 @@ static cairo_surface_t *cells_surface(const ft_grid *g, const ft_grid_image_opts
 }
 
 /* Resamples src to width x height (transparent background) and writes it as PNG to path. */
+static cairo_status_t png_write(void *closure, const unsigned char *data, unsigned int length)
+{
+    return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+/* The image as PNG into f (ft_io_atomic_write checks the writes and names the path and errno). */
+static int png_to(FILE *f, const void *surface)
+{
+    cairo_status_t st = cairo_surface_write_to_png_stream((cairo_surface_t *)surface, png_write, f);
+    if (st == CAIRO_STATUS_WRITE_ERROR)
+        return FT_E_IO;
+    return st == CAIRO_STATUS_SUCCESS ? FT_OK : ft_error(FT_E_IO, "cannot encode PNG: %s", cairo_status_to_string(st));
+}
+
 static int write_scaled_png(cairo_surface_t *src, int width, int height, const char *path)
 {
     int sw = cairo_image_surface_get_width(src), sh = cairo_image_surface_get_height(src);
@@ -151,19 +166,8 @@ static int write_scaled_png(cairo_surface_t *src, int width, int height, const c
     cairo_status_t st = cairo_status(cr);
     cairo_destroy(cr);
 
-    int rc = FT_OK;
-    char *tmp = ft_tmp_path(path);
-    if (tmp == NULL) {
-        rc = ft_last_error_code() != FT_OK ? ft_last_error_code() : FT_E_NOMEM;
-    } else if (st != CAIRO_STATUS_SUCCESS) {
-        rc = ft_error(FT_E_NOMEM, "cannot draw %s: %s", path, cairo_status_to_string(st));
-    } else if ((st = cairo_surface_write_to_png(dst, tmp)) != CAIRO_STATUS_SUCCESS) {
-        ft_tmp_discard(tmp);
-        rc = ft_error(FT_E_IO, "cannot write %s: %s", path, cairo_status_to_string(st));
-    } else if ((rc = ft_tmp_commit(tmp, path)) != FT_OK) {
-        ft_tmp_discard(tmp);
-    }
-    free(tmp);
+    int rc = st == CAIRO_STATUS_SUCCESS ? ft_io_atomic_write(path, png_to, dst)
+                                        : ft_error(FT_E_NOMEM, "cannot draw %s: %s", path, cairo_status_to_string(st));
     cairo_surface_destroy(dst);
     return rc;
 }

@@ -48,6 +48,13 @@ static int build_bins(pts_lags *L)
     L->nbins = want > MAX_BINS ? MAX_BINS : want < MIN_BINS ? MIN_BINS : (size_t)want;
     L->bin_cap = L->rmax2 * (1.0 + 1e-9);
     L->bin_scale = (double)L->nbins / L->bin_cap;
+    /* The annuli live in squared distance: lags whose squares underflow (below about 1e-150) or overflow
+     * cannot be binned, and would index the lookup with an infinite scale. */
+    if (!(L->rmax2 > 0.0) || !isfinite(L->bin_cap) || !isfinite(L->bin_scale))
+        return ft_error(FT_E_INVALID,
+                        "lags up to %g (annulus half-width %g) are too small or too large to square in double "
+                        "precision; use lags between 1e-150 and 1e150 in the points' units",
+                        L->lag[L->n - 1], L->eps);
     L->bin_first = ft_malloc(L->nbins * sizeof *L->bin_first);
     L->bin_count = ft_malloc(L->nbins * sizeof *L->bin_count);
     L->bin_hit = ft_calloc(L->nbins + 1, sizeof *L->bin_hit);

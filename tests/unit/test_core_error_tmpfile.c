@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "fracterra/core.h"
+#include "fracterra/io.h"
 #include "ft_test_util.h"
 #include "internal.h"
 
@@ -184,7 +185,7 @@ static void test_tmp_path_form(void **state)
     (void)state;
     char path[512], prefix[512];
     snprintf(path, sizeof path, "%s/a.b.tif", ft_test_dir());
-    char *t1 = ft_tmp_path(path), *t2 = ft_tmp_path(path);
+    char *t1 = ft_io_atomic_tmp(path), *t2 = ft_io_atomic_tmp(path);
     assert_non_null(t1);
     assert_non_null(t2);
     snprintf(prefix, sizeof prefix, "%s/.a.b.ft-tmp-%ld-", ft_test_dir(), (long)getpid());
@@ -194,7 +195,7 @@ static void test_tmp_path_form(void **state)
     free(t1);
     free(t2);
 
-    t1 = ft_tmp_path("relative.gpkg");
+    t1 = ft_io_atomic_tmp("relative.gpkg");
     assert_non_null(t1);
     snprintf(prefix, sizeof prefix, ".relative.ft-tmp-%ld-", (long)getpid());
     assert_memory_equal(t1, prefix, strlen(prefix));
@@ -202,7 +203,7 @@ static void test_tmp_path_form(void **state)
     free(t1);
 
     snprintf(path, sizeof path, "%s/noext", ft_test_dir());
-    t1 = ft_tmp_path(path);
+    t1 = ft_io_atomic_tmp(path);
     snprintf(prefix, sizeof prefix, "%s/.noext.ft-tmp-", ft_test_dir());
     assert_memory_equal(t1, prefix, strlen(prefix));
     assert_null(strchr(t1 + strlen(prefix), '.'));
@@ -214,13 +215,13 @@ static void test_tmp_path_missing_folder(void **state)
     (void)state;
     char path[512];
     snprintf(path, sizeof path, "%s/no-such-folder/out.tif", ft_test_dir());
-    assert_null(ft_tmp_path(path));
+    assert_null(ft_io_atomic_tmp(path));
     assert_int_equal(ft_last_error_code(), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "no-such-folder"));
-    assert_null(ft_tmp_path(""));
+    assert_null(ft_io_atomic_tmp(""));
     assert_int_equal(ft_last_error_code(), FT_E_INVALID);
     snprintf(path, sizeof path, "%s/", ft_test_dir());
-    assert_null(ft_tmp_path(path));
+    assert_null(ft_io_atomic_tmp(path));
     assert_int_equal(ft_last_error_code(), FT_E_INVALID);
 }
 
@@ -229,7 +230,7 @@ static void test_commit_renames_siblings(void **state)
     (void)state;
     char path[512], tmp_sib[600], other[600], final[600];
     snprintf(path, sizeof path, "%s/roads.shp", ft_test_dir());
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     assert_non_null(tmp);
     touch(tmp);
     const char *exts[] = {".shx", ".dbf", ".prj", ".cpg"};
@@ -240,7 +241,7 @@ static void test_commit_renames_siblings(void **state)
     /* the temp of another writer whose counter merely starts with ours must not be touched */
     sibling(other, sizeof other, tmp, "0.shx");
     touch(other);
-    assert_int_equal(ft_tmp_commit(tmp, path), FT_OK);
+    assert_int_equal(ft_io_atomic_commit(tmp, path), FT_OK);
     assert_true(ft_test_exists(path));
     assert_false(ft_test_exists(tmp));
     for (int i = 0; i < 4; i++) {
@@ -259,11 +260,11 @@ static void test_commit_replaces_existing(void **state)
     char path[512];
     snprintf(path, sizeof path, "%s/dem.tif", ft_test_dir());
     touch(path);
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     FILE *f = fopen(tmp, "w");
     fputs("new", f);
     fclose(f);
-    assert_int_equal(ft_tmp_commit(tmp, path), FT_OK);
+    assert_int_equal(ft_io_atomic_commit(tmp, path), FT_OK);
     char buf[8] = {0};
     f = fopen(path, "r");
     assert_non_null(fgets(buf, sizeof buf, f));
@@ -277,21 +278,21 @@ static void test_discard_removes_all(void **state)
     (void)state;
     char path[512], tmp_sib[600];
     snprintf(path, sizeof path, "%s/parcels.shp", ft_test_dir());
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     touch(tmp);
     sibling(tmp_sib, sizeof tmp_sib, tmp, ".shx");
     touch(tmp_sib);
     sibling(tmp_sib, sizeof tmp_sib, tmp, ".dbf");
     touch(tmp_sib);
     ft_error(FT_E_FORMAT, "writer failed");
-    ft_tmp_discard(tmp);
+    ft_io_atomic_discard(tmp);
     assert_int_equal(count_entries("parcels"), 0);
     assert_false(ft_test_exists(path));
     /* discarding keeps the error that caused it */
     assert_int_equal(ft_last_error_code(), FT_E_FORMAT);
     assert_string_equal(ft_last_error(), "writer failed");
-    ft_tmp_discard(tmp); /* twice is harmless */
-    ft_tmp_discard(NULL);
+    ft_io_atomic_discard(tmp); /* twice is harmless */
+    ft_io_atomic_discard(NULL);
     free(tmp);
 }
 
@@ -303,9 +304,9 @@ static void test_commit_failure_names_path_and_cleans_up(void **state)
     assert_int_equal(mkdir(path, 0700), 0); /* a non-empty folder where the file should go */
     snprintf(keep, sizeof keep, "%s/keep", path);
     touch(keep);
-    char *tmp = ft_tmp_path(path);
+    char *tmp = ft_io_atomic_tmp(path);
     touch(tmp);
-    assert_int_equal(ft_tmp_commit(tmp, path), FT_E_IO);
+    assert_int_equal(ft_io_atomic_commit(tmp, path), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), path));
     assert_false(ft_test_exists(tmp));
     assert_int_equal(count_entries("ft-tmp"), 0);
@@ -313,12 +314,12 @@ static void test_commit_failure_names_path_and_cleans_up(void **state)
 
     /* a temp that was never written */
     snprintf(path, sizeof path, "%s/never.tif", ft_test_dir());
-    tmp = ft_tmp_path(path);
-    assert_int_equal(ft_tmp_commit(tmp, path), FT_E_IO);
+    tmp = ft_io_atomic_tmp(path);
+    assert_int_equal(ft_io_atomic_commit(tmp, path), FT_E_IO);
     assert_non_null(strstr(ft_last_error(), "never.tif"));
     assert_false(ft_test_exists(path));
     free(tmp);
-    assert_int_equal(ft_tmp_commit("/tmp/not-a-temp.tif", path), FT_E_INVALID);
+    assert_int_equal(ft_io_atomic_commit("/tmp/not-a-temp.tif", path), FT_E_INVALID);
 }
 
 int main(void)
