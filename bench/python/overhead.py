@@ -77,12 +77,12 @@ def main():
         ("hillshade 2048²", "ft_render_hillshade", lambda: ft.hillshade(g)),
         ("dim_line 10^5 vertices", "ft_line_dim", lambda: ft.dim_line(xy)),
         ("dim_line box 10^5", "ft_line_dim", lambda: ft.dim_line(xy, method="box")),
-        ("enhance 10^5 (x, y)", "ft_line_enhance", lambda: ft.enhance(x, y)),
-        ("enhance 10^5 (n, 2)", "ft_line_enhance", lambda: ft.enhance(xy)),
+        ("enhance 10^5 (x, y)", "ft_line_enhance_layer", lambda: ft.enhance(x, y)),
+        ("enhance 10^5 (n, 2)", "ft_line_enhance_layer", lambda: ft.enhance(xy)),
         ("simplify 10^5 (x, y)", "ft_line_simplify", lambda: ft.simplify(x, y, tolerance=1.0)),
         ("simplify 10^5 (n, 2)", "ft_line_simplify", lambda: ft.simplify(xy, tolerance=1.0)),
-        ("smooth 10^5 (x, y)", "ft_line_smooth", lambda: ft.smooth(x, y)),
-        ("smooth 10^5 (n, 2)", "ft_line_smooth", lambda: ft.smooth(xy)),
+        ("smooth 10^5 (x, y)", "ft_line_smooth_layer", lambda: ft.smooth(x, y)),
+        ("smooth 10^5 (n, 2)", "ft_line_smooth_layer", lambda: ft.smooth(xy)),
     ]
     print("python overhead: time of the package call outside the library function, median of %d runs "
           "(OMP_NUM_THREADS=%s; limit %.0f%%)" % (REPEAT, os.environ["OMP_NUM_THREADS"], 100 * LIMIT))

@@ -13,16 +13,17 @@ from .surface import dim_surface, dim_map, dim_points, read_points, SURFACE_METH
 from .line import (read_chains, dim_line, enhance, smooth, weed, simplify, remove_loops, boundary, edit_file,
                    LINE_METHODS)
 from .terrain import (synth, reconstruct, ReconInfo, clarke_fit, clarke_simulate, ClarkeModel, hillshade,
-                      hillshade_file, SYNTH_METHODS, RECON_METHODS)
+                      hillshade_file, fill, SYNTH_METHODS, RECON_METHODS)
 from .urban import dim_area
+from .profile import dim_profile, PROFILE_METHODS
 from .contour import mountain, MOUNTAIN_METHODS
 from .io import read_grid, write_grid, from_gdal, to_gdal
 
 __version__ = _clib.ft_version().decode()
 
 __all__ = ["FracterraError", "Grid", "DimResult", "library_path", "__version__",
-           "dim_surface", "dim_map", "dim_points", "read_points", "dim_line", "read_chains", "dim_area",
+           "dim_surface", "dim_map", "dim_points", "read_points", "dim_line", "read_chains", "dim_area", "dim_profile",
            "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary", "edit_file",
            "synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel",
-           "hillshade", "hillshade_file", "mountain", "read_grid", "write_grid", "from_gdal", "to_gdal",
-           "SURFACE_METHODS", "LINE_METHODS", "SYNTH_METHODS", "RECON_METHODS", "MOUNTAIN_METHODS"]
+           "hillshade", "hillshade_file", "fill", "mountain", "read_grid", "write_grid", "from_gdal", "to_gdal",
+           "SURFACE_METHODS", "LINE_METHODS", "SYNTH_METHODS", "RECON_METHODS", "MOUNTAIN_METHODS", "PROFILE_METHODS"]

@@ -6,17 +6,18 @@ from . import _structs as S
 
 
 def set_fit(opts_fit, fit):
-    """Applies a dict of ft_loglog_opts fields (method 'ils' or 'minimax', tol, width, tol_sigma,
-    min_points, max_iter, min_span, bounds_tol) over the defaults."""
+    """Applies a dict of ft_loglog_opts fields (method 'regimes' (default), 'ils' or 'minimax', tol,
+    width, tol_sigma, min_points, max_iter, min_span, bounds_tol, curve_dD, curve_alpha, regime) over
+    the defaults."""
     if not fit:
         return
     for k, v in fit.items():
         if k not in S.FIT_DEFAULTS:
             raise ValueError("fit: unknown option %r (known: %s)" % (k, ", ".join(sorted(S.FIT_DEFAULTS))))
         if k == "method":
-            v = {"ils": 0, "minimax": 1}.get(v, v)
-            if v not in (0, 1):
-                raise ValueError("fit method must be 'ils' or 'minimax', got %r" % (fit["method"],))
+            v = {"ils": 0, "minimax": 1, "regimes": 2}.get(v, v)
+            if v not in (0, 1, 2):
+                raise ValueError("fit method must be 'regimes', 'ils' or 'minimax', got %r" % (fit["method"],))
         setattr(opts_fit, k, v)
 
 

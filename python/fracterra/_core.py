@@ -1,11 +1,12 @@
 """Conversions between NumPy and the library's types: grids, chains, points, dimension results, and
 the progress callback."""
 import ctypes
+import math
 
 import numpy as np
 
 from . import _structs as S
-from ._lib import lib, check, check_ptr
+from ._lib import lib, check, check_ptr, c_free, c_strdup
 
 __all__ = ["Grid", "DimResult"]
 
@@ -282,12 +283,37 @@ SEGMENT_DTYPE = np.dtype([("first", "i8"), ("last", "i8"), ("n", "i8"), ("scale_
                           ("max_err", "f8"), ("D_minimax", "f8")])
 
 
+_NONE = ctypes.c_size_t(-1).value
+
+
+def _noise_model(m):
+    """The white-noise (nugget) model of a lag estimator as the CLI's JSON "noise" member, or None when
+    none was fitted (docs/surface-noise.md)."""
+    if not m.fitted:
+        return None
+    d = {"detected": bool(m.detected or m.applied), "removed": bool(m.applied), "sigma_z": m.sigma_z}
+    if m.s > 0.0 or m.sigma_xy > 0.0:
+        d["sigma_xy"] = m.sigma_xy
+    d.update(nugget=m.c0, H=m.H, F=m.F, floor=m.floor)
+    return d
+
+
+def _regime_dicts(regimes, chosen):
+    return [{"min_scale": float(s["scale_lo"]), "max_scale": float(s["scale_hi"]), "D": float(s["D"]),
+             "se": float(s["stderr_D"]), "r2": float(s["r2"]), "rows": int(s["n"]), "chosen": i == chosen}
+            for i, s in enumerate(regimes)]
+
+
 class DimResult:
     """A fractal dimension with everything needed to judge it (docs/loglog.md): D, stderr (of D), r2,
     range (the scales of the first and last used rows), units, method, segmentation, noise, max_err,
     table (a NumPy structured array: scale, value, count, slope, used), segments (structured array of
-    the minimax segments), best (index of the segment that gave D, or None), warnings (list of str),
-    slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
+    the minimax segments), best (index of the segment that gave D, or None), regimes (structured
+    array of the straight runs by increasing scale, same fields as segments), regime (index in regimes
+    of the one that gave D, or None), breaks (scales where neighbouring regimes meet, len(regimes) - 1),
+    choice (why these rows give D), noise (the noise level of the segmentation), noise_model (dict of the
+    lag estimators' nugget model: detected, removed, sigma_z, [sigma_xy,] nugget, H, F, floor; None when
+    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
 
     def __init__(self, ptr):
         r = ptr.contents
@@ -312,7 +338,15 @@ class DimResult:
         for i in range(r.nsegments):
             s = r.segments[i]
             self.segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
-        self.best = None if r.best == ctypes.c_size_t(-1).value else int(r.best)
+        self.best = None if r.best == _NONE else int(r.best)
+        self.regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
+        for i in range(r.nregimes):
+            s = r.regimes[i]
+            self.regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self.regime = None if r.regime == _NONE or r.nregimes == 0 else int(r.regime)
+        self.breaks = [float(r.breaks[i]) for i in range(r.nregimes - 1)] if r.breaks and r.nregimes > 1 else []
+        self.choice = r.choice.decode() if r.choice else ""
+        self.noise_model = _noise_model(r.nugget)
         self.warnings = [r.warnings[i].decode("utf-8", "replace") for i in range(r.nwarnings)]
         self.extra = {}
 
@@ -320,9 +354,13 @@ class DimResult:
         """The result as plain Python values (the CLI's JSON members of the same names)."""
         return {"method": self.method, "segmentation": self.segmentation, "D": self.D, "r2": self.r2,
                 "stderr": self.stderr, "range": list(self.range), "units": self.units,
+                "max_err": self.max_err, "choice": self.choice,
+                "regime": None if self.regime is None else self.regime + 1,
+                "regimes": _regime_dicts(self.regimes, self.regime), "breaks": list(self.breaks),
                 "warnings": list(self.warnings),
                 "table": [dict(zip(TABLE_DTYPE.names, (float(a), float(b), float(c), float(d), bool(e))))
-                          for a, b, c, d, e in self.table.tolist()]}
+                          for a, b, c, d, e in self.table.tolist()],
+                **({"noise": dict(self.noise_model)} if self.noise_model is not None else {})}
 
     def __repr__(self):
         return "DimResult(method=%r, D=%.4f, stderr=%.4f, r2=%.4f, range=%.6g..%.6g%s%s)" % (
@@ -330,12 +368,98 @@ class DimResult:
             " " + self.units if self.units else "", ", %d warning(s)" % len(self.warnings) if self.warnings else "")
 
 
-def take_result(out):
-    """A DimResult from an ft_dim_result ** the library filled; frees the C result."""
+def take_result(out, crs=None):
+    """A DimResult from an ft_dim_result ** the library filled; frees the C result. With crs (an
+    ft_crs_info from crs_info), the units and the no-CRS warning as the CLI sets them (cli_geo_units)."""
     try:
+        if crs is not None:
+            geo_units(out, crs)
         return DimResult(out)
     finally:
         lib.ft_dim_result_free(out)
+
+
+# ---- geographic input (the CLI's cli_geo.c) ----
+
+FT_LOCAL_LAEA, FT_LOCAL_TMERC = 0, 1
+NO_CRS_WARNING = "the input has no CRS: scales are in its own coordinate unit, taken as planar"
+
+
+def crs_info(wkt):
+    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): an ft_crs_info."""
+    info = S.ft_crs_info()
+    check(lib.ft_io_crs_info(wkt.encode() if isinstance(wkt, str) else wkt, ctypes.byref(info)))
+    return info
+
+
+def geo_units(out, crs):
+    """Sets the result's units from the CRS ("m" for lon/lat and metre CRSs, "ft", ...), or without a
+    CRS warns that the scales are in the data's own unit; nothing if the estimator set units."""
+    if out.contents.units:
+        return
+    if crs.scale_unit:
+        lib.ft_dim_result_set_units(out, crs.scale_unit)
+    elif not crs.has_crs:
+        lib.ft_dim_result_warn(out, b"%s", NO_CRS_WARNING.encode())
+
+
+def _local_crs(wkt, kind, x0, y0, x1, y1):
+    p = ctypes.c_void_p()
+    check(lib.ft_io_local_crs(wkt.encode(), kind, 0.5 * (x0 + x1), 0.5 * (y0 + y1), ctypes.byref(p)))
+    try:
+        return ctypes.string_at(p.value)
+    finally:
+        c_free(p.value)
+
+
+def grid_ground(grid, crs):
+    """A lon/lat grid warped to a transverse Mercator centred on it, cells of the same ground area
+    (cli_geo_grid_local); other grids unchanged."""
+    if not crs.geographic:
+        return grid
+    cg = _CGrid(grid)
+    e = [ctypes.c_double() for _ in range(4)]
+    lib.ft_grid_extent(cg.ref, *(ctypes.byref(v) for v in e))
+    x0, y0, x1, y1 = (v.value for v in e)
+    local = _local_crs(grid.wkt, FT_LOCAL_TMERC, x0, y0, x1, y1)
+    per_lon, per_lat = ctypes.c_double(), ctypes.c_double()
+    lib.ft_ellipsoid_metres_per_degree(ctypes.byref(crs.ellipsoid), 0.5 * (y0 + y1), ctypes.byref(per_lon),
+                                       ctypes.byref(per_lat))
+    gt = grid.geotransform
+    cell = math.sqrt(abs(gt[1]) * per_lon.value * abs(gt[5]) * per_lat.value)
+    out = ctypes.POINTER(S.ft_grid)()
+    check(lib.ft_io_grid_reproject(cg.ref, local, cell, ctypes.byref(out)))
+    return grid_from_c(out)
+
+
+def layer_ground(lp, crs, kind=FT_LOCAL_LAEA):
+    """Reprojects a library layer (ft_layer *) in lon/lat in place to a local projection centred on its
+    bounding box (cli_geo_layer_ground); other layers unchanged."""
+    if not crs.geographic:
+        return
+    e = [ctypes.c_double() for _ in range(4)]
+    check(lib.ft_layer_bbox(lp, *(ctypes.byref(v) for v in e)))
+    local = _local_crs(lp.contents.crs_wkt.decode(), kind, *(v.value for v in e))
+    check(lib.ft_io_layer_reproject(lp, local))
+
+
+def points_ground(x, y, wkt, crs, kind=FT_LOCAL_TMERC, bbox=None):
+    """(x, y) of lon/lat points projected to a local projection (transverse Mercator for points, as
+    cli_geo_points_ground; Lambert equal-area for box counts, as cli_geo_layer_local) centred on bbox
+    (default: theirs), in metres; other points unchanged."""
+    if not crs.geographic or len(x) == 0:
+        return x, y
+    x = np.array(x, dtype=np.float64).ravel()
+    y = np.array(y, dtype=np.float64).ravel()
+    local = _local_crs(wkt, kind, *(bbox or (x.min(), y.min(), x.max(), y.max())))
+    p = _CPoints(x, y, np.zeros_like(x))
+    addr = c_strdup(wkt.encode())
+    p.struct.crs_wkt = ctypes.cast(addr, ctypes.c_char_p)
+    try:
+        check(lib.ft_io_points_reproject(p.ref, local))
+    finally:
+        c_free(ctypes.c_void_p.from_buffer(p.struct, S.ft_points.crs_wkt.offset).value)
+    return p._keep[0], p._keep[1]
 
 
 # ---- progress ----

@@ -78,6 +78,7 @@ _int = _c.c_int
 _dbl = _c.c_double
 _str = _c.c_char_p
 _vp = _c.c_void_p
+_i64 = _c.c_int64
 
 # (name, restype, argtypes): every function the package calls, declared once.
 _PROTOTYPES = [
@@ -94,6 +95,7 @@ _PROTOTYPES = [
     ("ft_points_free", None, [_P(S.ft_points)]),
     ("ft_layer_free", None, [_P(S.ft_layer)]),
     ("ft_dim_result_free", None, [_P(S.ft_dim_result)]),
+    ("ft_grid_extent", None, [_P(S.ft_grid), _P(_dbl), _P(_dbl), _P(_dbl), _P(_dbl)]),
     # io
     ("ft_io_read_grid", _int, [_str, _P(S.ft_read_grid_opts), _P(_P(S.ft_grid))]),
     ("ft_io_write_grid", _int, [_str, _P(S.ft_grid), _P(S.ft_write_grid_opts)]),
@@ -101,6 +103,15 @@ _PROTOTYPES = [
     ("ft_io_read_points", _int, [_str, _P(S.ft_read_points_opts), _P(_P(S.ft_points))]),
     ("ft_io_hillshade", _int, [_str, _str, _P(S.ft_io_hillshade_opts)]),
     ("ft_io_crs_to_wkt", _int, [_str, _P(_vp)]),
+    ("ft_io_crs_info", _int, [_str, _P(S.ft_crs_info)]),
+    ("ft_io_local_crs", _int, [_str, _int, _dbl, _dbl, _P(_vp)]),
+    ("ft_io_grid_reproject", _int, [_P(S.ft_grid), _str, _dbl, _P(_P(S.ft_grid))]),
+    ("ft_io_points_reproject", _int, [_P(S.ft_points), _str]),
+    ("ft_io_layer_reproject", _int, [_P(S.ft_layer), _str]),
+    ("ft_layer_bbox", _int, [_P(S.ft_layer), _P(_dbl), _P(_dbl), _P(_dbl), _P(_dbl)]),
+    ("ft_ellipsoid_metres_per_degree", None, [_P(S.ft_ellipsoid), _dbl, _P(_dbl), _P(_dbl)]),
+    ("ft_dim_result_set_units", None, [_P(S.ft_dim_result), _str]),
+    ("ft_dim_result_warn", _int, [_P(S.ft_dim_result), _str, _str]),
     # surface
     ("ft_surface_method_parse", _int, [_str, _P(_int)]),
     ("ft_surface_method_name", _str, [_int]),
@@ -110,6 +121,11 @@ _PROTOTYPES = [
     ("ft_points_method_parse", _int, [_str, _P(_int)]),
     ("ft_surface_dim_points", _int, [_P(S.ft_points), _P(S.ft_points_dim_opts), _P(_P(S.ft_dim_result))]),
     ("ft_points_counters_free", None, [_P(S.ft_points_counters)]),
+    ("ft_profile_dim", _int, [_P(_dbl), _sz, _dbl, _int, _P(_P(S.ft_dim_result))]),
+    ("ft_profile_from_grid_row", _int, [_P(S.ft_grid), _sz, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_profile_transect", _int, [_P(S.ft_grid), _dbl, _dbl, _dbl, _dbl, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_profile_resample", _int, [_P(_dbl), _P(_dbl), _P(_dbl), _sz, _dbl, _P(_P(_dbl)), _P(_sz), _P(_dbl)]),
+    ("ft_io_read_line_z", _int, [_str, _str, _P(_P(_dbl)), _P(_P(_dbl)), _P(_P(_dbl)), _P(_sz)]),
     # line
     ("ft_line_method_parse", _int, [_str, _P(_int)]),
     ("ft_line_method_name", _str, [_int]),
@@ -120,6 +136,12 @@ _PROTOTYPES = [
     ("ft_line_simplify", _int, [_P(S.ft_chain), _dbl, _P(_P(S.ft_chain))]),
     ("ft_line_remove_loops", _int, [_P(S.ft_chain), _P(_P(S.ft_chain))]),
     ("ft_line_apply_layer", _int, [_P(S.ft_layer), _vp, _vp, _int]),
+    ("ft_line_enhance_layer", _int, [_P(S.ft_layer), _P(S.ft_dutton_opts), _int, _vp, _vp]),
+    ("ft_line_smooth_layer", _int, [_P(S.ft_layer), _P(S.ft_smooth_opts), _int, _vp]),
+    ("ft_urban_boundary_layer", _int, [_P(S.ft_layer), _P(S.ft_boundary_opts), _int, _vp]),
+    ("ft_layer_create", _P(S.ft_layer), [_str, _str]),
+    ("ft_layer_add_feature", _i64, [_P(S.ft_layer), _i64, _int, _int]),
+    ("ft_layer_add_part", _int, [_P(S.ft_layer), _P(S.ft_chain), _int, _int]),
     ("ft_layer_check_finite", _int, [_P(S.ft_layer)]),
     ("ft_layer_vertex_count", _sz, [_P(S.ft_layer)]),
     ("ft_io_write_layer", _int, [_str, _P(S.ft_layer), _P(S.ft_write_layer_opts)]),
@@ -131,6 +153,10 @@ _PROTOTYPES = [
                                      _P(_P(S.ft_grid)), _P(S.ft_recon_info)]),
     ("ft_reconstruct_voids", _int, [_P(S.ft_grid), _P(S.ft_recon_opts), _P(_P(S.ft_grid)), _P(_P(S.ft_grid)),
                                     _P(S.ft_recon_info)]),
+    ("ft_terrain_fill", _int, [_P(S.ft_grid), _P(_c.c_uint8), _P(S.ft_fill_opts), _P(_P(S.ft_grid)),
+                               _P(_P(S.ft_grid)), _P(_P(S.ft_fill_result))]),
+    ("ft_fill_result_free", None, [_P(S.ft_fill_result)]),
+    ("ft_fill_d_source_name", _str, [_int]),
     ("ft_clarke_fit", _int, [_P(S.ft_grid), _P(S.ft_clarke_opts), _P(_P(S.ft_clarke_model))]),
     ("ft_clarke_simulate", _int, [_P(S.ft_clarke_model), _P(S.ft_clarke_sim_opts), _P(_P(S.ft_grid))]),
     ("ft_clarke_model_free", None, [_P(S.ft_clarke_model)]),
@@ -161,6 +187,13 @@ for _name, _res, _args in _PROTOTYPES:
 _libc = ctypes.CDLL(None)
 _libc.free.argtypes = [_vp]
 _libc.free.restype = None
+_libc.strdup.argtypes = [_str]
+_libc.strdup.restype = _vp
+
+
+def c_strdup(b):
+    """A malloc'd copy of bytes b (for a field the library may free())."""
+    return _libc.strdup(b)
 
 
 def c_free(ptr):

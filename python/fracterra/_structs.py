@@ -131,9 +131,10 @@ class ft_loglog_opts(_Opts):
     _c_name_ = "ft_loglog_opts"
     _c_default_ = "FT_LOGLOG_OPTS_DEFAULT"
     _fields_ = [("method", _int), ("tol", _dbl), ("width", _dbl), ("tol_sigma", _dbl), ("min_points", _sz),
-                ("max_iter", _int), ("min_span", _dbl), ("bounds_tol", _dbl)]
-    _defaults_ = dict(method=0, tol=0.02, width=0.04, tol_sigma=3.0, min_points=3, max_iter=50, min_span=4.0,
-                      bounds_tol=0.05)
+                ("max_iter", _int), ("min_span", _dbl), ("bounds_tol", _dbl), ("curve_dD", _dbl),
+                ("curve_alpha", _dbl), ("regime", _int)]
+    _defaults_ = dict(method=2, tol=0.02, width=0.04, tol_sigma=3.0, min_points=3, max_iter=50, min_span=4.0,
+                      bounds_tol=0.025, curve_dD=0.05, curve_alpha=0.01, regime=0)
 
 
 FIT_DEFAULTS = ft_loglog_opts._defaults_
@@ -148,13 +149,32 @@ class ft_loglog_segment(c.Structure):
 
 
 @_mirror
+class ft_ellipsoid(c.Structure):
+    _c_name_ = "ft_ellipsoid"
+    _fields_ = [("a", _dbl), ("f", _dbl)]
+
+
+WGS84 = ft_ellipsoid(6378137.0, 1.0 / 298.257223563)
+
+
+@_mirror
+class ft_noise_model(c.Structure):
+    _c_name_ = "ft_noise_model"
+    _fields_ = [("fitted", _int), ("applied", _int), ("power", _dbl), ("c0", _dbl), ("a", _dbl), ("H", _dbl),
+                ("F", _dbl), ("sigma_z", _dbl), ("floor", _dbl), ("s", _dbl), ("sigma_xy", _dbl),
+                ("detected", _int), ("positions", _int)]
+
+
+@_mirror
 class ft_dim_result(c.Structure):
     _c_name_ = "ft_dim_result"
     _fields_ = [("method", _str), ("segmentation", _str), ("D", _dbl), ("r2", _dbl), ("stderr_D", _dbl),
                 ("range", _dbl * 2), ("max_err", _dbl), ("noise", _dbl), ("tol", _dbl), ("width", _dbl),
                 ("fit", ft_fit), ("map", ft_dim_map), ("table", _P(ft_loglog)),
                 ("segments", _P(ft_loglog_segment)), ("nsegments", _sz), ("best", _sz),
-                ("warnings", _P(_str)), ("nwarnings", _sz), ("units", c.c_char * 32)]
+                ("warnings", _P(_str)), ("nwarnings", _sz), ("units", c.c_char * 32),
+                ("regimes", _P(ft_loglog_segment)), ("nregimes", _sz), ("regime", _sz), ("breaks", _P(_dbl)),
+                ("choice", _str), ("nugget", ft_noise_model)]
 
 
 # ---- io.h ----
@@ -197,6 +217,14 @@ class ft_io_hillshade_opts(_Opts):
     _defaults_ = dict(azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=0, band=1)
 
 
+@_mirror
+class ft_crs_info(c.Structure):
+    _c_name_ = "ft_crs_info"
+    _fields_ = [("has_crs", _int), ("geographic", _int), ("name", c.c_char * 128), ("unit", c.c_char * 48),
+                ("scale_unit", c.c_char * 16), ("metres_per_unit", _dbl), ("ellipsoid", ft_ellipsoid),
+                ("ellipsoid_name", c.c_char * 64)]
+
+
 # ---- render.h ----
 
 @_mirror
@@ -210,14 +238,25 @@ class ft_hillshade_opts(_Opts):
 # ---- surface.h ----
 
 @_mirror
+class ft_noise_opts(_Opts):
+    _c_name_ = "ft_noise_opts"
+    _c_default_ = "FT_NOISE_OPTS_DEFAULT"
+    _fields_ = [("mode", _int), ("sigma_z", _dbl), ("sigma_xy", _dbl)]
+    _defaults_ = dict(mode=0, sigma_z=0.0, sigma_xy=0.0)
+
+
+NOISE_DEFAULTS = ft_noise_opts._defaults_
+
+
+@_mirror
 class ft_surface_dim_opts(_Opts):
     _c_name_ = "ft_surface_dim_opts"
     _c_default_ = "FT_SURFACE_DIM_OPTS_DEFAULT"
     _fields_ = [("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("pairs", _sz), ("seed", _u64),
                 ("zscale", _dbl), ("tile", _sz), ("min_valid", _dbl), ("fit", ft_loglog_opts),
-                ("fit_whole_range", _int), ("progress", PROGRESS), ("progress_arg", _vp)]
+                ("fit_whole_range", _int), ("progress", PROGRESS), ("progress_arg", _vp), ("noise", ft_noise_opts)]
     _defaults_ = dict(min_scale=0.0, max_scale=0.0, nscales=0, pairs=0, seed=1, zscale=0.0, tile=0,
-                      min_valid=0.5, fit=FIT_DEFAULTS, fit_whole_range=0)
+                      min_valid=0.5, fit=FIT_DEFAULTS, fit_whole_range=0, noise=NOISE_DEFAULTS)
 
 
 @_mirror
@@ -242,12 +281,17 @@ class ft_points_dim_opts(_Opts):
     _fields_ = [("method", _int), ("lags", _P(_dbl)), ("nuser_lags", _sz), ("min_lag", _dbl), ("max_lag", _dbl),
                 ("nlags", _int), ("eps", _dbl), ("min_pairs", _sz), ("exact", _int), ("sample", _sz),
                 ("seed", _u64), ("noise_sigma", _dbl), ("fit", ft_loglog_opts), ("fit_auto", _int),
-                ("counters", _P(_P(ft_points_counters))), ("progress", PROGRESS), ("progress_arg", _vp)]
+                ("counters", _P(_P(ft_points_counters))), ("progress", PROGRESS), ("progress_arg", _vp),
+                ("noise_sigma_xy", _dbl), ("noise_mode", _int)]
     _defaults_ = dict(method=0, nuser_lags=0, min_lag=0.0, max_lag=0.0, nlags=0, eps=0.0, min_pairs=100, exact=0,
-                      sample=0, seed=1, noise_sigma=0.0, fit=FIT_DEFAULTS, fit_auto=0)
+                      sample=0, seed=1, noise_sigma=0.0, fit=FIT_DEFAULTS, fit_auto=0, noise_sigma_xy=0.0,
+                      noise_mode=0)
 
 
 # ---- line.h ----
+
+FT_LINE_R2_FLOOR = 0.5  # line.h: the least r² the CLI accepts
+
 
 @_mirror
 class ft_line_dim_opts(_Opts):
@@ -255,9 +299,9 @@ class ft_line_dim_opts(_Opts):
     _c_default_ = "FT_LINE_DIM_OPTS_DEFAULT"
     _fields_ = [("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("both_ends", _int),
                 ("box_offsets", _int), ("fit", ft_loglog_opts), ("fit_whole_range", _int),
-                ("progress", PROGRESS), ("progress_arg", _vp)]
+                ("progress", PROGRESS), ("progress_arg", _vp), ("ellipsoid", _P(ft_ellipsoid)), ("min_r2", _dbl)]
     _defaults_ = dict(min_scale=0.0, max_scale=0.0, nscales=0, both_ends=1, box_offsets=4, fit=FIT_DEFAULTS,
-                      fit_whole_range=0)
+                      fit_whole_range=0, min_r2=0.0)
 
 
 @_mirror
@@ -265,16 +309,17 @@ class ft_dutton_opts(_Opts):
     _c_name_ = "ft_dutton_opts"
     _c_default_ = "FT_DUTTON_OPTS_DEFAULT"
     _fields_ = [("sd", _dbl), ("uc", _dbl), ("st", _dbl), ("sm", _dbl), ("iterations", _int),
-                ("target_dim", _dbl)]
-    _defaults_ = dict(sd=1.3, uc=1.0, st=INF, sm=0.0, iterations=1, target_dim=0.0)
+                ("target_dim", _dbl), ("input_dim", _dbl), ("literal_sd", _int), ("allow_crossings", _int)]
+    _defaults_ = dict(sd=1.3, uc=1.0, st=INF, sm=0.0, iterations=1, target_dim=0.0, input_dim=0.0, literal_sd=0,
+                      allow_crossings=0)
 
 
 @_mirror
 class ft_smooth_opts(_Opts):
     _c_name_ = "ft_smooth_opts"
     _c_default_ = "FT_SMOOTH_OPTS_DEFAULT"
-    _fields_ = [("passes", _int), ("roundness", _dbl), ("st", _dbl), ("sm", _dbl)]
-    _defaults_ = dict(passes=1, roundness=0.5, st=INF, sm=0.0)
+    _fields_ = [("passes", _int), ("roundness", _dbl), ("st", _dbl), ("sm", _dbl), ("allow_crossings", _int)]
+    _defaults_ = dict(passes=1, roundness=0.5, st=INF, sm=0.0, allow_crossings=0)
 
 
 # ---- terrain.h ----
@@ -287,6 +332,30 @@ class ft_synth_opts(_Opts):
                 ("origin_y", _dbl), ("periodic", _int), ("seed", _u64), ("progress", PROGRESS),
                 ("progress_arg", _vp)]
     _defaults_ = dict(method=0, dim=2.3, sigma=1.0, cell=1.0, origin_x=0.0, origin_y=0.0, periodic=0, seed=1)
+
+
+@_mirror
+class ft_fill_opts(_Opts):
+    _c_name_ = "ft_fill_opts"
+    _c_default_ = "FT_FILL_OPTS_DEFAULT"
+    _fields_ = [("max_void", _dbl), ("mean", _int), ("realizations", _int), ("dim", _dbl), ("ring", _int),
+                ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
+    _defaults_ = dict(max_void=100.0, mean=0, realizations=1, dim=0.0, ring=0, seed=1)
+
+
+@_mirror
+class ft_fill_void(c.Structure):
+    _c_name_ = "ft_fill_void"
+    _fields_ = [("x0", _sz), ("y0", _sz), ("x1", _sz), ("y1", _sz), ("cells", _sz), ("edge", _int), ("filled", _int),
+                ("D", _dbl), ("amplitude", _dbl), ("r2", _dbl), ("clamped", _int), ("source", _int),
+                ("ring_cells", _sz), ("conditioning", _sz)]
+
+
+@_mirror
+class ft_fill_result(c.Structure):
+    _c_name_ = "ft_fill_result"
+    _fields_ = [("voids", _P(ft_fill_void)), ("nvoids", _sz), ("voids_filled", _sz), ("cells_filled", _sz),
+                ("cells_left", _sz)]
 
 
 @_mirror
@@ -354,17 +423,18 @@ class ft_area_dim_opts(_Opts):
     _c_default_ = "FT_AREA_DIM_OPTS_DEFAULT"
     _fields_ = [("what", _int), ("cells", _P(_dbl)), ("ncells", _sz), ("min_cell", _dbl), ("max_cell", _dbl),
                 ("nscales", _int), ("offsets", _int), ("fit", ft_loglog_opts), ("fit_whole_range", _int),
-                ("progress", PROGRESS), ("progress_arg", _vp)]
+                ("fewest", _int), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(what=0, ncells=0, min_cell=0.0, max_cell=0.0, nscales=0, offsets=4, fit=FIT_DEFAULTS,
-                      fit_whole_range=0)
+                      fit_whole_range=0, fewest=0)
 
 
 @_mirror
 class ft_boundary_opts(_Opts):
     _c_name_ = "ft_boundary_opts"
     _c_default_ = "FT_BOUNDARY_OPTS_DEFAULT"
-    _fields_ = [("dim", _dbl), ("min", _dbl), ("max", _dbl), ("jitter", _dbl), ("seed", _u64), ("stream", _u64)]
-    _defaults_ = dict(dim=0.0, min=0.0, max=0.0, jitter=0.0, seed=1, stream=0)
+    _fields_ = [("dim", _dbl), ("min", _dbl), ("max", _dbl), ("jitter", _dbl), ("seed", _u64), ("stream", _u64),
+                ("allow_crossings", _int)]
+    _defaults_ = dict(dim=0.0, min=0.0, max=0.0, jitter=0.0, seed=1, stream=0, allow_crossings=0)
 
 
 # ---- contour.h ----

@@ -5,7 +5,8 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, parse_enum
-from ._core import as_grid, _CGrid, _CPoints, grid_from_c, take_result, Progress
+from ._core import (as_grid, _CGrid, _CPoints, grid_from_c, take_result, Progress, crs_info, grid_ground,
+                    points_ground)
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["dim_surface", "dim_map", "dim_points", "SURFACE_METHODS"]
@@ -14,6 +15,31 @@ SURFACE_METHODS = ("variogram", "yokoya", "pentland", "spectrum", "prism", "cube
 # The CLI's --pairs policy (cli/surface_cli.h): exhaustive up to 1024 x 1024 cells, then 32000 points.
 EXHAUSTIVE_CELLS = 1024 * 1024
 DEFAULT_PAIRS = 32000
+
+
+_NOISE_MODELS = {"auto": 0, "off": -1}
+
+
+def _noise_mode(noise_model):
+    """The CLI's --noise-model: "auto" (detect a nugget and remove it) or "off"."""
+    if noise_model not in _NOISE_MODELS:
+        raise ValueError("noise_model must be 'auto' or 'off', got %r" % (noise_model,))
+    return _NOISE_MODELS[noise_model]
+
+
+def _noise_sigmas(noise_sigma, points):
+    """(sigma_xy, sigma_z) from the CLI's --noise-sigma: Z, or (XY, Z) for scattered points."""
+    if noise_sigma is None:
+        return 0.0, 0.0
+    if isinstance(noise_sigma, (tuple, list)):
+        if not points or len(noise_sigma) != 2:
+            raise ValueError("noise_sigma: Z%s, got %r" % (" or (XY, Z)" if points else "", noise_sigma))
+        xy, z = (float(v) for v in noise_sigma)
+    else:
+        xy, z = 0.0, float(noise_sigma)
+    if not (xy >= 0.0 and z >= 0.0):
+        raise ValueError("noise_sigma must be >= 0, got %r" % (noise_sigma,))
+    return xy, z
 
 
 def _surface_opts(min_scale, max_scale, nscales, fit_whole_range, pairs, seed, zscale, tile, min_valid, fit):
@@ -33,24 +59,33 @@ def _surface_opts(min_scale, max_scale, nscales, fit_whole_range, pairs, seed, z
 
 def dim_surface(grid, method="variogram", *, geotransform=None, wkt=None, min_scale=None, max_scale=None,
                 nscales=None, fit_whole_range=None, pairs=None, seed=1, zscale=None, tile=None, fit=None,
-                progress=None, progress_arg=None):
+                regime=None, noise_sigma=None, noise_model="auto", progress=None, progress_arg=None):
     """Fractal dimension D (2..3) of an elevation grid, as `fracterra dim surface`.
 
     grid: a Grid, a 2-D array (NaN = nodata) or a numpy.ma array; geotransform/wkt apply to arrays.
     method: one of SURFACE_METHODS. Scales are in ground units (the geotransform's). pairs: None = the
     CLI's rule (exhaustive up to 1024² cells, else 32000 random points), 0 = exhaustive, N = N points.
-    Returns a DimResult."""
+    A grid in longitude/latitude is measured, as by the CLI, on its warp to a transverse Mercator
+    centred on it (scales in metres); without a CRS the result warns that scales are in the grid's own
+    unit. regime: D from the N-th regime (the CLI's --regime). noise_sigma, noise_model: the CLI's
+    --noise-sigma Z and --noise-model auto|off (variogram, yokoya, pentland). Returns a DimResult."""
     g = as_grid(grid, geotransform, wkt)
+    crs = crs_info(g.wkt)
+    g = grid_ground(g, crs)
     m = parse_enum(lib.ft_surface_method_parse, method, "method")
     if pairs is None:
         pairs = DEFAULT_PAIRS if g.z.size > EXHAUSTIVE_CELLS else 0
     o = _surface_opts(min_scale, max_scale, nscales, fit_whole_range, pairs, seed, zscale, tile, None, fit)
+    if regime:
+        o.fit.regime = int(regime)
+    o.noise.mode = _noise_mode(noise_model)
+    o.noise.sigma_z = _noise_sigmas(noise_sigma, False)[1]
     cg = _CGrid(g)
     pr = Progress(progress, progress_arg)
     pr.install(o)
     out = ctypes.POINTER(S.ft_dim_result)()
     pr.check(lib.ft_surface_dim(cg.ref, m, ctypes.byref(o), ctypes.byref(out)))
-    r = take_result(out)
+    r = take_result(out, crs)
     r.extra["pairs"] = int(pairs)
     return r
 
@@ -61,8 +96,10 @@ def dim_map(grid, window, step=None, method="variogram", *, geotransform=None, w
     """A local D map, as `fracterra dim map`: D in every window x window cells whose upper-left cell
     is a multiple of step (default window / 4), each window fitted over the same scale range. Returns
     (D, r2): two Grids on the lattice of the window centres, nodata where a window has fewer valid cells
-    than min_valid or the method fails."""
+    than min_valid or the method fails. A grid in longitude/latitude is first warped, as by the CLI,
+    to a transverse Mercator centred on it."""
     g = as_grid(grid, geotransform, wkt)
+    g = grid_ground(g, crs_info(g.wkt))
     m = parse_enum(lib.ft_surface_method_parse, method, "method")
     window = int(window)
     if step is None:
@@ -102,12 +139,15 @@ def read_points(path, *, x=None, y=None, z=None, weight=None, layer=None, zfield
 
 
 def dim_points(x, y=None, z=None, w=None, *, method="yokoya", wkt=None, lags=None, eps=None, min_pairs=None,
-               exact=False, sample=None, seed=1, noise_sigma=None, min_scale=None, max_scale=None, nscales=None,
-               fit_auto=False, fit=None, progress=None, progress_arg=None, **read_opts):
+               exact=False, sample=None, seed=1, noise_sigma=None, noise_model="auto", min_scale=None,
+               max_scale=None, nscales=None, fit_auto=False, fit=None, regime=None, progress=None, progress_arg=None,
+               **read_opts):
     """Fractal dimension of scattered elevations (Arakawa & Krotkov's counters), as `fracterra dim
     points`. x, y, z: arrays; or x alone a path read by the library (read_opts: x=, y=, z= column
     names are then given as xcol=, ycol=, zcol=, layer=, zfield=). Returns a DimResult whose
-    extra["lags"] is the per-lag counter table (dropped lags included, with their status)."""
+    extra["lags"] is the per-lag counter table (dropped lags included, with their status). Points in
+    longitude/latitude are projected, as by the CLI, to a transverse Mercator centred on them (lags in
+    metres). noise_sigma: Z or (XY, Z), the CLI's --noise-sigma [XY,]Z; noise_model: "auto" or "off"."""
     if y is None and z is None:
         cols = {k[0]: read_opts.pop(k + "col") for k in ("xcol", "ycol", "zcol") if k + "col" in read_opts}
         x, y, z, w_read, wkt_read = read_points(x, **cols, **read_opts)
@@ -115,6 +155,8 @@ def dim_points(x, y=None, z=None, w=None, *, method="yokoya", wkt=None, lags=Non
         wkt = wkt or wkt_read
     elif read_opts:
         raise TypeError("unexpected options %s" % ", ".join(read_opts))
+    crs = crs_info(wkt)
+    x, y = points_ground(x, y, wkt, crs)
     p = _CPoints(x, y, z, w, wkt)
     o = S.ft_points_dim_opts.default()
     o.method = parse_enum(lib.ft_points_method_parse, method, "method")
@@ -132,8 +174,10 @@ def dim_points(x, y=None, z=None, w=None, *, method="yokoya", wkt=None, lags=Non
     if sample:
         o.sample = int(sample)
     o.seed = int(seed)
-    if noise_sigma is not None:
-        o.noise_sigma = float(noise_sigma)
+    o.noise_sigma_xy, o.noise_sigma = _noise_sigmas(noise_sigma, True)
+    o.noise_mode = _noise_mode(noise_model)
+    if regime:
+        o.fit.regime = int(regime)
     o.fit_auto = 1 if fit_auto else 0
     set_fit(o.fit, fit)
     counters = ctypes.POINTER(S.ft_points_counters)()
@@ -143,7 +187,7 @@ def dim_points(x, y=None, z=None, w=None, *, method="yokoya", wkt=None, lags=Non
     out = ctypes.POINTER(S.ft_dim_result)()
     try:
         pr.check(lib.ft_surface_dim_points(p.ref, ctypes.byref(o), ctypes.byref(out)))
-        r = take_result(out)
+        r = take_result(out, crs)
         c = counters.contents
         table = np.zeros(c.n, LAG_DTYPE)
         for i in range(c.n):

@@ -2,6 +2,7 @@
 (terrain.h, render.h, io.h; docs/terrain-*.md). Seeds are unsigned 64-bit integers, default 1 as in
 the CLI; the same seed gives bit-identical cells on any thread count."""
 import ctypes
+import math
 
 import numpy as np
 
@@ -11,9 +12,9 @@ from ._core import as_grid, _CGrid, _CPoints, grid_from_c, Progress
 from ._common import path_bytes
 
 __all__ = ["synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel", "hillshade",
-           "hillshade_file", "SYNTH_METHODS", "RECON_METHODS"]
+           "hillshade_file", "fill", "SYNTH_METHODS", "RECON_METHODS"]
 
-SYNTH_METHODS = ("fft", "sra", "midpoint", "exact")
+SYNTH_METHODS = ("fft", "sra", "midpoint", "exact", "sra-raw", "midpoint-raw")
 RECON_METHODS = ("fractal", "conditional", "smooth")
 
 
@@ -178,3 +179,71 @@ def hillshade_file(dem_path, out_path, *, azimuth=315.0, altitude=45.0, z_factor
     o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
     o.color, o.band = 1 if color else 0, int(band)
     check(lib.ft_io_hillshade(path_bytes(dem_path), path_bytes(out_path), ctypes.byref(o)))
+
+
+def _void_dict(v, i):
+    """One void as the CLI's JSON "voids" item (cli/cmd_fill.c)."""
+    d = {"id": i, "cells_box": [v.x0, v.y0, v.x1, v.y1], "cells": v.cells, "edge": bool(v.edge),
+         "filled": bool(v.filled)}
+    if v.filled:
+        flat = v.source == 3  # FT_FILL_D_FLAT
+        d.update(D=None if flat else v.D, amplitude=0.0 if flat else v.amplitude,
+                 r2=v.r2 if math.isfinite(v.r2) else None, D_source=lib.ft_fill_d_source_name(v.source).decode(),
+                 ring_cells=v.ring_cells, conditioning_cells=v.conditioning)
+    w = []
+    if not v.filled:
+        w.append("larger than --max-void: left nodata")
+    if v.clamped:
+        w.append("the ring's variogram slope gave D outside [2.01, 2.99]: clamped")
+    if v.filled and v.source == 1:  # FT_FILL_D_DEM
+        w.append("too few valid pairs in the ring: D and amplitude from the whole DEM")
+    if v.filled and v.source == 3:
+        w.append("flat surroundings: filled with the kriging mean")
+    d["warnings"] = w
+    return d
+
+
+def fill(dem, *, valid=None, max_void=100, mean=False, realizations=1, dim=None, ring=None, seed=1,
+         geotransform=None, wkt=None, progress=None, progress_arg=None):
+    """Fills the nodata voids of a DEM by conditional simulation (ft_terrain_fill), as `fracterra fill`:
+    a power variogram fitted on a ring around each void, the kriging of the cells within 2 cells of it
+    plus an fBm of that variogram minus its own kriging; valid cells are kept bit for bit.
+
+    dem: a Grid, 2-D array (NaN = nodata) or numpy.ma array. valid: None, or a bool array of the DEM's
+    shape whose False cells are filled too (the CLI's --mask). max_void: voids whose bounding box is
+    longer than this many cells stay nodata (0 = fill all; the CLI's "Nm" ground form is not wrapped).
+    mean: the kriging mean instead of a realization; realizations N > 1: the per-cell mean and sd of N.
+    dim: D in (2, 3) for every void (None = fitted per void); ring: ring width in cells (None = auto).
+    Returns (grid, sd, info): sd a Grid with realizations > 1 (else None); info the CLI's JSON members
+    voids_found, voids_filled, cells_filled, cells_left and voids (a list of dicts)."""
+    g = as_grid(dem, geotransform, wkt)
+    o = S.ft_fill_opts.default()
+    o.max_void = float(max_void)
+    o.mean = 1 if mean else 0
+    o.realizations = int(realizations)
+    if dim is not None:
+        o.dim = float(dim)
+    if ring is not None:
+        o.ring = int(ring)
+    o.seed = int(seed)
+    cg = _CGrid(g)
+    keep = None
+    if valid is not None:
+        keep = np.ascontiguousarray(valid, dtype=np.uint8)
+        if keep.shape != g.z.shape:
+            raise ValueError("valid has shape %r, the DEM %r" % (keep.shape, g.z.shape))
+    pr = Progress(progress, progress_arg)
+    pr.install(o)
+    out, sd = ctypes.POINTER(S.ft_grid)(), ctypes.POINTER(S.ft_grid)()
+    res = ctypes.POINTER(S.ft_fill_result)()
+    vp = keep.ctypes.data_as(ctypes.POINTER(ctypes.c_uint8)) if keep is not None else None
+    pr.check(lib.ft_terrain_fill(cg.ref, vp, ctypes.byref(o), ctypes.byref(out),
+                                 ctypes.byref(sd) if o.realizations > 1 else None, ctypes.byref(res)))
+    try:
+        r = res.contents
+        info = {"voids_found": r.nvoids, "voids_filled": r.voids_filled, "cells_filled": r.cells_filled,
+                "cells_left": r.cells_left, "voids": [_void_dict(r.voids[i], i + 1) for i in range(r.nvoids)]}
+    finally:
+        lib.ft_fill_result_free(res)
+    z = grid_from_c(out)
+    return z, (grid_from_c(sd) if sd else None), info

@@ -12,8 +12,8 @@ LUX = "dem_luxembourg_terra_30s.tif"
 
 
 def printed(v):
-    """v as the CLI's JSON prints it, read back."""
-    return float("%.15g" % v)
+    """v as the CLI's JSON prints it, read back (null for a value that is not finite)."""
+    return float("%.15g" % v) if np.isfinite(v) else None
 
 
 def same_result(py, js):
@@ -24,6 +24,15 @@ def same_result(py, js):
     assert py.segmentation == js["segmentation"]
     assert py.warnings == js["warnings"]
     assert py.units == js.get("units", "")
+    d = py.as_dict()
+    assert d["choice"] == js["choice"] and d["regime"] == js["regime"]
+    assert [printed(b) for b in d["breaks"]] == js["breaks"]
+    assert len(d["regimes"]) == len(js["regimes"])
+    for reg, jreg in zip(d["regimes"], js["regimes"]):
+        assert {k: printed(v) if isinstance(v, float) else v for k, v in reg.items()} == jreg
+    assert (py.noise_model is None) == ("noise" not in js)
+    if py.noise_model is not None:
+        assert {k: printed(v) if isinstance(v, float) else v for k, v in py.noise_model.items()} == js["noise"]
     assert len(py.table) == len(js["table"])
     for row, jrow in zip(py.table, js["table"]):
         assert (printed(row["scale"]), printed(row["value"]), printed(row["count"]), bool(row["used"])) == \
@@ -46,9 +55,11 @@ def test_dim_surface(cli, data, method):
 
 
 def test_dim_surface_scale_range_and_gdal_grid(cli, data):
-    js = cli("dim", "surface", data(LUX), "--min-scale", "0.01", "--max-scale", "0.1")
-    py = ft.dim_surface(ft.from_gdal(data(LUX)), min_scale=0.01, max_scale=0.1)
+    # a lon/lat DEM: measured on its warp to a local transverse Mercator, scales in metres
+    js = cli("dim", "surface", data(LUX), "--min-scale", "2000", "--max-scale", "12000")
+    py = ft.dim_surface(ft.from_gdal(data(LUX)), min_scale=2000, max_scale=12000)
     same_result(py, js)
+    assert py.units == "m" and js["geographic"]["crs"]
 
 
 def test_dim_line_file_and_arrays(cli, data):
@@ -58,9 +69,33 @@ def test_dim_line_file_and_arrays(cli, data):
     chains, wkt = ft.read_chains(path)
     assert "UTM zone 21N" in wkt and len(chains) == 1 and chains[0][0].shape == (64193, 2)
     coords, closed, _ = chains[0]
-    same_result(ft.dim_line(coords, closed=closed), js)
+    same_result(ft.dim_line(coords, closed=closed, wkt=wkt), js)
     js_box = cli("dim", "line", path, "--method", "box")
-    same_result(ft.dim_line(coords[:, 0], coords[:, 1], closed=closed, method="box"), js_box)
+    same_result(ft.dim_line(coords[:, 0], coords[:, 1], closed=closed, method="box", wkt=wkt), js_box)
+    # without the CRS the scales are in an unknown unit: the result says so, as the CLI does
+    bare = ft.dim_line(coords, closed=closed)
+    assert bare.units == "" and any("no CRS" in w for w in bare.warnings)
+
+
+@pytest.mark.parametrize("method", ["divider", "box"])
+def test_dim_line_lonlat_as_the_cli(cli, data, method):
+    """Lon/lat lines: walked on the ellipsoid, box-counted in a local equal-area projection; metres."""
+    path = data("gshhg_newfoundland_lonlat.geojson")
+    js = cli("dim", "line", path, "--method", method)
+    py = ft.dim_line(path, method=method)
+    same_result(py, js)
+    assert py.units == "m"
+    chains, wkt = ft.read_chains(path)
+    same_result(ft.dim_line([c for c, _, _ in chains], closed=[cl for _, cl, _ in chains], wkt=wkt, method=method),
+                js)
+
+
+def test_dim_area_lonlat_as_the_cli(cli, data):
+    path = data("dcw_us_states_small_lonlat.geojson")
+    js = cli("dim", "area", path)
+    py = ft.dim_area(path)
+    same_result(py, js)
+    assert py.units == "m"
 
 
 def test_dim_points(cli, data):
@@ -206,3 +241,82 @@ def test_edit_file_same_geometry(cli, data, tmp_path, args, steps, coverage):
     assert wa == wb and len(ca) == len(cb)
     for (xa, ra, fa), (xb, rb, fb) in zip(ca, cb):
         assert (ra, fa) == (rb, fb) and np.array_equal(xa, xb)
+
+
+def test_dim_profile_row_transect_line(cli, data, tmp_path):
+    dem = data(VOLCANO)
+    js = cli("dim", "profile", dem, "--row", "30")
+    py = ft.dim_profile(dem, row=30, method="both")
+    assert [r.method for r in py] == [j["method"] for j in js["results"]] == ["madogram", "variogram"]
+    for r, j in zip(py, js["results"]):
+        same_result(r, j)
+    assert py[0].extra["samples"] == js["samples"] and printed(py[0].extra["spacing"]) == js["spacing"]
+    # the same row given as a Grid, and as a bare array with its spacing
+    g = ft.read_grid(dem)
+    same_result(ft.dim_profile(g, row=30, method="madogram"), js["results"][0])
+    same_result(ft.dim_profile(g.z[30].astype(float), spacing=abs(g.geotransform[1]), method="madogram"),
+                js["results"][0])
+    x0, dx, _, y0, _, dy = g.geotransform
+    a = (x0 + 5.5 * dx, y0 + 10.5 * dy)
+    b = (x0 + 50.5 * dx, y0 + 70.5 * dy)
+    jt = cli("dim", "profile", dem, "--from", "%r,%r" % a, "--to", "%r,%r" % b, "--method", "variogram")
+    pt = ft.dim_profile(dem, start=a, end=b)
+    same_result(pt, jt)
+    assert pt.extra["profile"] == jt["profile"] == "transect"
+    # a 3-D line: z resampled along its horizontal length
+    t = np.linspace(0.0, 900.0, 181)
+    line = tmp_path / "line3d.geojson"
+    zz = 10 * np.sin(t / 37.0) + np.cos(t / 5.3) + 0.3 * np.sin(t * 1.7)
+    line.write_text('{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {}, '
+                    '"geometry": {"type": "LineString", "coordinates": [%s]}}]}'
+                    % ", ".join("[%r, %r, %r]" % (v, 0.5 * v, w) for v, w in zip(t, zz)))
+    jl = cli("dim", "profile", line, "--method", "madogram")
+    pl = ft.dim_profile(line, method="madogram")
+    same_result(pl, jl)
+    assert pl.extra["samples"] == jl["samples"]
+    with pytest.raises(ValueError, match="spacing"):
+        ft.dim_profile(np.arange(10.0))
+
+
+@pytest.mark.parametrize("args,kw", [([], {}), (["--mean"], dict(mean=True)),
+                                     (["--realizations", "3", "--seed", "5"], dict(realizations=3, seed=5)),
+                                     (["--max-void", "6", "--dim", "2.3"], dict(max_void=6, dim=2.3))])
+def test_fill_same_cells(cli, data, tmp_path, args, kw):
+    g = ft.read_grid(data(VOLCANO))
+    z = g.z.copy()
+    z[20:24, 30:33] = np.nan   # an inner void of 12 cells
+    z[50:60, 10:20] = np.nan   # one of 10 x 10 (left nodata with --max-void 6)
+    z[0:2, 0:3] = np.nan       # one on the edge
+    holes = ft.Grid(z, mask=np.isfinite(z), geotransform=g.geotransform, wkt=g.wkt, nodata=-9999.0)
+    src, dst = tmp_path / "holes.tif", tmp_path / "filled.tif"
+    ft.write_grid(src, holes)
+    js = cli("fill", src, dst, *args)
+    out, sd, info = ft.fill(ft.read_grid(src), **kw)
+    for k in ("voids_found", "voids_filled", "cells_filled", "cells_left"):
+        assert info[k] == js[k]
+    assert len(info["voids"]) == len(js["voids"]) == 3
+    for v, jv in zip(info["voids"], js["voids"]):
+        assert {k: printed(x) if isinstance(x, float) else x for k, x in v.items()} == jv
+    cz, valid, gt = read_band(dst)
+    pm = np.ones(out.z.shape, bool) if out.mask is None else out.mask
+    assert gt == out.geotransform and np.array_equal(valid, pm) and np.array_equal(cz[valid], out.z[pm])
+    assert np.array_equal(out.z[np.isfinite(z)], z[np.isfinite(z)])  # valid cells kept bit for bit
+    if kw.get("realizations", 1) > 1:
+        csd, _, _ = read_band(dst, 2)
+        assert np.array_equal(csd[valid], sd.z[pm])
+    else:
+        assert sd is None
+
+
+def test_dim_points_lonlat_as_the_cli(cli, data, tmp_path):
+    """Lon/lat points (a GeoJSON point layer in WGS 84): lags in metres in a local transverse Mercator."""
+    x, y, z, _, _ = ft.read_points(data("points_mass_topo_davis1973.csv"))
+    lon, lat = -71.0 + x * 0.004, 42.0 + y * 0.003
+    path = tmp_path / "pts.geojson"
+    path.write_text('{"type": "FeatureCollection", "features": [%s]}' % ", ".join(
+        '{"type": "Feature", "properties": {"z": %r}, "geometry": {"type": "Point", "coordinates": [%r, %r]}}'
+        % (c, a, b) for a, b, c in zip(lon, lat, z)))
+    js = cli("dim", "points", path, "--zfield", "z", "--min-pairs", "5")
+    py = ft.dim_points(path, zfield="z", min_pairs=5)
+    same_result(py, js)
+    assert py.units == "m" and js["geographic"]

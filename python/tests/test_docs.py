@@ -25,7 +25,7 @@ def test_docs_python_examples_run(monkeypatch, capsys):
     for src in code:  # one namespace, in order, as a reader runs them
         exec(compile(src, "docs/python.md", "exec"), env)
     out = capsys.readouterr().out
-    assert "1.26085556909974" in out
+    assert "1.30969385311468" in out
 
 
 def test_readme_python_tour_runs(monkeypatch):
