@@ -21,7 +21,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "internal.h"
 
 #define MODEL_NAME "clarke1987"
 
@@ -222,8 +221,8 @@ static void read_grid(reader *r, json_object *o, ft_clarke_model *m)
     if (r->rc == FT_OK && g && json_object_object_get_ex(g, "crs", &crs) && crs) {
         if (!json_object_is_type(crs, json_type_string))
             r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.crs\" must be a WKT string or null", r->what);
-        else if ((m->crs_wkt = ft_strdup(json_object_get_string(crs))) == NULL)
-            r->rc = ft_last_error_code();
+        else if ((m->crs_wkt = strdup(json_object_get_string(crs))) == NULL)
+            r->rc = ft_error(FT_E_NOMEM, "%s: out of memory for the CRS", r->what);
     }
 }
 

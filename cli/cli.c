@@ -3,7 +3,6 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli.h"
-#include "internal.h"
 
 #include <cpl_progress.h>
 #include <errno.h>

@@ -11,7 +11,6 @@
  */
 #include "cli.h"
 #include "demo.h"
-#include "internal.h"
 
 #include <errno.h>
 #include <stdio.h>

@@ -9,7 +9,6 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "internal.h"
 #include "terrain_cli.h"
 
 #include <errno.h>

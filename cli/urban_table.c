@@ -10,7 +10,6 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "internal.h"
 #include "cli_geo.h"
 #include "urban_cli.h"
 
