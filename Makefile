@@ -36,7 +36,7 @@ bench: build
 # on the independent Stein generator, then z-only noise, then fracterra's own synthesizers;
 # ACCURACY_FLAGS="--surfaces 20" for a shorter run (about 25 min on 2 loaded cores).
 ACCURACY_FLAGS ?= --surfaces 100
-# Arakawa & Krotkov Table 4 and the held-out RMSE against GRASS v.surf.rst (reconstruction, issue 7).
+# Arakawa & Krotkov Table 4 and the held-out RMSE against GRASS v.surf.rst (reconstruction).
 ACCURACY_RECON_FLAGS ?= --surfaces 4
 accuracy: build
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth stein --snr 30,25,20

@@ -27,11 +27,11 @@ typedef struct cli_command {
 /* The commands (one cmd_<name>.c each), listed in fracterra.c's dispatch table. */
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_demo;
-extern const cli_command cli_cmd_synth;     /* terrain (issue 5) */
+extern const cli_command cli_cmd_synth;     /* terrain */
 extern const cli_command cli_cmd_model;
-extern const cli_command cli_cmd_reconstruct; /* reconstruction (issue 7) */
-extern const cli_command cli_cmd_fill;        /* void filling (issue 14) */
-extern const cli_command cli_cmd_mountain;    /* contour mountain (issue 8) */
+extern const cli_command cli_cmd_reconstruct; /* reconstruction */
+extern const cli_command cli_cmd_fill;        /* void filling */
+extern const cli_command cli_cmd_mountain;    /* contour mountain */
 extern const cli_command cli_cmd_hillshade;
 extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_dim;
@@ -39,7 +39,7 @@ extern const cli_command cli_cmd_enhance;
 extern const cli_command cli_cmd_simplify;
 extern const cli_command cli_cmd_weed;
 extern const cli_command cli_cmd_smooth;
-extern const cli_command cli_cmd_urban;     /* urban morphology (issue 4), with its subcommands */
+extern const cli_command cli_cmd_urban;     /* urban morphology, with its subcommands */
 extern const cli_command cli_cmd_urban_table;
 extern const cli_command cli_cmd_urban_regress;
 extern const cli_command cli_cmd_boundary;

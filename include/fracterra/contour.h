@@ -1,4 +1,4 @@
-/* fracterra — contour.h: the seed-contour mountain generator (Misawa, Chiba & Saito, seeds 001):
+/* fracterra — contour.h: the seed-contour mountain generator (Misawa, Chiba & Saito):
  * polygon shrinking with three corner joins and the paper's d' join, random midpoint displacement,
  * P-type Fourier descriptor phase randomization, the improved method, contour stacks and the DEM they
  * define.

@@ -1,9 +1,9 @@
 /* fracterra — line.h: the fractal dimension of chains, and Dutton's fractal enhancement of generalized lines
  * with the companion operations (Douglas-Peucker simplification, weeding, roundness smoothing).
  *
- * Papers: Dutton (1981) "Fractal enhancement of cartographic line detail" (seeds 000); Clarke (1987) walking
- * dividers (seeds 004); Zhang, Yu & Fan (2008) line methods (seeds 002); Arakawa & Krotkov §2.4 log-log
- * segmentation (seeds 003). docs/line-*.md hold the equations and limits.
+ * Papers: Dutton (1981) "Fractal enhancement of cartographic line detail"; Clarke (1987) walking
+ * dividers; Zhang, Yu & Fan (2008) line methods; Arakawa & Krotkov §2.4 log-log
+ * segmentation. docs/line-*.md hold the equations and limits.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */

@@ -1,7 +1,7 @@
 /* fracterra — surface.h: the fractal dimension of elevation grids and of scattered elevations.
  *
  * Papers: Mark & Aronson (1984) variogram; Arakawa & Krotkov §2 (Yokoya and Pentland estimators, log-log
- * segmentation, seeds 003); Clarke (1986, 1987) triangular prism and spectrum (seeds 004).
+ * segmentation); Clarke (1986, 1987) triangular prism and spectrum.
  * docs/surface-*.md hold the equations and limits.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later

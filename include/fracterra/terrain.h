@@ -2,8 +2,8 @@
  * exact circulant embedding), Clarke's scale-based model (trend + significant harmonics + fractal noise)
  * and reconstruction of dense terrain from sparse points (regularization with fractal priors).
  *
- * Papers: Clarke (1987) "Scale-based simulation of topography" (seeds 004); Arakawa & Krotkov §3 (SRA and
- * reconstruction, seeds 003); Voss (1985); Fournier, Fussell & Carpenter (1982); Stein (2002) for exact 2-D fBm.
+ * Papers: Clarke (1987) "Scale-based simulation of topography"; Arakawa & Krotkov §3 (SRA and
+ * reconstruction); Voss (1985); Fournier, Fussell & Carpenter (1982); Stein (2002) for exact 2-D fBm.
  * docs/terrain-*.md hold the equations and limits.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later

@@ -3,7 +3,7 @@
  * that simulates a boundary with detail of a given dimension.
  *
  * Paper: Zhang Yi, Yu Jie, Fan Wei (2008), "Fractal features of urban morphology and simulation of urban
- * boundary", Geo-spatial Information Science 11(2) (seeds 002): box counting §1.1 (Eqs. 1-4), the
+ * boundary", Geo-spatial Information Science 11(2): box counting §1.1 (Eqs. 1-4), the
  * regression §1.2 (Eq. 5), the generator §2 (Eqs. 6-13). docs/urban-boxcount.md and docs/urban-boundary.md
  * hold the equations, the readings of the garbled passages and the limits.
  *

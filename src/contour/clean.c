@@ -1,5 +1,5 @@
 /* fracterra — src/contour/clean.c: the faces a set of closed curves winds around positively, and with them
- * the removal of twists and loops (Misawa, Chiba & Saito, seeds 001, §2 steps 3-4 and §4.4 method 1).
+ * the removal of twists and loops (Misawa, Chiba & Saito, §2 steps 3-4 and §4.4 method 1).
  *
  * The region is {p : w(p) > 0}, w the winding number of all the curves together: "the counter-clockwise
  * faces" of §2 step 4. For a counter-clockwise outer ring and its clockwise holes this is the polygon's

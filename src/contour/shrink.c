@@ -1,5 +1,5 @@
 /* fracterra — src/contour/shrink.c: polygon shrinking (and growing) by a distance d with the corner joins of
- * Misawa, Chiba & Saito (seeds 001, §2, Fig. 5-7).
+ * Misawa, Chiba & Saito (§2, Fig. 5-7).
  *
  * Every edge of every ring is moved by d to the polygon's side (the left of a counter-clockwise outer ring
  * and of a clockwise hole, so holes grow when the polygon shrinks; d < 0 moves it the other way). At a

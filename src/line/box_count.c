@@ -1,4 +1,4 @@
-/* fracterra — src/line/box_count.c: box counting of chains (Zhang, Yu & Fan 2008, seeds 002, §1.1:
+/* fracterra — src/line/box_count.c: box counting of chains (Zhang, Yu & Fan 2008, §1.1:
  * N(r) ~ r^-D, D = -slope of log N on log r, their Eq. 1-2), counted exactly: N is the number of grid
  * cells holding at least one point of a segment. Cells are half-open, [x0, x0 + r) x [y0, y0 + r), so a
  * point on a grid line belongs to the cell on its right (above), a grid corner to the cell up and to the

@@ -1,8 +1,8 @@
 /* fracterra — src/line/divider.c: the walking divider (structured walk) of Richardson, as Mandelbrot
- * (1977, p. 32) describes it and Dutton (1981, seeds 000) uses it, in Clarke's (1987, seeds 004) words:
+ * (1977, p. 32) describes it and Dutton (1981) uses it, in Clarke's (1987) words:
  * "opening a set of dividers to a spacing d, then walking the dividers along the line, taking a total of
  * N steps ... N should contain a fraction of a step at the end of the line"; L(d) = N d and
- * D = 1 - b with b the slope of log L on log d (Clarke eq. ii-iii; Zhang et al. 2008, seeds 002,
+ * D = 1 - b with b the slope of log L on log d (Clarke eq. ii-iii; Zhang et al. 2008,
  * "Structured Walk method").
  *
  * Each step ends at the first point of the chain, after the current point, at distance d from it: the

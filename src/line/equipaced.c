@@ -1,4 +1,4 @@
-/* fracterra — src/line/equipaced.c: the equipaced polygon (Zhang, Yu & Fan 2008, seeds 002, "Equipaced
+/* fracterra — src/line/equipaced.c: the equipaced polygon (Zhang, Yu & Fan 2008, "Equipaced
  * Polygon method", after Kaye and Clark): the chain is resampled at points equally spaced by s along its
  * arc length, s_k = k s (k = 0, 1, ...), and the length of the polygon through those points, closed by
  * the chain's end point (vertex 0 again for a ring), is L(s). As for the divider, L(s) ~ s^(1 - D),

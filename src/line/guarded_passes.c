@@ -1,6 +1,6 @@
 /* fracterra — line/guarded_passes.c: runs a vertex-moving operation (Dutton 1981 enhancement, roundness
  * smoothing) pass by pass over a set of chains, every pass through the crossing guard (move_guard.c) over
- * the whole set, so that no chain of the set crosses itself or another (issue 15).
+ * the whole set, so that no chain of the set crosses itself or another.
  *
  * A pass computes base and raw chains for every chain (independently, in chain order), then either guards
  * the moves of the whole set at once or takes the raw positions (guard = 0: the raw algorithm), then drops

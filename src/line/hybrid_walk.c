@@ -1,6 +1,6 @@
 /* fracterra — src/line/hybrid_walk.c: the hybrid walk of Clarke & Schweizer (1991, "Measuring the
  * fractal dimension of natural surfaces using a robust fractal estimator"; listed by Zhang, Yu & Fan
- * 2008, seeds 002, beside the structured walk and the equipaced polygon).
+ * 2008, beside the structured walk and the equipaced polygon).
  *
  * Reading of the method used here: it is the walking divider (divider.c) restricted to the chain's
  * vertices. From the current vertex P the walk moves to the first following vertex V at distance

@@ -5,7 +5,7 @@
  * is summed over the chains (lengths) or counted over all of them at once (boxes), one log-log row per
  * scale, and the table is fitted by the shared module (core.h, docs/loglog.md): ft_loglog_fit_auto within
  * [lo, hi], which keeps the longest straight run by iterative least squares and reports every minimax
- * segment (Arakawa & Krotkov, seeds 003, §2.4), or ft_loglog_fit_range over all of [lo, hi].
+ * segment (Arakawa & Krotkov, §2.4), or ft_loglog_fit_range over all of [lo, hi].
  *
  * Automatic range (docs/line-dimension.md): for the walks lo = 2 x the median segment length, since shorter
  * rulers step from vertex to vertex and measure the polygon itself (slope 0: D -> 1), and hi = 1/4 of the

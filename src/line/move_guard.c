@@ -1,4 +1,4 @@
-/* fracterra — line/move_guard.c: the crossing guard of the line operations (issue 15): a pass of Dutton's
+/* fracterra — line/move_guard.c: the crossing guard of the line operations: a pass of Dutton's
  * enhancement, of roundness smoothing, of Zhang et al.'s boundary generator or of a contour displacement
  * proposes, for every output vertex, a base position (where it is with no displacement: the input's own
  * geometry, e.g. a new midpoint on its segment) and a raw position (where the algorithm puts it). The guard

@@ -156,7 +156,7 @@ static double noisy_value(const ft_dim_result *r, double lx)
     return log10(pow(pow(10.0, m->power * ly) + m->c0, 1.0 / m->power));
 }
 
-/* The fitted structure function with the noise, dashed, over the table's scales (issue 21). */
+/* The fitted structure function with the noise, dashed, over the table's scales. */
 static void draw_noise_curve(cairo_t *cr, const frame *f, const ft_dim_result *r)
 {
     static const double dash[] = {3.0, 3.0};

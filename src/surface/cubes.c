@@ -1,6 +1,6 @@
 /* fracterra — cubes.c: the cube-counting dimension of an elevation grid (box counting of the surface in
  * three dimensions; Voss 1986, Peitgen & Saupe "The Science of Fractal Images"; Arakawa & Krotkov §2.1 on
- * box counting and its saturation near 3, seeds 003).
+ * box counting and its saturation near 3).
  *
  * Space is divided into cubes of side s = 2^k cells; N(s) is the number of cubes the surface meets, and
  * N(s) ~ s^-D (FT_DIM_MAP_BOXCOUNT_SURFACE). Over each block of (s + 1) x (s + 1) cells (neighbouring

@@ -1,5 +1,5 @@
 /* fracterra — increments.c: Yokoya's and Pentland's estimators on an elevation grid (Arakawa & Krotkov,
- * "Fractal modeling of natural terrain", §2.3 eqs. 3-5 and §2.4 step 1, seeds 003; Pentland 1984, Yokoya
+ * "Fractal modeling of natural terrain", §2.3 eqs. 3-5 and §2.4 step 1; Pentland 1984, Yokoya
  * et al. 1989).
  *
  * For a fractal Brownian function the absolute elevation difference |Δz| of two points a distance Δd

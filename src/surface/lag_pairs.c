@@ -1,6 +1,6 @@
 /* fracterra — lag_pairs.c: the pairs of grid cells at integer lags, shared by the variogram (Mark &
  * Aronson 1984), Yokoya's and Pentland's estimators (Arakawa & Krotkov, "Fractal modeling of natural
- * terrain", §2.3-2.4, seeds 003).
+ * terrain", §2.3-2.4).
  *
  * For every lag the counters of §2.4 step 1 are accumulated over the pairs: A = Σ|Δz|, B = Σ(Δz)²,
  * C = the number of pairs, and the sum of the pairs' ground distances (the table's scale is their mean).

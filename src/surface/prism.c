@@ -1,6 +1,6 @@
 /* fracterra — prism.c: Clarke's triangular prism surface area dimension of an elevation grid (K. C.
  * Clarke 1986, "Computation of the fractal dimension of topographic surfaces using the triangular prism
- * surface area method", Computers & Geosciences 12(5); described in Clarke 1987, seeds 004).
+ * surface area method", Computers & Geosciences 12(5); described in Clarke 1987).
  *
  * The grid is divided into squares of side s = 2^k cells, "the size of the cells into which it can be
  * divided equally by powers of two". Over each square with corners a, b, c, d the centre gets the mean

@@ -1,5 +1,5 @@
 /* fracterra — spectrum.c: the power-spectrum dimension of an elevation grid (Clarke 1987, "Scale-based
- * simulation of topography", eqs. vi-viii, seeds 004; Voss 1985; Welch 1967 for averaged periodograms;
+ * simulation of topography", eqs. vi-viii; Voss 1985; Welch 1967 for averaged periodograms;
  * prewhitening by first differences: Blackman & Tukey 1958, Percival & Walden 1993 ch. 6).
  *
  * For an isotropic fractional Brownian surface the radially averaged power falls as P(f) ~ f^-beta with

@@ -1,5 +1,5 @@
 /* fracterra — variogram.c: the variogram dimension of an elevation grid (Mark & Aronson 1984, "Scale-
- * dependent fractal dimensions of topographic surfaces", Math. Geology 16(7); Clarke's survey, seeds 004).
+ * dependent fractal dimensions of topographic surfaces", Math. Geology 16(7); Clarke's survey).
  *
  * For fBm, E(z(x + d) - z(x))^2 ~ d^(2H), so the slope s of log mean squared difference against log lag
  * gives H = s/2 and D = 3 - s/2 (FT_DIM_MAP_VARIOGRAM_SURFACE): the table holds B/C, the mean squared

@@ -1,5 +1,5 @@
 /* fracterra — synth_calibration.c: the calibration of the sra and midpoint synthesizers, so that a
- * surface asked for dimension D has the variogram D over lags 1-16 cells (issue 14;
+ * surface asked for dimension D has the variogram D over lags 1-16 cells (
  * docs/terrain-synthesis.md). The target estimator: mean squared difference along rows and columns at
  * every integer lag h = 1..16, least squares of its log on log h, D = 3 - slope / 2.
  *

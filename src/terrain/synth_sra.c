@@ -1,6 +1,6 @@
 /* fracterra — synth_sra.c: successive random addition (Voss 1985, "Random fractal forgeries"; Saupe 1988,
  * algorithm InterpolatedFM2D / "successive random additions"), the synthesizer Arakawa & Krotkov used for
- * their synthetic data (seeds 003, §2.5 and §3.4).
+ * their synthetic data (§2.5 and §3.4).
  *
  * A coarse lattice of bx x by squares (spacing delta_0 = 2^L cells) gets independent N(0, delta_0^(2H))
  * values. Each of the L levels halves the spacing (r = 1/2): the new lattice is the bilinear interpolation

@@ -1,5 +1,5 @@
 /* fracterra — src/urban/boundary.c: the midpoint-subdivision fractal generator of Zhang, Yu & Fan (2008,
- * seeds 002, §2) that simulates an urban boundary at a larger scale with detail of dimension D.
+ * §2) that simulates an urban boundary at a larger scale with detail of dimension D.
  *
  * Generator (Fig. 3, Eqs. 6-9): a segment B -> C of length r becomes the two legs B -> N -> C, each of length
  * r / (2 cos a), where a is the base angle of the isosceles triangle B N C. One step multiplies the number of

@@ -1,5 +1,5 @@
-/* fracterra — src/urban/boundary_guarded.c: Zhang, Yu & Fan's (2008, seeds 002, §2) midpoint-subdivision
- * generator run level by level through the crossing guard (line/move_guard.c, issue 15), so that the
+/* fracterra — src/urban/boundary_guarded.c: Zhang, Yu & Fan's (2008, §2) midpoint-subdivision
+ * generator run level by level through the crossing guard (line/move_guard.c), so that the
  * simulated boundary is simple and crosses no other boundary of the layer.
  *
  * One level splits every segment whose length r is in the window min < r <= max (boundary.c's thresholds;

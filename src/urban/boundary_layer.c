@@ -1,5 +1,5 @@
 /* fracterra — src/urban/boundary_layer.c: the midpoint-subdivision generator (boundary.c; Zhang, Yu & Fan
- * 2008, seeds 002, §2.2.3) over a whole layer. Polygon layers are coverages: through ft_line_apply_layer
+ * 2008, §2.2.3) over a whole layer. Polygon layers are coverages: through ft_line_apply_layer
  * each arc of the arc-node topology is generated once with its nodes fixed, and the rings rebuilt from the
  * arcs, so the two sides of a shared boundary get the same detail. No stream bookkeeping is needed for
  * that: a segment's random stream is keyed by its own end points (boundary.c), so each arc's detail is the

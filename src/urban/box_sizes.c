@@ -1,5 +1,5 @@
 /* fracterra — src/urban/box_sizes.c: the box sides of the polygon and raster box counters and the fit of
- * their log-log table (Zhang, Yu & Fan 2008, seeds 002, §1.1: ln N(r) = -D ln r + ln c, Eq. 2, fitted by
+ * their log-log table (Zhang, Yu & Fan 2008, §1.1: ln N(r) = -D ln r + ln c, Eq. 2, fitted by
  * least squares, Eq. 4), shared with every estimator through ft_loglog_fit_auto (docs/loglog.md).
  *
  * Sides are either the caller's explicit list (sorted, all kept) or the geometric series

@@ -1,5 +1,5 @@
 /* fracterra — src/urban/class_stats.c: area, perimeter and polygon count of a land-use class, the columns
- * that accompany D in the per-year table (Zhang, Yu & Fan 2008, seeds 002, Table 2: area of residence
+ * that accompany D in the per-year table (Zhang, Yu & Fan 2008, Table 2: area of residence
  * against D, the data of the regression of Eq. 5).
  *
  * Vector: area = sum of |outer ring areas| - sum of |inner ring areas| (shoelace), perimeter = total ring

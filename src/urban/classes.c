@@ -1,4 +1,4 @@
-/* fracterra — src/urban/classes.c: the land-use classes of a layer (Zhang, Yu & Fan 2008, seeds 002, §1.2:
+/* fracterra — src/urban/classes.c: the land-use classes of a layer (Zhang, Yu & Fan 2008, §1.2:
  * residential area, industrial area, vegetation, water system, each measured on its own), i.e. its polygon
  * features grouped by the value of one attribute field. Features are sorted by (value, index) and cut
  * into runs of equal values: integer and real fields compare numerically, strings by strcmp.

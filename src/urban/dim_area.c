@@ -1,5 +1,5 @@
 /* fracterra — src/urban/dim_area.c: box-counting dimension of the polygons of a land-use layer (Zhang, Yu &
- * Fan 2008, seeds 002, §1.1-1.2: N(r) ~ r^-D, Eqs. 1-4, measured per land-use class and year), counted
+ * Fan 2008, §1.1-1.2: N(r) ~ r^-D, Eqs. 1-4, measured per land-use class and year), counted
  * exactly from the vector geometry instead of rasterizing at each size.
  *
  * Boundary (FT_AREA_BOUNDARY): the rings are counted by ft_line_box_count_min, the exact cell traversal of

@@ -1,5 +1,5 @@
 /* fracterra — src/urban/dim_area_grid.c: box-counting dimension of one class of a classified raster (Zhang, Yu
- * & Fan 2008, seeds 002, §1.2: "we transformed the vector layers of different land use into raster images,
+ * & Fan 2008, §1.2: "we transformed the vector layers of different land use into raster images,
  * then fractal dimensions of land parcels distributed in the images are evaluated"; N(r) ~ r^-D, Eqs. 1-4).
  *
  * The class is the set of valid cells equal to the class value; its boundary cells are the class cells

@@ -1,5 +1,5 @@
 /* fracterra — src/urban/polygon_set.c: the polygons of a land-use layer (or of one class of it) that the box
- * counter and the class statistics measure (Zhang, Yu & Fan 2008, seeds 002, §1.2: residential,
+ * counter and the class statistics measure (Zhang, Yu & Fan 2008, §1.2: residential,
  * industrial, vegetation and water layers as polygons). A polygon is an outer ring followed by its inner
  * rings with the same polygon index (core.h); the set keeps them grouped so that the interior of each
  * polygon is decided by the even-odd rule over its own rings.

@@ -1,4 +1,4 @@
-/* fracterra — src/urban/regress.c: the regression of Zhang, Yu & Fan (2008, seeds 002, §1.2, Eq. 5,
+/* fracterra — src/urban/regress.c: the regression of Zhang, Yu & Fan (2008, §1.2, Eq. 5,
  * ln Areas = a + b D, their Fig. 2) relating a class's area to its box-counting dimension across years.
  *
  * Ordinary least squares y = intercept + slope x over n rows (y = ln of the input with log_y), by the

@@ -1,5 +1,5 @@
 /* fracterra — src/urban/row_bits.c: box counting over the rows of a fine grid, the counter behind the exact
- * box-counting dimension of polygon layers and classified rasters (Zhang, Yu & Fan 2008, seeds 002, §1.1,
+ * box-counting dimension of polygon layers and classified rasters (Zhang, Yu & Fan 2008, §1.1,
  * Eqs. 1-4: N(r) ~ r^-D).
  *
  * Boxes are m x m fine cells; with the origin shifted by (a, b) fine cells, fine cell (i, j) lies in box

@@ -1,5 +1,5 @@
 /* fracterra — unit tests of src/contour/shrink.c and clean.c: polygon shrinking and growing with the four
- * corner joins (Misawa, Chiba & Saito, seeds 001, §2-3), and the removal of twists and loops (§4.4).
+ * corner joins (Misawa, Chiba & Saito, §2-3), and the removal of twists and loops (§4.4).
  *
  * Expected values are derived by hand from the geometry, never from the code under test:
  *  - inner parallel polygon of a convex polygon (no edge vanishing): every vertex of the shrunk polygon

@@ -1,5 +1,5 @@
 /* fracterra — unit tests of src/urban/boundary.c and boundary_layer.c: the midpoint-subdivision generator of
- * Zhang, Yu & Fan (2008, seeds 002, §2). Accuracy as issue 4 asks: a curve generated from a straight segment
+ * Zhang, Yu & Fan (2008, §2). Accuracy as issue 4 asks: a curve generated from a straight segment
  * with D in {1.1, ..., 1.5} and no jitter has segments of exactly r / (2 cos a)^k at level k, and its divider
  * dimension over the generated scales l_k is within 0.03 of D (box counting within 0.05); with jitter the
  * median divider dimension over 10 seeds is within 0.05; segments longer than max come out vertex for

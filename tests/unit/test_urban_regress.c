@@ -1,5 +1,5 @@
 /* fracterra — unit tests of src/urban/regress.c: the regression of ln(area) on D of Zhang, Yu & Fan (2008,
- * seeds 002, Eq. 5) on their Table 2, a hand-checkable exact line, and bad input.
+ * Eq. 5) on their Table 2, a hand-checkable exact line, and bad input.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
