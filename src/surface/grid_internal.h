@@ -94,4 +94,10 @@ int ft_surface_dyadic_dim(const ft_grid *g, const ft_dyadic_opts *opts, const ch
 int ft_surface_fit_table(const ft_loglog *t, int whole, const ft_loglog_opts *fit, const ft_dim_map *map,
                          const char *name, ft_dim_result **out);
 
+/* The noise models' inner fit (nugget_fit.c, nugget_positions.c): weighted least squares of q on (1, x),
+ * q = c0 + a x, with c0 held at c0_fixed when that is >= 0, else fitted and kept >= 0. Returns the weighted
+ * RSS with *c0 and *a, or INFINITY (outputs untouched) when a is not > 0. */
+double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n, double c0_fixed, double *c0,
+                     double *a);
+
 #endif /* FRACTERRA_SURFACE_GRID_INTERNAL_H */

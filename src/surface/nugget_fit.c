@@ -49,23 +49,23 @@ typedef struct {
     const double *lr, *q, *w; /* log scale, q, weight */
     size_t n;
     double c0_fixed;          /* >= 0: c0 held at this value; < 0: fitted (>= 0) */
+    double *x;                /* scratch: r^e per row */
 } profile_data;
 
-/* Weighted LS of q on (1, r^e) at one exponent: RSS, c0 and a (INFINITY when a <= 0). */
-static double rss_at(const profile_data *p, double e, double *c0_out, double *a_out)
+double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n, double c0_fixed, double *c0_out,
+                     double *a_out)
 {
     double S = 0.0, Sx = 0.0, Sxx = 0.0, Sq = 0.0, Sxq = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        double x = exp(e * p->lr[i]), w = p->w[i];
-        S += w;
-        Sx += w * x;
-        Sxx += w * x * x;
-        Sq += w * p->q[i];
-        Sxq += w * x * p->q[i];
+    for (size_t i = 0; i < n; i++) {
+        S += w[i];
+        Sx += w[i] * x[i];
+        Sxx += w[i] * x[i] * x[i];
+        Sq += w[i] * q[i];
+        Sxq += w[i] * x[i] * q[i];
     }
     double c0, a;
-    if (p->c0_fixed >= 0.0) {
-        c0 = p->c0_fixed;
+    if (c0_fixed >= 0.0) {
+        c0 = c0_fixed;
         a = (Sxq - c0 * Sx) / Sxx;
     } else {
         double det = S * Sxx - Sx * Sx;
@@ -79,13 +79,21 @@ static double rss_at(const profile_data *p, double e, double *c0_out, double *a_
     if (!(a > 0.0) || !isfinite(a))
         return INFINITY;
     double rss = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        double r = p->q[i] - c0 - a * exp(e * p->lr[i]);
-        rss += p->w[i] * r * r;
+    for (size_t i = 0; i < n; i++) {
+        double r = q[i] - c0 - a * x[i];
+        rss += w[i] * r * r;
     }
     *c0_out = c0;
     *a_out = a;
     return rss;
+}
+
+/* Weighted LS of q on (1, r^e) at one exponent (ft_nugget_wls): RSS, c0 and a (INFINITY when a <= 0). */
+static double rss_at(const profile_data *p, double e, double *c0_out, double *a_out)
+{
+    for (size_t i = 0; i < p->n; i++)
+        p->x[i] = exp(e * p->lr[i]);
+    return ft_nugget_wls(p->x, p->q, p->w, p->n, p->c0_fixed, c0_out, a_out);
 }
 
 /* The exponent e minimising the RSS: a grid, then golden section around the best grid point. */
@@ -143,10 +151,10 @@ int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft
     size_t need = sigma_z > 0.0 ? 3 : 4;
     if (t->n < need)
         return ft_error(FT_E_EMPTY, "nugget fit: needs at least %zu rows, got %zu", need, t->n);
-    double *buf = ft_malloc(3 * t->n * sizeof *buf);
+    double *buf = ft_malloc(4 * t->n * sizeof *buf);
     if (buf == NULL)
         return FT_E_NOMEM;
-    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0};
+    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n};
     for (size_t i = 0; i < t->n; i++) {
         double q = pow(t->rows[i].value, m->power);
         buf[i] = log(t->rows[i].scale);

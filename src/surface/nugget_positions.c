@@ -64,38 +64,9 @@ typedef struct {
 /* RSS of the weighted LS of q on (1, g) with c0 >= 0 and a > 0 (INFINITY otherwise). */
 static double eiv_rss(eiv_data *p, double H, double s, double *c0_out, double *a_out)
 {
-    double S = 0.0, Sx = 0.0, Sxx = 0.0, Sq = 0.0, Sxq = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        double x = p->g[i] = ft_nugget_eiv_moment(H, p->d[i], s), w = p->w[i];
-        S += w;
-        Sx += w * x;
-        Sxx += w * x * x;
-        Sq += w * p->q[i];
-        Sxq += w * x * p->q[i];
-    }
-    double c0, a;
-    if (p->c0_fixed >= 0.0) {
-        c0 = p->c0_fixed;
-        a = (Sxq - c0 * Sx) / Sxx;
-    } else {
-        double det = S * Sxx - Sx * Sx;
-        a = det > 0.0 ? (S * Sxq - Sx * Sq) / det : 0.0;
-        c0 = (Sq - a * Sx) / S;
-        if (!(c0 >= 0.0)) {
-            c0 = 0.0;
-            a = Sxq / Sxx;
-        }
-    }
-    if (!(a > 0.0) || !isfinite(a))
-        return INFINITY;
-    double rss = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        double r = p->q[i] - c0 - a * p->g[i];
-        rss += p->w[i] * r * r;
-    }
-    *c0_out = c0;
-    *a_out = a;
-    return rss;
+    for (size_t i = 0; i < p->n; i++)
+        p->g[i] = ft_nugget_eiv_moment(H, p->d[i], s);
+    return ft_nugget_wls(p->g, p->q, p->w, p->n, p->c0_fixed, c0_out, a_out);
 }
 
 /* Best (H, s) over the grids (s = 0 alone when s_fixed == 0, the given s when > 0, the grid when < 0),
