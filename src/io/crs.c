@@ -220,12 +220,5 @@ int ft_io_points_reproject(ft_points *pts, const char *dst_wkt)
         rc = transform_xy(ct, pts->x, pts->y, pts->n, "points");
     if (ct)
         OCTDestroyCoordinateTransformation(ct);
-    if (rc == FT_OK) {
-        char *w = ft_strdup(dst_wkt);
-        if (w == NULL)
-            return FT_E_NOMEM;
-        free(pts->crs_wkt);
-        pts->crs_wkt = w;
-    }
-    return rc;
+    return rc == FT_OK ? ft_points_set_crs(pts, dst_wkt) : rc;
 }
