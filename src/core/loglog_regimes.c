@@ -26,9 +26,10 @@
  *
  * Breaks. The break between neighbouring regimes is the join point of a continuous two-phase (hinge)
  * regression over their rows and the transition rows between them, y = c + s1 min(x - xb, 0) +
- * s2 max(x - xb, 0), with xb free: for a fixed xb the model is linear, and xb minimises the profile
- * residual sum of squares (Hudson 1966, "Fitting segmented curves whose join points have to be
- * estimated", JASA 61, 1097-1129; the least-squares and Gaussian maximum-likelihood join point). It is
+ * s2 max(x - xb, 0), with xb free between the two regimes: for a fixed xb the model is linear, and xb
+ * minimises the profile residual sum of squares (Hudson 1966, "Fitting segmented curves whose join points
+ * have to be estimated", JASA 61, 1097-1129; the least-squares and Gaussian maximum-likelihood join
+ * point). It is
  * where the two asymptotes of a rounded corner meet; the regimes' D stay the fits of their own straight
  * rows, which leave out the transition.
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -367,13 +368,13 @@ static double hinge_sse(const double *x, const double *y, size_t f, size_t l, do
 }
 
 /* The least-squares join point xb (log10 scale) of a hinge over rows [f, l] (at least 4 rows), searched
- * between x[f + 1] and x[l - 1] so that each phase has two rows: a grid of HINGE_GRID points per row
- * interval, then golden-section refinement within the best grid cell's neighbours. */
+ * between x[a] and x[b] (f + 1 <= a < b <= l - 1, so that each phase has two rows): a grid of HINGE_GRID
+ * points per row interval, then golden-section refinement within the best grid cell's neighbours. */
 #define HINGE_GRID 16
-static double hinge_break(const double *x, const double *y, size_t f, size_t l)
+static double hinge_break(const double *x, const double *y, size_t f, size_t l, size_t a_row, size_t b_row)
 {
-    double lo = x[f + 1], hi = x[l - 1], bx = 0.5 * (lo + hi), best = INFINITY, step = 0.0;
-    for (size_t i = f + 1; i < l - 1; i++) {
+    double lo = x[a_row], hi = x[b_row], bx = 0.5 * (lo + hi), best = INFINITY, step = 0.0;
+    for (size_t i = a_row; i < b_row; i++) {
         double h = (x[i + 1] - x[i]) / HINGE_GRID;
         for (int k = 0; k <= HINGE_GRID; k++) {
             double xb = x[i] + k * h, e = hinge_sse(x, y, f, l, xb);
@@ -409,10 +410,22 @@ static double hinge_break(const double *x, const double *y, size_t f, size_t l)
 }
 
 /* The break scale between regimes p and q (p before q): the hinge join point over their rows and the
- * rows between them. */
+ * rows between them, searched between the regimes (from p's last row to q's first; touching regimes: the
+ * row intervals on either side of the shared row). */
 static double break_scale(const ft_ll_data *d, const ft_loglog_segment *p, const ft_loglog_segment *q)
 {
-    return pow(10.0, hinge_break(d->lx, d->ly, p->first, q->last));
+    size_t f = p->first, l = q->last, a = p->last, b = q->first;
+    if (b <= a) {
+        a = b > 0 ? b - 1 : b;
+        b = p->last + 1;
+    }
+    a = a < f + 1 ? f + 1 : a;
+    b = b > l - 1 ? l - 1 : b;
+    if (b <= a) { /* cannot happen with regimes of 3 rows or more; the whole admissible interval */
+        a = f + 1;
+        b = l - 1;
+    }
+    return pow(10.0, hinge_break(d->lx, d->ly, f, l, a, b));
 }
 
 /* Drops the transitions (see the file comment) from segs[0, *n): a regime between two others, its D
