@@ -20,8 +20,8 @@
  * least-squares break point of a two-phase regression. A regime whose D differs from a neighbour's by
  * curve_dD or less is not a regime of its own (the tail of a circle's divider plot beside its D = 1
  * run): the narrower of the two is dropped. A regime between two others whose D lies between theirs and
- * which is narrower than both (and than a decade) is the transition between them, not a regime: the
- * rounded corner of a plot whose slope changes over a factor of a few in scale (box counts of one to
+ * which is no wider than either of them and narrower than a decade is the transition between them, not
+ * a regime: the rounded corner of a plot whose slope changes over a factor of a few in scale (box counts of one to
  * three times the length where a generator changes). It is dropped; its rows belong to no regime.
  *
  * Breaks. The break between neighbouring regimes is the join point of a continuous two-phase (hinge)
@@ -429,7 +429,7 @@ static double break_scale(const ft_ll_data *d, const ft_loglog_segment *p, const
 }
 
 /* Drops the transitions (see the file comment) from segs[0, *n): a regime between two others, its D
- * between theirs, narrower than both and than a decade. */
+ * between theirs, no wider than either and narrower than a decade. */
 static void drop_transitions(const ft_ll_data *d, ft_loglog_segment *segs, size_t *n)
 {
     for (size_t k = 1; k + 1 < *n;) {
@@ -437,7 +437,7 @@ static void drop_transitions(const ft_ll_data *d, ft_loglog_segment *segs, size_
         double wp = d->lx[p->last] - d->lx[p->first], wm = d->lx[m->last] - d->lx[m->first],
                wq = d->lx[q->last] - d->lx[q->first];
         int between = (m->D - p->D) * (q->D - m->D) > 0.0;
-        if (between && wm < wp && wm < wq && wm < 1.0) {
+        if (between && wm <= wp + 1e-9 && wm <= wq + 1e-9 && wm < 1.0) {
             memmove(&segs[k], &segs[k + 1], (*n - k - 1) * sizeof *segs);
             (*n)--;
             k = 1;
