@@ -38,12 +38,15 @@ bench: build
 ACCURACY_FLAGS ?= --surfaces 100
 # Arakawa & Krotkov Table 4 and the held-out RMSE against GRASS v.surf.rst (reconstruction).
 ACCURACY_RECON_FLAGS ?= --surfaces 4
+# Bias and RMSE of dim profile's madogram and variogram on exact fBm, n = 1024 and 4096, H = 0.25, 0.5, 0.75.
+ACCURACY_PROFILE_FLAGS ?= --profiles 1000
 accuracy: build
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth stein --snr 30,25,20
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth stein --snr 30 --z-only
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth exact,sra,fft
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth exact --jitter
 	./$(BUILD)/fracterra_accuracy_reconstruct $(ACCURACY_RECON_FLAGS)
+	./$(BUILD)/fracterra_accuracy_profile $(ACCURACY_PROFILE_FLAGS)
 
 install: build
 	cmake --install $(BUILD)

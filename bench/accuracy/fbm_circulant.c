@@ -11,18 +11,25 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+static uint64_t mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* The state is the seed hashed: a state of seed * step + c made seed k + 1's stream seed k's shifted by
+ * one draw (splitmix64 walks the state by that same step), so consecutive seeds drew nearly the same
+ * surfaces. Hashed, two seeds start at unrelated points of the sequence. */
 void fbm_rng_seed(fbm_rng *r, uint64_t seed)
 {
-    r->s = seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;
+    r->s = mix64(seed + 0x632BE59BD9B4E019ull);
     r->have = 0;
 }
 
 static uint64_t splitmix64(uint64_t *s)
 {
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return mix64(*s += 0x9E3779B97F4A7C15ull);
 }
 
 double fbm_rng_uniform(fbm_rng *r)

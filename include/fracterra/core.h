@@ -556,8 +556,8 @@ typedef struct {
                                      scale, each passing the curvature test (docs/loglog.md) */
     size_t nregimes;
     size_t regime;            /**< index in regimes of the one that gave D, or FT_LOGLOG_NONE */
-    double *breaks;           /**< owned; nregimes - 1 scales where neighbouring regimes meet (the crossing
-                                   of their least-squares lines) */
+    double *breaks;           /**< owned; nregimes - 1 scales where neighbouring regimes meet (the join
+                                   point of a continuous two-phase fit over both and the rows between) */
     const char *choice;       /**< static: why these rows give D ("widest regime", "regime asked for",
                                    "range asked for", "longest ILS run", ...) */
     ft_noise_model nugget;    /**< the white-noise (nugget) model of the lag estimators; all zero when

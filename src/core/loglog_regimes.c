@@ -19,8 +19,19 @@
  * the row that minimises their summed squared residuals (both sides still straight and long enough): the
  * least-squares break point of a two-phase regression. A regime whose D differs from a neighbour's by
  * curve_dD or less is not a regime of its own (the tail of a circle's divider plot beside its D = 1
- * run): the narrower of the two is dropped. A break is where the least-squares lines of two neighbouring
- * regimes cross (the midpoint of the rows between them when they do not cross there).
+ * run): the narrower of the two is dropped. A regime between two others whose D lies between theirs and
+ * which is no wider than either of them and narrower than a decade is the transition between them, not
+ * a regime: the rounded corner of a plot whose slope changes over a factor of a few in scale (box counts of one to
+ * three times the length where a generator changes). It is dropped; its rows belong to no regime.
+ *
+ * Breaks. The break between neighbouring regimes is the join point of a continuous two-phase (hinge)
+ * regression over their rows and the transition rows between them, y = c + s1 min(x - xb, 0) +
+ * s2 max(x - xb, 0), with xb free between the two regimes: for a fixed xb the model is linear, and xb
+ * minimises the profile residual sum of squares (Hudson 1966, "Fitting segmented curves whose join points
+ * have to be estimated", JASA 61, 1097-1129; the least-squares and Gaussian maximum-likelihood join
+ * point). It is
+ * where the two asymptotes of a rounded corner meet; the regimes' D stay the fits of their own straight
+ * rows, which leave out the transition.
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
@@ -318,17 +329,122 @@ static void sort_runs(run_list *rl)
         }
 }
 
-/* The break scale between regimes p and q (p before q). */
+/* Residual sum of squares of the hinge y = c + s1 min(x - xb, 0) + s2 max(x - xb, 0) over rows [f, l]
+ * (least squares in c, s1, s2 for this xb; INFINITY if they are not determined). */
+static double hinge_sse(const double *x, const double *y, size_t f, size_t l, double xb)
+{
+    double n = 0, su = 0, sv = 0, suu = 0, svv = 0, sy = 0, suy = 0, svy = 0, syy = 0;
+    for (size_t i = f; i <= l; i++) {
+        double t = x[i] - xb, u = t < 0.0 ? t : 0.0, v = t > 0.0 ? t : 0.0;
+        n += 1.0;
+        su += u;
+        sv += v;
+        suu += u * u;
+        svv += v * v;
+        sy += y[i];
+        suy += u * y[i];
+        svy += v * y[i];
+        syy += y[i] * y[i];
+    }
+    /* normal equations [[n, su, sv], [su, suu, 0], [sv, 0, svv]] (c, s1, s2)' = (sy, suy, svy)'; u v = 0 */
+    if (!(suu > 0.0) || !(svv > 0.0))
+        return INFINITY;
+    double det = n * suu * svv - su * su * svv - sv * sv * suu;
+    if (!(det > 1e-12 * n * suu * svv))
+        return INFINITY;
+    double c = (sy * suu * svv - su * suy * svv - sv * svy * suu) / det;
+    double s1 = (suy - su * c) / suu, s2 = (svy - sv * c) / svv;
+    /* SSE = y'y - beta' X'y at the least-squares solution */
+    double sse = syy - (c * sy + s1 * suy + s2 * svy);
+    double scale = syy > 0.0 ? syy : 1.0;
+    if (sse < 1e-15 * scale) { /* cancellation: sum the residuals directly */
+        sse = 0.0;
+        for (size_t i = f; i <= l; i++) {
+            double t = x[i] - xb, r = y[i] - (c + s1 * (t < 0.0 ? t : 0.0) + s2 * (t > 0.0 ? t : 0.0));
+            sse += r * r;
+        }
+    }
+    return sse;
+}
+
+/* The least-squares join point xb (log10 scale) of a hinge over rows [f, l] (at least 4 rows), searched
+ * between x[a] and x[b] (f + 1 <= a < b <= l - 1, so that each phase has two rows): a grid of HINGE_GRID
+ * points per row interval, then golden-section refinement within the best grid cell's neighbours. */
+#define HINGE_GRID 16
+static double hinge_break(const double *x, const double *y, size_t f, size_t l, size_t a_row, size_t b_row)
+{
+    double lo = x[a_row], hi = x[b_row], bx = 0.5 * (lo + hi), best = INFINITY, step = 0.0;
+    for (size_t i = a_row; i < b_row; i++) {
+        double h = (x[i + 1] - x[i]) / HINGE_GRID;
+        for (int k = 0; k <= HINGE_GRID; k++) {
+            double xb = x[i] + k * h, e = hinge_sse(x, y, f, l, xb);
+            if (e < best) {
+                best = e;
+                bx = xb;
+                step = h;
+            }
+        }
+    }
+    if (!(best < INFINITY))
+        return bx;
+    double a = fmax(lo, bx - step), b = fmin(hi, bx + step);
+    const double g = 0.5 * (sqrt(5.0) - 1.0);
+    double c = b - g * (b - a), e = a + g * (b - a), fc = hinge_sse(x, y, f, l, c), fe = hinge_sse(x, y, f, l, e);
+    for (int it = 0; it < 40 && b - a > 1e-9; it++) {
+        if (fc <= fe) {
+            b = e;
+            e = c;
+            fe = fc;
+            c = b - g * (b - a);
+            fc = hinge_sse(x, y, f, l, c);
+        } else {
+            a = c;
+            c = e;
+            fc = fe;
+            e = a + g * (b - a);
+            fe = hinge_sse(x, y, f, l, e);
+        }
+    }
+    double xm = 0.5 * (a + b);
+    return hinge_sse(x, y, f, l, xm) <= best ? xm : bx;
+}
+
+/* The break scale between regimes p and q (p before q): the hinge join point over their rows and the
+ * rows between them, searched between the regimes (from p's last row to q's first; touching regimes: the
+ * row intervals on either side of the shared row). */
 static double break_scale(const ft_ll_data *d, const ft_loglog_segment *p, const ft_loglog_segment *q)
 {
-    double xlo = d->lx[p->last < q->first ? p->last : q->first], xhi = d->lx[p->last > q->first ? p->last : q->first];
-    double x = 0.5 * (xlo + xhi);
-    if (p->slope != q->slope) {
-        double xc = (q->intercept - p->intercept) / (p->slope - q->slope);
-        if (xc >= d->lx[p->first] && xc <= d->lx[q->last])
-            x = xc;
+    size_t f = p->first, l = q->last, a = p->last, b = q->first;
+    if (b <= a) {
+        a = b > 0 ? b - 1 : b;
+        b = p->last + 1;
     }
-    return pow(10.0, x);
+    a = a < f + 1 ? f + 1 : a;
+    b = b > l - 1 ? l - 1 : b;
+    if (b <= a) { /* cannot happen with regimes of 3 rows or more; the whole admissible interval */
+        a = f + 1;
+        b = l - 1;
+    }
+    return pow(10.0, hinge_break(d->lx, d->ly, f, l, a, b));
+}
+
+/* Drops the transitions (see the file comment) from segs[0, *n): a regime between two others, its D
+ * between theirs, no wider than either and narrower than a decade. */
+static void drop_transitions(const ft_ll_data *d, ft_loglog_segment *segs, size_t *n)
+{
+    for (size_t k = 1; k + 1 < *n;) {
+        const ft_loglog_segment *p = &segs[k - 1], *m = &segs[k], *q = &segs[k + 1];
+        double wp = d->lx[p->last] - d->lx[p->first], wm = d->lx[m->last] - d->lx[m->first],
+               wq = d->lx[q->last] - d->lx[q->first];
+        int between = (m->D - p->D) * (q->D - m->D) > 0.0;
+        if (between && wm <= wp + 1e-9 && wm <= wq + 1e-9 && wm < 1.0) {
+            memmove(&segs[k], &segs[k + 1], (*n - k - 1) * sizeof *segs);
+            (*n)--;
+            k = 1;
+            continue;
+        }
+        k++;
+    }
 }
 
 int ft_ll_regimes(const ft_ll_data *d, const ft_loglog_opts *o, ft_loglog_segment **regimes, size_t *nregimes,
@@ -367,6 +483,8 @@ int ft_ll_regimes(const ft_ll_data *d, const ft_loglog_opts *o, ft_loglog_segmen
     }
     free(rl.first);
     free(rl.last);
+    if (rc == FT_OK)
+        drop_transitions(d, segs, &n);
     double *br = n > 1 ? ft_malloc((n - 1) * sizeof *br) : NULL;
     if (rc == FT_OK && n > 1 && br == NULL)
         rc = FT_E_NOMEM;

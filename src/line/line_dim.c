@@ -40,7 +40,7 @@
 #define LO_SEGMENTS_WALK 2.0       /* lo = this x the median segment length: divider, equipaced, hybrid */
 #define LO_SEGMENTS_BOX 1.0        /* ... box counting */
 #define HI_FRACTION_WALK 0.25      /* hi = this x the bbox diagonal: divider, equipaced, hybrid */
-#define HI_FRACTION_BOX (1.0 / 48) /* ... box counting */
+#define HI_FRACTION_BOX (1.0 / 16) /* ... box counting */
 
 static const char *const method_names[] = {"divider", "equipaced", "hybrid", "box", "box-min"};
 #define N_METHODS (sizeof method_names / sizeof method_names[0])
@@ -263,7 +263,7 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
                         "bounding-box diagonal %g%s); set --min-scale/--max-scale", *lo, u,
                         o->min_scale > 0.0 ? "" : (box ? " (automatic: median segment)"
                                                        : " (automatic: 2 x median segment)"), *hi, u,
-                        o->max_scale > 0.0 ? "" : (box ? " (automatic: diagonal / 48)" : " (automatic: diagonal / 4)"),
+                        o->max_scale > 0.0 ? "" : (box ? " (automatic: diagonal / 16)" : " (automatic: diagonal / 4)"),
                         s->median_seg, u, diag, u);
     return FT_OK;
 }
