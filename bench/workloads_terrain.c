@@ -1,15 +1,18 @@
 /* fracterra — workloads_terrain.c: terrain synthesis and variogram workloads of `make bench`.
  *
  *  - terrain.synth.fft.4096: ft_terrain_synth, method fft (padded and cropped, the default), 4096², D = 2.3,
- *    ONE thread (the issue's target: at most 2x terrain.fftw.c2r.4096, peak memory under 300 MB);
+ *    ONE thread, against its floor in the same run: one bare in-place FFTW complex-to-real transform of
+ *    4096² (plan made beforehand, one thread) as the in-process peer, so ours/peer is the multiple of the
+ *    c2r floor (the issue's target: at most 1.5, peak memory under 300 MB);
  *  - terrain.synth.fft.4096.threads: the same on OMP_NUM_THREADS threads (same cells, bit for bit);
- *  - terrain.synth.sra.4096: the same with method sra, one thread (target: under 1.5 s);
- *  - terrain.fftw.c2r.4096: one bare in-place FFTW complex-to-real transform of 4096² (plan made beforehand),
- *    the yardstick of the fft target;
+ *  - terrain.synth.sra.4096: the same with method sra, one thread (target: under 1.5 s); no in-process peer
+ *    (r.surf.fractal is a whole GRASS session: cli.synth.sra.4096 compares like with like);
+ *  - terrain.fftw.c2r.4096: the c2r transform alone;
+ *  - cli.synth.fft.4096 / .2048 / .4096.envi, cli.synth.sra.4096: the whole `fracterra synth` process
+ *    against the whole GRASS session running r.surf.fractal (spectral synthesis) at the same size, through
+ *    `grass --tmp-location XY --exec` (GRASS 8.2 and 8.4 accept it) when grass is on PATH;
  *  - surface.variogram.32k: ft_surface_dim_variogram with 32,000 random points (Mark & Aronson) on a 4096²
  *    fft surface prepared untimed (target: under 0.5 s).
- * Peer: GRASS GIS r.surf.fractal at the same size, run through `grass --tmp-location XY --exec` (GRASS 8.2
- * and 8.4 accept it) when grass is on PATH.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -43,11 +46,6 @@ static int grass_peer_n(ft_bench_case *c, double dim, int n)
     return FT_OK;
 }
 
-static int grass_peer(ft_bench_case *c, double dim)
-{
-    return grass_peer_n(c, dim, SYNTH_N);
-}
-
 static int one_thread(ft_bench_case *c)
 {
     (void)c;
@@ -67,10 +65,24 @@ static int synth(ft_synth_method m)
     return rc;
 }
 
+static int c2r_prepare(ft_bench_case *c);
+static int c2r_run(ft_bench_case *c);
+
+/* In process: the fft synthesis against the bare c2r transform of the same size (its floor). */
 static int synth_setup(ft_bench_case *c)
 {
     c->work = (double)SYNTH_N * SYNTH_N;
-    return grass_peer(c, SYNTH_DIM);
+    c->peer_prepare = c2r_prepare;
+    c->peer_run = c2r_run;
+    c->peer_label = "one in-place FFTW c2r transform of 4096x4096, one thread (the floor of the fft synthesis)";
+    return FT_OK;
+}
+
+static int synth_sra_setup(ft_bench_case *c)
+{
+    c->work = (double)SYNTH_N * SYNTH_N;
+    c->peer_none = "none in process: GRASS r.surf.fractal runs as a whole session (cli.synth.sra.4096)";
+    return FT_OK;
 }
 
 static int synth_fft_run(ft_bench_case *c)
@@ -123,7 +135,7 @@ static int c2r_run(ft_bench_case *c)
 /* cli.synth.fft.*: the built `fracterra synth` program, whole process (start-up, synthesis, the GeoTIFF
  * written with the default creation options, or raw ENVI), against the whole GRASS session that runs
  * r.surf.fractal into its own raster store. */
-static int cli_synth_setup(ft_bench_case *c, int n, const char *ext, const char *driver)
+static int cli_synth_setup(ft_bench_case *c, int n, const char *ext, const char *driver, const char *method)
 {
     const char *prog = ft_bench_fracterra_program();
     if (prog == NULL)
@@ -133,7 +145,7 @@ static int cli_synth_setup(ft_bench_case *c, int n, const char *ext, const char 
     free(name);
     char *size = ft_bench_strf("%dx%d", n, n), *seed = ft_bench_strf("%llu", (unsigned long long)BENCH_SEED);
     const char *args[] = {prog, "synth", c->scratch, "--dim", "2.3", "--size", size, "--seed", seed,
-                          "-f", driver};
+                          "-f", driver, "--method", method};
     int rc = c->scratch && size && seed ? FT_OK : ft_error(FT_E_NOMEM, "out of memory");
     for (size_t i = 0; rc == FT_OK && i < sizeof args / sizeof args[0]; i++)
         if ((c->argv[i] = ft_bench_strdup(args[i])) == NULL)
@@ -146,17 +158,22 @@ static int cli_synth_setup(ft_bench_case *c, int n, const char *ext, const char 
 
 static int cli_synth_4096(ft_bench_case *c)
 {
-    return cli_synth_setup(c, 4096, "tif", "GTiff");
+    return cli_synth_setup(c, 4096, "tif", "GTiff", "fft");
 }
 
 static int cli_synth_2048(ft_bench_case *c)
 {
-    return cli_synth_setup(c, 2048, "tif", "GTiff");
+    return cli_synth_setup(c, 2048, "tif", "GTiff", "fft");
 }
 
 static int cli_synth_4096_envi(ft_bench_case *c)
 {
-    return cli_synth_setup(c, 4096, "envi", "ENVI");
+    return cli_synth_setup(c, 4096, "envi", "ENVI", "fft");
+}
+
+static int cli_synth_sra_4096(ft_bench_case *c)
+{
+    return cli_synth_setup(c, 4096, "tif", "GTiff", "sra");
 }
 
 /* surface.variogram.32k */
@@ -197,11 +214,13 @@ static const ft_bench_workload terrain_workloads[] = {
     {"terrain.fftw.c2r.4096", "one in-place FFTW complex-to-real 4096x4096 transform, one thread",
      FT_BENCH_CELLS, c2r_setup, c2r_prepare, c2r_run, NULL},
     {"terrain.synth.sra.4096", "successive random addition, 4096x4096, D=2.3, one thread", FT_BENCH_CELLS,
-     synth_setup, one_thread, synth_sra_run, NULL},
+     synth_sra_setup, one_thread, synth_sra_run, NULL},
     {"cli.synth.fft.4096", "fracterra synth out.tif --dim 2.3 --size 4096x4096, whole process (GeoTIFF defaults)",
      FT_BENCH_CELLS, cli_synth_4096, NULL, NULL, NULL},
     {"cli.synth.fft.2048", "fracterra synth out.tif --dim 2.3 --size 2048x2048, whole process (GeoTIFF defaults)",
      FT_BENCH_CELLS, cli_synth_2048, NULL, NULL, NULL},
+    {"cli.synth.sra.4096", "fracterra synth out.tif --method sra, 4096x4096, whole process (GeoTIFF defaults)",
+     FT_BENCH_CELLS, cli_synth_sra_4096, NULL, NULL, NULL},
     {"cli.synth.fft.4096.envi", "fracterra synth out.envi -f ENVI, 4096x4096, whole process (raw, no compression)",
      FT_BENCH_CELLS, cli_synth_4096_envi, NULL, NULL, NULL},
     {"surface.variogram.32k", "variogram D of a 4096x4096 grid from 32,000 random points, lags 1-512 cells",

@@ -1,7 +1,19 @@
 #!/usr/bin/env bash
 # Installs the Debian packages fracterra needs to build, test and run its demo and bench, and only those
 # that are missing. Idempotent; needs root (or sudo) only when something is missing.
+#   --peers   also the peer tools `make bench` compares against when they are installed: GRASS GIS
+#             (r.surf.fractal, r.surf.contour, v.surf.rst) and Gwyddion's libraries (its fractal estimators,
+#             linked into the bench at configure time: re-run cmake after installing them).
 set -euo pipefail
+
+peers=0
+for arg in "$@"; do
+  case "$arg" in
+    --peers) peers=1 ;;
+    -h|--help) echo "usage: scripts/install-deps.sh [--peers]"; exit 0 ;;
+    *) echo "install-deps: unknown option '$arg' (usage: scripts/install-deps.sh [--peers])" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake pkg-config
@@ -17,6 +29,12 @@ packages=(
   libproj-dev                 # PROJ geodesic.h: reference ellipsoidal lengths in the tests (pulled in by GDAL too)
   clang libclang-rt-dev libomp-dev  # make fuzz: libFuzzer harnesses (clang's runtime, OpenMP for clang)
 )
+if [ "$peers" -eq 1 ]; then
+  packages+=(
+    grass-core                  # bench peers: r.surf.fractal, r.surf.contour, v.surf.rst
+    gwyddion libgwyddion20-dev  # bench peers: gwy_data_field_fractal_* (partitioning, cube counting, ...)
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

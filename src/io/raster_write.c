@@ -12,6 +12,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -117,6 +118,26 @@ static void set_nodata(GDALRasterBandH b, GDALDataType t, double v)
         GDALSetRasterNoDataValue(b, v);
 }
 
+/* Float32 output whose nodata value a float holds exactly (or none is needed): the rows go to GDAL as
+ * floats, straight from the grid where a chunk has no invalid cell, else through a float copy with the
+ * nodata value in the invalid cells; the same cells as the double path, without its two conversions. */
+static int float_path(const grid_writer *w, size_t band)
+{
+    double v = w->nodata[band];
+    return w->type == GDT_Float32 && (isnan(v) || (fabs(v) <= FLT_MAX && (double)(float)v == v));
+}
+
+static int write_rows(grid_writer *w, size_t band, GDALRasterBandH b, size_t row, size_t rows, void *buf,
+                      GDALDataType t)
+{
+    const ft_grid *g = w->bands[band];
+    ft_io_gdal_reset();
+    if (GDALRasterIO(b, GF_Write, 0, (int)row, (int)g->nx, (int)rows, buf, (int)g->nx, (int)rows, t, 0, 0) != CE_None)
+        return ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of band %zu of '%s'", row, row + rows - 1, band + 1,
+                          w->path);
+    return FT_OK;
+}
+
 static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
 {
     const ft_grid *g = w->bands[band];
@@ -125,19 +146,31 @@ static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
         chunk = 1;
     if (chunk > g->ny)
         chunk = g->ny;
-    double *buf = ft_malloc(chunk * g->nx * sizeof *buf);
+    int as_float = float_path(w, band);
+    void *buf = ft_malloc(chunk * g->nx * (as_float ? sizeof(float) : sizeof(double)));
     if (buf == NULL)
         return FT_E_NOMEM;
     int rc = FT_OK;
     for (size_t row = 0; row < g->ny && rc == FT_OK; row += chunk) {
-        size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx;
-        for (size_t k = 0; k < rows * g->nx; k++)
-            buf[k] = cell_invalid(g, base + k) ? w->nodata[band] : (double)g->z[base + k];
-        ft_io_gdal_reset();
-        if (GDALRasterIO(b, GF_Write, 0, (int)row, (int)g->nx, (int)rows, buf, (int)g->nx, (int)rows, GDT_Float64,
-                         0, 0) != CE_None)
-            rc = ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of band %zu of '%s'", row, row + rows - 1, band + 1,
-                            w->path);
+        size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx, n = rows * g->nx;
+        if (as_float) {
+            size_t bad = 0;
+            for (size_t k = 0; k < n; k++)
+                bad += cell_invalid(g, base + k);
+            float *f = buf, nd = (float)w->nodata[band];
+            if (bad == 0) { /* GDAL only reads the buffer of a write: the grid itself */
+                rc = write_rows(w, band, b, row, rows, g->z + base, GDT_Float32);
+                continue;
+            }
+            for (size_t k = 0; k < n; k++)
+                f[k] = cell_invalid(g, base + k) ? nd : g->z[base + k];
+            rc = write_rows(w, band, b, row, rows, f, GDT_Float32);
+        } else {
+            double *d = buf;
+            for (size_t k = 0; k < n; k++)
+                d[k] = cell_invalid(g, base + k) ? w->nodata[band] : (double)g->z[base + k];
+            rc = write_rows(w, band, b, row, rows, d, GDT_Float64);
+        }
     }
     free(buf);
     return rc;

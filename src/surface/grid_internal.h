@@ -1,5 +1,6 @@
 /* fracterra — surface/grid_internal.h (private): what the grid estimators of src/surface/ share.
  *
+ *  - lag_pair_sums.c: the counters' inner loop over a run of pairs, in a fixed order (vectorised);
  *  - lag_pairs.c: the pairs of cells at integer lags (exhaustive along rows and columns, or Mark &
  *    Aronson's random points in the inscribed circle) with the sums A = Σ|Δz|, B = Σ(Δz)², C = pairs
  *    of Arakawa & Krotkov §2.4, and the whole estimate from them: the variogram (B/C), Yokoya (A/C)
@@ -36,8 +37,18 @@ typedef struct {
 } ft_lag_acc;
 
 /** Adds to acc the sums over j < n of |zq[j] - zp[j]|, (zq[j] - zp[j])² and the pair weight, each pair
- *  weighted by wp[j] wq[j] (0 or 1: nodata), in a fixed order (lag_pairs.c). */
+ *  weighted by wp[j] wq[j] (0 or 1: nodata; wp and wq both NULL: every weight 1, the same bits as weights
+ *  of 1), in the fixed order of lag_pair_sums.c. acc->dist is left alone. */
 void ft_lag_pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc);
+/** Streams of ft_lag_pair_sums run together (faster: their additions interleave): for s < ns (1 ..
+ *  FT_LAG_STREAMS), acc[s] gets exactly what ft_lag_pair_sums(zp[s], wp[s], zq[s], wq[s], n, &acc[s]) adds;
+ *  wp and wq NULL: no weights (every weight 1). */
+#define FT_LAG_STREAMS 4
+void ft_lag_pair_sums_streams(const float *const *zp, const float *const *wp, const float *const *zq,
+                              const float *const *wq, size_t ns, size_t n, ft_lag_acc *acc);
+/** Tests only: on != 0 makes the two calls above take the portable copy even where AVX2 is present (not
+ *  thread-safe; the default is 0). */
+void ft_lag_pair_sums_generic(int on);
 /* The steps of ft_surface_lag_dim, for callers that count the pairs themselves (dim_map_lags.c):
  * the options checked against an nx x ny grid and the integer lags (malloc'd, increasing; FT_E_INVALID
  * naming the value otherwise), and the table of the statistic and its fit from the counters. */

@@ -51,70 +51,82 @@ static size_t make_lags(double lo, double hi, int nlags, size_t *lags)
     return n;
 }
 
-/* The grid's elevations with invalid cells set to 0 (so that 0 x NaN never happens) and their weights
- * (1 valid, 0 not), made once for the exhaustive pairs: the pair loops are then branch-free. */
-static int sanitize_grid(const ft_grid *g, float **z, float **w)
+/* The cells the exhaustive pairs read: the grid's own elevations and no weights (*w NULL) when every cell
+ * is valid, else a copy with invalid cells set to 0 (so that 0 x NaN never happens) and their weights (1
+ * valid, 0 not), so that the pair loops are branch-free. *owned: what was allocated here (or NULL). */
+static int lag_cells(const ft_grid *g, const float **z, const float **w, float **owned)
 {
-    size_t n = g->nx * g->ny;
-    *z = ft_malloc(n * sizeof **z);
-    *w = ft_malloc(n * sizeof **w);
-    if (*z == NULL || *w == NULL) {
-        free(*z);
-        free(*w);
+    size_t n = g->nx * g->ny, bad = 0;
+    *owned = NULL;
+    *z = g->z;
+    *w = NULL;
+#pragma omp parallel for schedule(static) reduction(+ : bad)
+    for (size_t i = 0; i < n; i++)
+        bad += !ft_surface_cell_ok(g, i);
+    if (bad == 0)
+        return FT_OK;
+    float *zc = ft_malloc(2 * n * sizeof *zc);
+    if (zc == NULL)
         return FT_E_NOMEM;
-    }
+    float *wc = zc + n;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         int ok = ft_surface_cell_ok(g, i);
-        (*z)[i] = ok ? g->z[i] : 0.0f;
-        (*w)[i] = (float)ok;
+        zc[i] = ok ? g->z[i] : 0.0f;
+        wc[i] = (float)ok;
     }
+    *owned = zc;
+    *z = zc;
+    *w = wc;
     return FT_OK;
 }
 
-/* Σ over j < n of the pairs (zp[j], zq[j]) weighted by wp[j] wq[j] (grid_internal.h), branch-free with four
- * interleaved sets of sums (added in a fixed order, so the result depends on the input only). */
-void ft_lag_pair_sums(const float *zp, const float *wp, const float *zq, const float *wq, size_t n, ft_lag_acc *acc)
+/* The pairs of ns rows from row i0 (ns <= FT_LAG_STREAMS) at offset off (h: along the row, h nx: down the
+ * column), n pairs from column j0 of each row, each row's sums added to its own r[s]. */
+static void rows_pairs(const float *z, const float *w, size_t nx, size_t i0, size_t ns, size_t j0, size_t off,
+                       size_t n, ft_lag_acc *r)
 {
-    double a[4] = {0.0, 0.0, 0.0, 0.0}, b[4] = {0.0, 0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
-    size_t j = 0;
-    for (; j + 3 < n; j += 4)
-        for (int l = 0; l < 4; l++) {
-            double d = (double)zq[j + l] - (double)zp[j + l], w = (double)(wp[j + l] * wq[j + l]);
-            a[l] += w * fabs(d);
-            b[l] += w * d * d;
-            c[l] += w;
-        }
-    for (; j < n; j++) {
-        double d = (double)zq[j] - (double)zp[j], w = (double)(wp[j] * wq[j]);
-        a[0] += w * fabs(d);
-        b[0] += w * d * d;
-        c[0] += w;
+    const float *zp[FT_LAG_STREAMS], *zq[FT_LAG_STREAMS], *wp[FT_LAG_STREAMS], *wq[FT_LAG_STREAMS];
+    for (size_t s = 0; s < ns; s++) {
+        size_t at = (i0 + s) * nx + j0;
+        zp[s] = z + at;
+        zq[s] = z + at + off;
+        wp[s] = w != NULL ? w + at : NULL;
+        wq[s] = w != NULL ? w + at + off : NULL;
     }
-    acc->a += (a[0] + a[1]) + (a[2] + a[3]);
-    acc->b += (b[0] + b[1]) + (b[2] + b[3]);
-    acc->c += (c[0] + c[1]) + (c[2] + c[3]);
+    ft_lag_pair_sums_streams(zp, w != NULL ? wp : NULL, zq, w != NULL ? wq : NULL, ns, n, r);
 }
 
-/* Exhaustive pairs whose upper (column pairs) or left (row pairs) cell is in row i, on the sanitized grid
- * (z, w). A pair counts only if its midpoint lies at least hmax / 2 cells from the edges along the pair's
- * axis, hmax the largest lag: every lag then samples the same central band, so a trend or a bowl is seen
- * alike at every lag (without it, long lags see only the middle of a paraboloid, flatter than its edges,
- * and D drifts above 2). In doubled coordinates the midpoint 2j + h must lie in [hmax, 2(n - 1) - hmax]. */
-static void exhaustive_row(const ft_grid *g, const float *z, const float *w, size_t i, const size_t *lags,
-                           size_t nl, double cx, double cy, ft_lag_acc *acc)
+/* Exhaustive pairs whose upper (column pairs) or left (row pairs) cell is in rows i0 .. i0 + ns - 1 (ns <=
+ * FT_LAG_STREAMS), on the cells of lag_cells (z, w); acc[s nl + k] are row i0 + s's counters of lag k, its
+ * own sums in lag_pair_sums.c's order whatever rows run beside it. A pair counts only if its midpoint lies
+ * at least hmax / 2 cells from the edges along the pair's axis, hmax the largest lag: every lag then samples
+ * the same central band, so a trend or a bowl is seen alike at every lag (without it, long lags see only
+ * the middle of a paraboloid, flatter than its edges, and D drifts above 2). In doubled coordinates the
+ * midpoint 2j + h must lie in [hmax, 2(n - 1) - hmax]. */
+static void exhaustive_rows(const ft_grid *g, const float *z, const float *w, size_t i0, size_t ns,
+                            const size_t *lags, size_t nl, double cx, double cy, ft_lag_acc *acc)
 {
     size_t nx = g->nx, ny = g->ny, hmax = lags[nl - 1];
-    const float *zi = z + i * nx, *wi = w + i * nx;
     for (size_t k = 0; k < nl; k++) {
         size_t h = lags[k], j0 = (hmax - h + 1) / 2;
-        ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
+        ft_lag_acc r[FT_LAG_STREAMS], c[FT_LAG_STREAMS];
+        for (size_t s = 0; s < ns; s++)
+            r[s] = c[s] = (ft_lag_acc){0.0, 0.0, 0.0, 0.0};
         /* j from j0 to jmax = (2(nx - 1) - h - hmax) / 2; none when hmax reaches past a row (nx < ny) */
         if (h + hmax <= 2 * (nx - 1) && (2 * (nx - 1) - h - hmax) / 2 >= j0)
-            ft_lag_pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
-        if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1))
-            ft_lag_pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);
-        acc[k] = (ft_lag_acc){r.a + c.a, r.b + c.b, r.c + c.c, (double)h * (r.c * cx + c.c * cy)};
+            rows_pairs(z, w, nx, i0, ns, j0, h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, r);
+        /* column pairs of the rows i with 2i + h in [hmax, 2(ny - 1) - hmax]: the run lo .. hi - 1 */
+        size_t lo = i0, hi = i0 + ns;
+        while (lo < hi && 2 * lo + h < hmax)
+            lo++;
+        while (hi > lo && 2 * (hi - 1) + h + hmax > 2 * (ny - 1))
+            hi--;
+        if (hi > lo)
+            rows_pairs(z, w, nx, lo, hi - lo, 0, h * nx, nx, c + (lo - i0));
+        for (size_t s = 0; s < ns; s++)
+            acc[s * nl + k] = (ft_lag_acc){r[s].a + c[s].a, r[s].b + c[s].b, r[s].c + c[s].c,
+                                           (double)h * (r[s].c * cx + c[s].c * cy)};
     }
 }
 
@@ -155,31 +167,34 @@ static int random_block(const ft_grid *g, size_t block, size_t npts, uint64_t se
     return FT_OK;
 }
 
-/* Per-row or per-block partials (nparts x nl), computed in parallel, summed in order into tot. */
+/* Per-row or per-block partials (nparts x nl), computed in parallel (exhaustive: FT_LAG_STREAMS rows a
+ * task), summed in order into tot. */
 static int accumulate(const ft_grid *g, const ft_variogram_opts *o, const char *name, const size_t *lags,
                       size_t nl, double cx, double cy, ft_lag_acc *tot)
 {
     size_t nparts = o->pairs ? (o->pairs + RANDOM_BLOCK - 1) / RANDOM_BLOCK : g->ny;
+    size_t ntasks = o->pairs ? nparts : (nparts + FT_LAG_STREAMS - 1) / FT_LAG_STREAMS;
     ft_lag_acc *part = ft_calloc(nparts * nl, sizeof *part);
     if (part == NULL)
         return FT_E_NOMEM;
-    float *z = NULL, *w = NULL;
-    if (!o->pairs && sanitize_grid(g, &z, &w) != FT_OK) {
+    const float *z = NULL, *w = NULL;
+    float *owned = NULL;
+    if (!o->pairs && lag_cells(g, &z, &w, &owned) != FT_OK) {
         free(part);
         return FT_E_NOMEM;
     }
     int failed = 0;
-#pragma omp parallel for schedule(dynamic, 4) reduction(| : failed)
-    for (size_t p = 0; p < nparts; p++) {
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
+    for (size_t p = 0; p < ntasks; p++) {
         if (o->pairs) {
             size_t npts = (p + 1) * RANDOM_BLOCK <= o->pairs ? RANDOM_BLOCK : o->pairs - p * RANDOM_BLOCK;
             failed |= random_block(g, p, npts, o->seed, lags, nl, cx, cy, part + p * nl) != FT_OK;
         } else {
-            exhaustive_row(g, z, w, p, lags, nl, cx, cy, part + p * nl);
+            size_t i0 = p * FT_LAG_STREAMS, ns = g->ny - i0 < FT_LAG_STREAMS ? g->ny - i0 : FT_LAG_STREAMS;
+            exhaustive_rows(g, z, w, i0, ns, lags, nl, cx, cy, part + i0 * nl);
         }
     }
-    free(z);
-    free(w);
+    free(owned);
     for (size_t k = 0; k < nl; k++)
         tot[k] = (ft_lag_acc){0.0, 0.0, 0.0, 0.0};
     for (size_t p = 0; p < nparts; p++)

@@ -87,6 +87,21 @@ static int rescale(float *z, size_t nx, size_t ny, double sigma)
     return FT_OK;
 }
 
+/* An nx x ny grid around the cells z (malloc'd; freed here on failure). */
+static ft_grid *grid_adopt(size_t nx, size_t ny, float *z)
+{
+    ft_grid *g = ft_grid_create(1, 1);
+    if (g == NULL) {
+        free(z);
+        return NULL;
+    }
+    free(g->z);
+    g->z = z;
+    g->nx = nx;
+    g->ny = ny;
+    return g;
+}
+
 int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out)
 {
     if (out == NULL)
@@ -98,12 +113,16 @@ int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **
     int rc = validate(nx, ny, &o);
     if (rc != FT_OK)
         return rc;
-    ft_grid *g = ft_grid_create(nx, ny);
+    double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
+    /* fft: the grid takes the cells the synthesis made in its spectrum's memory (no second buffer) */
+    float *cells = NULL;
+    if (o.method == FT_SYNTH_FFT && (rc = ft_synth_fft_make(nx, ny, H, &o, &cells)) != FT_OK)
+        return rc;
+    ft_grid *g = cells != NULL ? grid_adopt(nx, ny, cells) : ft_grid_create(nx, ny);
     if (g == NULL)
         return FT_E_NOMEM;
-    double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
     switch (o.method) {
-    case FT_SYNTH_FFT: rc = ft_synth_fft_fill(nx, ny, H, &o, g->z); break;
+    case FT_SYNTH_FFT: break;
     case FT_SYNTH_SRA:
     case FT_SYNTH_SRA_RAW: rc = ft_synth_sra_fill(nx, ny, H, &o, g->z); break;
     case FT_SYNTH_MIDPOINT:

@@ -307,20 +307,47 @@ static size_t padded_size(size_t n, int periodic)
     return ft_fft_good_size(want < (double)n + 2.0 ? n + 2 : (size_t)want);
 }
 
-int ft_synth_fft_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z)
+/* The spectrum's memory, which becomes the output: malloc'd (the caller frees the cells with free()),
+ * aligned as fftwf_malloc aligns, with the huge-page hint before its first touch. */
+static fftwf_complex *alloc_spectrum(size_t n)
 {
+    void *p = NULL;
+    if (n > SIZE_MAX / sizeof(fftwf_complex) || posix_memalign(&p, 64, n * sizeof(fftwf_complex)) != 0) {
+        ft_error(FT_E_NOMEM, "synth: out of memory allocating a %zu-bin spectrum", n);
+        return NULL;
+    }
+    ft_fft_advise_huge(p, n * sizeof(fftwf_complex));
+    return p;
+}
+
+/* The output's upper-left nx x ny corner of the transformed rows (stride rs floats) plus the plane
+ * a_x j + a_y i, written over the spectrum's own memory: cell (i, j) goes from float i rs + j to i nx + j,
+ * never above where it came from (nx <= rs), and everything it overwrites has been read (rows in order,
+ * cells in order), so no second buffer is touched. One pass in order: memory-bound, not worth threads. */
+static void crop_in_place(float *re, size_t nx, size_t ny, size_t rs, double ax, double ay)
+{
+    for (size_t i = 0; i < ny; i++) {
+        const float *src = re + i * rs;
+        float *dst = re + i * nx;
+        for (size_t j = 0; j < nx; j++)
+            dst[j] = (float)((double)src[j] + ax * (double)j + ay * (double)i);
+    }
+}
+
+int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z)
+{
+    *z = NULL;
     size_t px = padded_size(nx, o->periodic), py = padded_size(ny, o->periodic);
     if (px == 0 || py == 0 || px > INT_MAX || py > INT_MAX || py > SIZE_MAX / (px / 2 + 1))
         return ft_error(FT_E_INVALID, "synth: fft grid for %zu x %zu is too large", nx, ny);
     size_t ncx = px / 2 + 1, rs = ft_fft_real_stride(px);
-    ft_fft_advise_huge(z, nx * ny * sizeof *z); /* the output is first touched below, like the spectrum */
-    fftwf_complex *spec = ft_fft_alloc_complexf(py * ncx);
+    fftwf_complex *spec = alloc_spectrum(py * ncx);
     if (spec == NULL)
         return FT_E_NOMEM;
     int rc = ft_progress(o->progress, o->progress_arg, 0.05, "fft: spectrum");
     fft_amp_ctx *ctx = ft_malloc(sizeof *ctx);
     if (ctx == NULL) {
-        ft_fft_freef(spec);
+        free(spec);
         return FT_E_NOMEM;
     }
     ctx->py = py;
@@ -346,13 +373,12 @@ int ft_synth_fft_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, fl
             ft_rng_free(r);
         }
     }
-    if (rc == FT_OK) {
-        const float *re = (const float *)spec;
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < ny; i++)
-            for (size_t j = 0; j < nx; j++)
-                z[i * nx + j] = (float)((double)re[i * rs + j] + ax * (double)j + ay * (double)i);
+    if (rc != FT_OK) {
+        free(spec);
+        return rc;
     }
-    ft_fft_freef(spec);
-    return rc;
+    crop_in_place((float *)spec, nx, ny, rs, ax, ay);
+    float *cells = realloc(spec, nx * ny * sizeof *cells); /* shrinks in place (or keeps the block) */
+    *z = cells != NULL ? cells : (float *)spec;
+    return FT_OK;
 }

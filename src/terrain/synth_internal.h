@@ -24,7 +24,8 @@
 /** Default size of the fft synthesis grid as a multiple of the output, per axis (see synth_fft.c). */
 #define FT_SYNTH_FFT_PAD_DEFAULT 1.25
 
-int ft_synth_fft_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
+/** The fft surface's nx x ny cells in *z (malloc'd: the spectrum's own memory, cropped in place). */
+int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z);
 int ft_synth_sra_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
 int ft_synth_midpoint_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
 int ft_synth_exact_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);

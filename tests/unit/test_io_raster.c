@@ -227,6 +227,29 @@ static void test_nodata_rules(void **state)
     ft_grid_free(b);
     ft_grid_free(g);
 
+    /* Float32 rows go to GDAL as floats in chunks of about 2^20 cells: straight from the grid where a chunk
+     * has no invalid cell (the first here), through a copy with the nodata value where it has (the second) */
+    g = ft_grid_create(1100, 1000);
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        g->z[i] = (float)i * 0.37f - 1234.5f;
+    ft_grid_ensure_mask(g);
+    g->mask[1050000] = 0;
+    g->z[1060000] = INFINITY;
+    g->has_nodata = 1;
+    g->nodata_value = -9999.0;
+    path = ft_test_tmp("chunks.tif");
+    write_ok(path, g, NULL);
+    b = read_ok(path, 1);
+    assert_int_equal(ft_grid_count_valid(b), g->nx * g->ny - 2);
+    assert_true(b->nodata_value == -9999.0);
+    assert_false(ft_grid_is_valid(b, 1050000 % 1100, 1050000 / 1100));
+    assert_false(ft_grid_is_valid(b, 1060000 % 1100, 1060000 / 1100));
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        if (i != 1050000 && i != 1060000 && b->z[i] != g->z[i])
+            fail_msg("cell %zu: wrote %g, read %g", i, (double)g->z[i], (double)b->z[i]);
+    ft_grid_free(b);
+    ft_grid_free(g);
+
     /* no geotransform in the file: the default one */
     g = ft_grid_create(2, 2);
     path = ft_test_tmp("plain.tif");
