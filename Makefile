@@ -44,6 +44,8 @@ accuracy: build
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth exact,sra,fft
 	./$(BUILD)/fracterra_accuracy $(ACCURACY_FLAGS) --synth exact --jitter
 	./$(BUILD)/fracterra_accuracy_reconstruct $(ACCURACY_RECON_FLAGS)
+	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8 --synth exact
+	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.5,2.8 --synth sra
 
 install: build
 	cmake --install $(BUILD)
