@@ -10,7 +10,8 @@
  * largest |ratio - 1|. The issue's goal: within 0.05 at every lag, D = 2.2 .. 2.8, exact and SRA surfaces.
  *
  *   fracterra_accuracy_recon_structure [--size 256] [--seeds 4] [--dims 2.2,2.5,2.8]
- *       [--synth exact|sra|sra-raw] [--methods fractal,conditional,smooth] [--k K]
+ *       [--synth exact|sra|sra-raw] [--methods fractal,conditional,smooth] [--k K] [--tension t]
+ *       [--dem FILE]   (a real DEM instead of Syn: its valid cells, D estimated from the subset)
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -23,8 +24,9 @@
 
 #define MAXLAG 32
 
-/* Mean |dz| at integer lags 1 .. MAXLAG along rows and columns. */
-static void structure(const ft_grid *g, double *s)
+/* Mean |dz| at integer lags 1 .. MAXLAG along rows and columns, over the pairs whose cells are both valid
+ * in `valid` (NULL: every pair). */
+static void structure(const ft_grid *g, const ft_grid *valid, double *s)
 {
     for (int h = 1; h <= MAXLAG; h++) {
         double sum = 0.0;
@@ -32,16 +34,18 @@ static void structure(const ft_grid *g, double *s)
         for (size_t y = 0; y < g->ny; y++)
             for (size_t x = 0; x < g->nx; x++) {
                 double z = g->z[y * g->nx + x];
-                if (x + (size_t)h < g->nx) {
+                if (valid && !ft_grid_is_valid(valid, x, y))
+                    continue;
+                if (x + (size_t)h < g->nx && (!valid || ft_grid_is_valid(valid, x + (size_t)h, y))) {
                     sum += fabs(g->z[y * g->nx + x + (size_t)h] - z);
                     n++;
                 }
-                if (y + (size_t)h < g->ny) {
+                if (y + (size_t)h < g->ny && (!valid || ft_grid_is_valid(valid, x, y + (size_t)h))) {
                     sum += fabs(g->z[(y + (size_t)h) * g->nx + x] - z);
                     n++;
                 }
             }
-        s[h] = sum / (double)n;
+        s[h] = n ? sum / (double)n : NAN;
     }
 }
 
@@ -53,7 +57,7 @@ static ft_points *subsample(const ft_grid *g, uint64_t seed, double frac, int ev
         for (size_t x = 0; x < g->nx; x++) {
             int take = (every > 0 && x % (size_t)every == 0 && y % (size_t)every == 0);
             take |= ft_rng_uniform(r) < frac;
-            if (take) {
+            if (take && ft_grid_is_valid(g, x, y)) {
                 double cx, cy;
                 ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
                 ft_points_push(p, cx, cy, g->z[y * g->nx + x]);
@@ -78,7 +82,7 @@ int main(int argc, char **argv)
     size_t size = 256;
     int seeds = 4, nd = 3;
     double dims[16] = {2.2, 2.5, 2.8}, k = 0.0, tension = -2.0;
-    const char *methods = "fractal,conditional,smooth";
+    const char *methods = "fractal,conditional,smooth", *dem = NULL;
     ft_synth_method synth = FT_SYNTH_EXACT;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--size") && i + 1 < argc)
@@ -91,6 +95,8 @@ int main(int argc, char **argv)
             methods = argv[++i];
         else if (!strcmp(argv[i], "--k") && i + 1 < argc)
             k = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--dem") && i + 1 < argc)
+            dem = argv[++i];
         else if (!strcmp(argv[i], "--tension") && i + 1 < argc)
             tension = atof(argv[++i]);
         else if (!strcmp(argv[i], "--synth") && i + 1 < argc) {
@@ -100,13 +106,23 @@ int main(int argc, char **argv)
             }
         } else {
             fprintf(stderr, "usage: recon_structure [--size N] [--seeds S] [--dims a,b] [--synth exact|sra|sra-raw] "
-                            "[--methods fractal,conditional,smooth] [--k K] [--tension t]\n");
+                            "[--methods fractal,conditional,smooth] [--k K] [--tension t] [--dem FILE]\n");
             return 2;
         }
     }
     static const int show[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
-    printf("size %zu, %d seeds, synth %s, subset every 4th cell + 5%%; S_rec(h) / S_orig(h), mean |dz| at lag h\n",
-           size, seeds, ft_synth_method_name(synth));
+    ft_grid *real = NULL;
+    if (dem) {
+        if (ft_io_read_grid(dem, NULL, &real) != FT_OK) {
+            fprintf(stderr, "%s\n", ft_last_error());
+            return 1;
+        }
+        nd = 1; /* D estimated from the data (dims[0] = 0) */
+        dims[0] = 0.0;
+        printf("DEM %s (%zu x %zu), %d subsets, D estimated from the data; ", dem, real->nx, real->ny, seeds);
+    } else
+        printf("size %zu, %d seeds, synth %s, ", size, seeds, ft_synth_method_name(synth));
+    printf("subset every 4th cell + 5%%; S_rec(h) / S_orig(h), mean |dz| at lag h\n");
     printf("%-12s %5s", "method", "D");
     for (size_t i = 0; i < sizeof show / sizeof *show; i++)
         printf(" %6d", show[i]);
@@ -125,7 +141,9 @@ int main(int argc, char **argv)
                 sy.dim = D;
                 sy.seed = (uint64_t)(1000 + sd);
                 ft_grid *g = NULL, *out = NULL;
-                if (ft_terrain_synth(size, size, &sy, &g) != FT_OK) {
+                if (real)
+                    g = ft_grid_copy(real);
+                else if (ft_terrain_synth(size, size, &sy, &g) != FT_OK) {
                     fprintf(stderr, "synth: %s\n", ft_last_error());
                     return 1;
                 }
@@ -141,10 +159,10 @@ int main(int argc, char **argv)
                     fprintf(stderr, "reconstruct: %s\n", ft_last_error());
                     return 1;
                 }
-                structure(g, s);
+                structure(g, real, s);
                 for (int h = 1; h <= MAXLAG; h++)
                     so[h] += s[h];
-                structure(out, s);
+                structure(out, real, s);
                 for (int h = 1; h <= MAXLAG; h++)
                     sr[h] += s[h];
                 ft_grid_free(out);
@@ -155,6 +173,8 @@ int main(int argc, char **argv)
             int wl = 0;
             for (int h = 1; h <= MAXLAG; h++) {
                 double e = fabs(sr[h] / so[h] - 1.0);
+                if (!isfinite(e))
+                    continue;
                 if (e > worst) {
                     worst = e;
                     wl = h;
