@@ -53,7 +53,7 @@ def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), 
 
 class ReconInfo:
     """What a reconstruction used and achieved (ft_recon_info): dim, dim_estimated, sigma0, k,
-    temperature, levels, data_used, data_outside, filled, data_rms, lambda_."""
+    temperature, levels, data_used, data_outside, filled, data_rms, lambda_, tension."""
 
     def __init__(self, info):
         for f, _t in S.ft_recon_info._fields_:
