@@ -72,12 +72,14 @@ typedef enum {
 } ft_contour_join;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_shrink_opts); see FT_OPTS in core.h */
     ft_contour_join join;  /**< default FT_JOIN_DPRIME */
     double dprime;         /**< d' as a multiple of d, >= 1; default 1.2 (1.4 looked most real) */
     int quad_segs;         /**< round join: segments per quarter circle, >= 1; default 8 */
     double min_area;       /**< faces smaller than min_area x d² are dropped, >= 0; default 0.5 */
 } ft_shrink_opts;
-#define FT_SHRINK_OPTS_DEFAULT {FT_JOIN_DPRIME, 1.2, 8, 0.5}
+#define FT_SHRINK_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_shrink_opts), .join = FT_JOIN_DPRIME, .dprime = 1.2, .quad_segs = 8, .min_area = 0.5}
 
 FT_API const char *ft_contour_join_name(ft_contour_join j);
 /** "dprime", "mitre" (or "miter"), "bevel", "round"; FT_E_INVALID naming the text otherwise. */
@@ -97,12 +99,15 @@ FT_API int ft_contour_clean(const ft_polygon_set *in, double min_area, ft_polygo
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_midpoint_opts); see FT_OPTS in core.h */
     double max_seg;       /**< split segments longer than this (ground units, > 0): the paper's 2 d0 */
     double max_offset;    /**< d'': the largest displacement (ground units, >= 0) */
     double theta_min;     /**< degrees, 0 <= theta_min <= theta_max < 90; default 20 */
     double theta_max;     /**< default 40 */
 } ft_midpoint_opts;
-#define FT_MIDPOINT_OPTS_DEFAULT {0.0, 0.0, 20.0, 40.0}
+#define FT_MIDPOINT_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_midpoint_opts), .max_seg = 0.0, .max_offset = 0.0, .theta_min = 20.0,                  \
+     .theta_max = 40.0}
 
 /** Random midpoint displacement (§4.1): every segment longer than max_seg (length 2l) is split at its
  *  midpoint, displaced perpendicularly to a random side by min(max_offset, |l tan theta|), theta uniform
@@ -112,11 +117,12 @@ FT_API int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_op
                                  uint64_t stream, ft_chain **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_fourier_opts); see FT_OPTS in core.h */
     int n;        /**< resample the ring to n equal segments, >= 8; default 1024 */
     int f0;       /**< randomize the phases of the components with |k| >= f0, 1 <= f0 <= n/2;
                        default 256 */
 } ft_fourier_opts;
-#define FT_FOURIER_OPTS_DEFAULT {1024, 256}
+#define FT_FOURIER_OPTS_DEFAULT {.struct_size = sizeof(ft_fourier_opts), .n = 1024, .f0 = 256}
 
 /** P-type Fourier descriptor phase randomization (§4.2): resample the ring to n equal segments, take
  *  the DFT c(k) of the unit edge vectors w(j), give every component with |k| >= f0 a uniform random
@@ -142,6 +148,7 @@ typedef enum {
 } ft_mountain_method;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_mountain_opts); see FT_OPTS in core.h */
     ft_mountain_method method;  /**< default FT_MOUNTAIN_IMPROVED */
     double interval;            /**< elevation step between contours, > 0; default 10 */
     double spacing;             /**< d: horizontal shrink per contour, > 0 (ground units); 0 (default) =
@@ -165,9 +172,12 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_mountain_opts;
-#define FT_MOUNTAIN_OPTS_DEFAULT                                                                             \
-    {FT_MOUNTAIN_IMPROVED, 10.0, 0.0, 0.0, -1, 0, {FT_JOIN_DPRIME, 0.0, 8, 0.5}, 0.5, 20.0, 40.0,           \
-     FT_FOURIER_OPTS_DEFAULT, 0.0, 1, 1, NULL, NULL}
+#define FT_MOUNTAIN_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_mountain_opts), .method = FT_MOUNTAIN_IMPROVED, .interval = 10.0, .spacing = 0.0,      \
+     .seed_elevation = 0.0, .levels_up = -1, .levels_down = 0, .shrink = {.struct_size = sizeof(ft_shrink_opts),     \
+     .join = FT_JOIN_DPRIME, .dprime = 0.0, .quad_segs = 8, .min_area = 0.5}, .dsecond = 0.5, .theta_min = 20.0,     \
+     .theta_max = 40.0, .fourier = FT_FOURIER_OPTS_DEFAULT, .collinear_deg = 0.0, .match_dim = 1, .seed = 1,         \
+     .progress = NULL, .progress_arg = NULL}
 
 FT_API const char *ft_mountain_method_name(ft_mountain_method m);
 /** The d' (a multiple of d) ft_mountain_generate applies when shrink.dprime is 0: 3 for the improved
@@ -214,6 +224,7 @@ FT_API int ft_contour_stack_from_layer(const ft_layer *l, const char *field, ft_
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_contour_dem_opts); see FT_OPTS in core.h */
     double cell;       /**< cell size (ground units, > 0); 0 (default) = the lowest level's larger
                             extent / 512 */
     double margin;     /**< ground units around the lowest level's extent, >= 0; default 0 (one cell) */
@@ -222,7 +233,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_contour_dem_opts;
-#define FT_CONTOUR_DEM_OPTS_DEFAULT {0.0, 0.0, 0.5, NULL, NULL}
+#define FT_CONTOUR_DEM_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_contour_dem_opts), .cell = 0.0, .margin = 0.0, .summit = 0.5, .progress = NULL,        \
+     .progress_arg = NULL}
 
 /** A north-up grid covering the lowest level (crs_wkt copied if not NULL). */
 FT_API int ft_contour_stack_to_dem(const ft_contour_stack *s, const ft_contour_dem_opts *opts, const char *crs_wkt,

@@ -59,6 +59,23 @@ FT_API int ft_error(int code, const char *fmt, ...)
 FT_API void ft_clear_error(void);
 
 /* ------------------------------------------------------------------------------------------------
+ * Options structs (FT_OPTS). Every ft_*_opts struct begins with `size_t struct_size`, which its
+ * FT_*_OPTS_DEFAULT macro sets to sizeof the struct as the caller's header declares it. Start from the
+ * macro and set the fields you need:
+ *
+ *     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+ *     o.min_scale = 30.0;
+ *
+ * The macros are designated initializers, so a field added to a struct never shifts another's value in
+ * a caller's source. New fields are only ever appended; the library reads the first struct_size bytes of
+ * the caller's struct and takes its own defaults for the fields after them, so a program built against
+ * an older header keeps its meaning with a newer library. A struct_size smaller than the member itself
+ * (a zeroed struct, or one filled by hand) or larger than this library's struct is refused with
+ * FT_E_INVALID naming the type. Option structs nested in another (ft_loglog_opts in
+ * ft_surface_dim_opts, ...) are part of their parent's layout.
+ * --------------------------------------------------------------------------------------------- */
+
+/* ------------------------------------------------------------------------------------------------
  * Progress: GDAL's GDALProgressFunc signature, so GDALTermProgress plugs in directly.
  * --------------------------------------------------------------------------------------------- */
 
@@ -440,6 +457,7 @@ typedef enum {
 } ft_loglog_method;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_loglog_opts); see FT_OPTS in core.h */
     ft_loglog_method method; /**< how ft_loglog_fit_auto chooses the range; default FT_LOGLOG_ILS */
     double tol;        /**< ILS: a point is on the line if its distance to it is at most
                             max(tol, tol_sigma * noise); > 0; default 0.02 */
@@ -462,7 +480,10 @@ typedef struct {
     int regime;        /**< FT_LOGLOG_REGIMES: 0 = the widest qualifying regime gives D; k >= 1 = the k-th
                             regime by increasing scale */
 } ft_loglog_opts;
-#define FT_LOGLOG_OPTS_DEFAULT {FT_LOGLOG_REGIMES, 0.02, 0.04, 3.0, 3, 50, 4.0, 0.025, 0.05, 0.01, 0}
+#define FT_LOGLOG_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_loglog_opts), .method = FT_LOGLOG_REGIMES, .tol = 0.02, .width = 0.04,                 \
+     .tol_sigma = 3.0, .min_points = 3, .max_iter = 50, .min_span = 4.0, .bounds_tol = 0.025, .curve_dD = 0.05,      \
+     .curve_alpha = 0.01, .regime = 0}
 
 /** One linear segment of a log-log table. */
 typedef struct {

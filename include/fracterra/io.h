@@ -53,11 +53,13 @@ FT_API int ft_io_is_text_points(const char *path);
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_read_layer_opts); see FT_OPTS in core.h */
     const char *layer;   /**< layer name; NULL = the first layer */
     const char *where;   /**< OGR attribute filter (SQL WHERE clause); NULL = all features */
     const char *fields;  /**< comma-separated field names to keep; NULL = all, "" = none */
 } ft_read_layer_opts;
-#define FT_READ_LAYER_OPTS_DEFAULT {NULL, NULL, NULL}
+#define FT_READ_LAYER_OPTS_DEFAULT                                                                                   \
+    {.struct_size = sizeof(ft_read_layer_opts), .layer = NULL, .where = NULL, .fields = NULL}
 
 /** Reads lines, multilines, polygons (with holes) and multipolygons of a layer, or GMT text chains
  *  (by extension). Rings lose their repeated closing vertex. Errors: FT_E_IO (missing/unreadable),
@@ -66,11 +68,13 @@ typedef struct {
 FT_API int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_write_layer_opts); see FT_OPTS in core.h */
     const char *driver;      /**< OGR driver short name; NULL = from the extension */
     const char *layer;       /**< layer name to write; NULL = the layer's name or the file's stem */
     const char *const *lco;  /**< NULL-terminated layer creation options, or NULL */
 } ft_write_layer_opts;
-#define FT_WRITE_LAYER_OPTS_DEFAULT {NULL, NULL, NULL}
+#define FT_WRITE_LAYER_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_write_layer_opts), .driver = NULL, .layer = NULL, .lco = NULL}
 
 /** Writes a layer (geometry type per feature, fields, CRS) through OGR, or as GMT text (by extension or
  *  driver "GMT-text"). Replaces an existing file only when the whole write succeeded. */
@@ -90,9 +94,10 @@ FT_API int ft_io_write_text_chains(const char *path, const ft_layer *layer);
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_read_grid_opts); see FT_OPTS in core.h */
     int band;  /**< 1-based band number; default 1 */
 } ft_read_grid_opts;
-#define FT_READ_GRID_OPTS_DEFAULT {1}
+#define FT_READ_GRID_OPTS_DEFAULT {.struct_size = sizeof(ft_read_grid_opts), .band = 1}
 
 /** Reads one band as float with its geotransform, CRS and nodata mask (the band's nodata value, its
  *  mask band, and NaN cells are nodata). FT_E_FORMAT for a vector file or a bad band number. */
@@ -114,11 +119,12 @@ FT_API int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts,
 FT_API void ft_grid_summary_clear(ft_grid_summary *s);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_write_grid_opts); see FT_OPTS in core.h */
     const char *driver;       /**< GDAL driver short name; NULL = from the extension (GTiff default) */
     const char *const *co;    /**< NULL-terminated creation options, or NULL (GeoTIFF: tiled, ZSTD-1 or DEFLATE-1) */
     int type;                 /**< GDALDataType of the output band; 0 = Float32 */
 } ft_write_grid_opts;
-#define FT_WRITE_GRID_OPTS_DEFAULT {NULL, NULL, 0}
+#define FT_WRITE_GRID_OPTS_DEFAULT {.struct_size = sizeof(ft_write_grid_opts), .driver = NULL, .co = NULL, .type = 0}
 
 /** Writes a grid with its geotransform, CRS and nodata (masked cells get nodata_value, or NaN/-9999
  *  chosen for the type if the grid has none). Drivers without Create use CreateCopy from memory. */
@@ -133,12 +139,15 @@ FT_API int ft_io_write_grids(const char *path, const ft_grid *const *bands, size
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_read_points_opts); see FT_OPTS in core.h */
     const char *x, *y, *z;  /**< column names for CSV (defaults "x", "y", "z", case-insensitive) */
     const char *weight;     /**< optional confidence column/field (1/sigma); NULL = none */
     const char *layer;      /**< OGR layer; NULL = first */
     const char *zfield;     /**< OGR point layers: z from this field; NULL = from the geometry's Z */
 } ft_read_points_opts;
-#define FT_READ_POINTS_OPTS_DEFAULT {NULL, NULL, NULL, NULL, NULL, NULL}
+#define FT_READ_POINTS_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_read_points_opts), .x = NULL, .y = NULL, .z = NULL, .weight = NULL, .layer = NULL,     \
+     .zfield = NULL}
 
 /** Reads scattered points from CSV (header row; .csv), whitespace XYZ text (.xyz, `x y z` per line,
  *  `#` comments), or an OGR point layer. Errors name the file, line and column of a non-numeric or
@@ -197,6 +206,7 @@ FT_API int ft_io_same_file(const char *a, const char *b);
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_io_hillshade_opts); see FT_OPTS in core.h */
     double azimuth;   /**< light direction, degrees clockwise from north, [0, 360]; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees, (0, 90]; default 45 */
     double z_factor;  /**< vertical exaggeration, > 0; default 1 */
@@ -206,7 +216,9 @@ typedef struct {
     int color;        /**< 1: multiply a hypsometric colour relief (gdaldem color-relief) by the shade */
     int band;         /**< 1-based band of the DEM; default 1 */
 } ft_io_hillshade_opts;
-#define FT_IO_HILLSHADE_OPTS_DEFAULT {315.0, 45.0, 1.0, 0.0, 0, 1}
+#define FT_IO_HILLSHADE_OPTS_DEFAULT                                                                                 \
+    {.struct_size = sizeof(ft_io_hillshade_opts), .azimuth = 315.0, .altitude = 45.0, .z_factor = 1.0, .scale = 0.0, \
+     .color = 0, .band = 1}
 
 /** gdaldem's hillshade of a DEM file (edges computed, nodata 0), optionally times a colour relief (RGBA,
  *  nodata transparent), written through the driver of the output's extension (PNG, GeoTIFF, ...) under a

@@ -34,6 +34,7 @@ typedef enum {
 } ft_line_method;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_line_dim_opts); see FT_OPTS in core.h */
     double min_scale;       /**< smallest ruler/box; 0 = automatic (from the vertex spacing) */
     double max_scale;       /**< largest ruler/box; 0 = automatic (from the extent) */
     int nscales;            /**< scales in the geometric series; 0 = the method's default (16; box 12) */
@@ -51,7 +52,10 @@ typedef struct {
     double min_r2;          /**< 0 (default): off; else a fit with r² below it fails (the CLI uses
                                  FT_LINE_R2_FLOOR), unless D is pinned anyway (see FT_LINE_R2_FLOOR) */
 } ft_line_dim_opts;
-#define FT_LINE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 1, 4, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, 0.0}
+#define FT_LINE_DIM_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_line_dim_opts), .min_scale = 0.0, .max_scale = 0.0, .nscales = 0, .both_ends = 1,      \
+     .box_offsets = 4, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL,  \
+     .ellipsoid = NULL, .min_r2 = 0.0}
 
 /** The least r² the CLI accepts (opts.min_r2; docs/line-dimension.md): below it ft_line_dim fails
  *  (FT_E_INVALID) naming the range, rather than return a D read from a table that is not a straight line.
@@ -89,6 +93,7 @@ FT_API int ft_line_box_count(const ft_chain *const *chains, size_t n, double siz
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_dutton_opts); see FT_OPTS in core.h */
     double sd;       /**< sinuosity dimension in [1, 2]: the divider dimension the enhanced chain measures over
                           the scales the enhancement generates when uc = 1 (unless literal_sd); default 1.3 */
     double uc;       /**< uniformity coefficient in [-1, 1]; default 1. For uc in (0, 1] the target dimension
@@ -107,7 +112,9 @@ typedef struct {
     int allow_crossings; /**< 1: the raw algorithm; 0 (default): a move that would make a segment cross or
                               touch another one of the chain (or layer) is halved, then dropped */
 } ft_dutton_opts;
-#define FT_DUTTON_OPTS_DEFAULT {1.3, 1.0, INFINITY, 0.0, 1, 0.0, 0.0, 0, 0}
+#define FT_DUTTON_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_dutton_opts), .sd = 1.3, .uc = 1.0, .st = INFINITY, .sm = 0.0, .iterations = 1,        \
+     .target_dim = 0.0, .input_dim = 0.0, .literal_sd = 0, .allow_crossings = 0}
 
 /** What an enhancement will do, resolved once for a chain or a whole layer (ft_dutton_plan_make). */
 typedef struct {
@@ -150,13 +157,16 @@ FT_API double ft_dutton_apex_for_dimension(double target_dim);
 FT_API int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_smooth_opts); see FT_OPTS in core.h */
     int passes;        /**< corner-cutting passes; default 1 */
     double roundness;  /**< R in (0, 1]: V is replaced by V + R(M1 - V) and V + R(M2 - V); default 0.5 */
     double st, sm;     /**< only segments within [sm, st] are cut; defaults INFINITY and 0 */
     int allow_crossings; /**< 1: the raw algorithm; 0 (default): cuts that would make a segment cross or touch
                               another are reduced (move_guard.c) */
 } ft_smooth_opts;
-#define FT_SMOOTH_OPTS_DEFAULT {1, 0.5, INFINITY, 0.0, 0}
+#define FT_SMOOTH_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_smooth_opts), .passes = 1, .roundness = 0.5, .st = INFINITY, .sm = 0.0,                \
+     .allow_crossings = 0}
 
 /** Roundness smoothing (corner cutting; R = 0.5 is Chaikin's quarter points). */
 FT_API int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out);

@@ -12,28 +12,32 @@ extern "C" {
 #endif
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_hillshade_opts); see FT_OPTS in core.h */
     double azimuth;   /**< light direction, degrees clockwise from north; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees; default 45 */
     double z_factor;  /**< vertical exaggeration; default 1 */
     double scale;     /**< horizontal units per vertical unit (e.g. metres per degree for a DEM in degrees); default 1 */
 } ft_hillshade_opts;
-#define FT_HILLSHADE_OPTS_DEFAULT {315.0, 45.0, 1.0, 1.0}
+#define FT_HILLSHADE_OPTS_DEFAULT                                                                                    \
+    {.struct_size = sizeof(ft_hillshade_opts), .azimuth = 315.0, .altitude = 45.0, .z_factor = 1.0, .scale = 1.0}
 
 /** Hillshade (Horn's 3x3 slope and aspect, as gdaldem) in [0, 255]; cells whose window touches
  *  nodata are nodata. The output keeps the input's geotransform and CRS. */
 FT_API int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_grid_image_opts); see FT_OPTS in core.h */
     int width;              /**< image width in pixels; 0 = one pixel per cell (height follows) */
     const ft_grid *shade;   /**< optional hillshade (same size) multiplied into the colours; NULL = none */
     int colormap;           /**< 0 = grey, 1 = hypsometric (green-brown-white) */
 } ft_grid_image_opts;
-#define FT_GRID_IMAGE_OPTS_DEFAULT {0, NULL, 0}
+#define FT_GRID_IMAGE_OPTS_DEFAULT {.struct_size = sizeof(ft_grid_image_opts), .width = 0, .shade = NULL, .colormap = 0}
 
 /** Writes a grid as a PNG image, stretched between its minimum and maximum; nodata is transparent. */
 FT_API int ft_render_grid_png(const ft_grid *g, const char *path, const ft_grid_image_opts *opts);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_map_opts); see FT_OPTS in core.h */
     int width, height;       /**< canvas size in points/pixels; default 800 x 600 (aspect kept) */
     double line_width;       /**< stroke width; default 0.8 */
     const char *stroke;      /**< stroke colour "#rrggbb"; default "#1f3b73" */
@@ -43,7 +47,9 @@ typedef struct {
     double window[4];        /**< xmin, ymin, xmax, ymax of the area shown (a zoom; what lies outside is
                                   clipped); all 0 (default) = the layers' extent */
 } ft_map_opts;
-#define FT_MAP_OPTS_DEFAULT {800, 600, 0.8, "#1f3b73", "#e8eef5", NULL, 1, {0.0, 0.0, 0.0, 0.0}}
+#define FT_MAP_OPTS_DEFAULT                                                                                          \
+    {.struct_size = sizeof(ft_map_opts), .width = 800, .height = 600, .line_width = 0.8, .stroke = "#1f3b73",        \
+     .fill = "#e8eef5", .title = NULL, .scale_bar = 1, .window = {0.0, 0.0, 0.0, 0.0}}
 
 /** Draws a layer's chains (polygons filled even-odd, lines stroked) to SVG, PNG or PDF by extension. */
 FT_API int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts);
@@ -65,13 +71,16 @@ typedef struct {
 FT_API int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_plot_opts); see FT_OPTS in core.h */
     int width, height;  /**< canvas size in points/pixels; default 720 x 540 */
     const char *title;  /**< drawn at the top; NULL = none */
     const char *xlabel; /**< x axis label; default "scale" */
     const char *ylabel; /**< y axis label; default "value" */
     int segments;       /**< 1 to draw every segment's line when the result has segments; default 1 */
 } ft_plot_opts;
-#define FT_PLOT_OPTS_DEFAULT {720, 540, NULL, "scale", "value", 1}
+#define FT_PLOT_OPTS_DEFAULT                                                                                         \
+    {.struct_size = sizeof(ft_plot_opts), .width = 720, .height = 540, .title = NULL, .xlabel = "scale",             \
+     .ylabel = "value", .segments = 1}
 
 /** The log-log plot of an estimator's result (SVG, PNG or PDF by extension): log10 axes with decade
  *  ticks, used rows filled and the others hollow, the fitted range shaded, the fitted line over it,
@@ -87,6 +96,7 @@ typedef struct {
 } ft_series;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_chart_opts); see FT_OPTS in core.h */
     int width, height;               /**< canvas size in points/pixels; default 720 x 540 */
     const char *title;               /**< drawn at the top; NULL = none */
     const char *xlabel, *ylabel;     /**< axis labels; default "x" and "y" */
@@ -94,7 +104,9 @@ typedef struct {
                                           labelled with its category (years such as "1959", "1980s") */
     size_t ncategories;
 } ft_chart_opts;
-#define FT_CHART_OPTS_DEFAULT {720, 540, NULL, "x", "y", NULL, 0}
+#define FT_CHART_OPTS_DEFAULT                                                                                        \
+    {.struct_size = sizeof(ft_chart_opts), .width = 720, .height = 540, .title = NULL, .xlabel = "x", .ylabel = "y", \
+     .xcategories = NULL, .ncategories = 0}
 
 /** A line chart of several series (SVG, PNG or PDF by extension): linear axes with round ticks (or one
  *  tick per category), each series a line with dots in its own colour, a legend of the named series in
@@ -106,6 +118,7 @@ FT_API int ft_render_series_chart(const ft_series *series, size_t n, const char 
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_perspective_opts); see FT_OPTS in core.h */
     double azimuth;        /**< direction the viewer looks towards, degrees clockwise from north; default 20 */
     double elevation;      /**< angle of the line of sight below the horizon, degrees in [5, 90]; default 35 */
     double exaggeration;   /**< vertical exaggeration, > 0; 0 (default) = automatic: 1, or more so that the
@@ -118,7 +131,9 @@ typedef struct {
                                 geographic (ft_io_crs_info), else 1 */
     int sky;               /**< 1 (default): a sky gradient behind the terrain; 0: transparent */
 } ft_perspective_opts;
-#define FT_PERSPECTIVE_OPTS_DEFAULT {20.0, 35.0, 0.0, 1200, 315.0, 40.0, 0.0, 1}
+#define FT_PERSPECTIVE_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_perspective_opts), .azimuth = 20.0, .elevation = 35.0, .exaggeration = 0.0,            \
+     .width = 1200, .light_azimuth = 315.0, .light_altitude = 40.0, .scale = 0.0, .sky = 1}
 
 /** Renders the lit surface in perspective to a PNG: every quad of four valid neighbouring cells becomes
  *  two triangles, z-buffered, coloured by hypsometric tints times Lambert shading with a little aerial

@@ -28,12 +28,13 @@ typedef enum {
 
 /** What the lag estimators know or assume about white noise in the data. */
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_noise_opts); see FT_OPTS in core.h */
     int mode;        /**< 0 (default): detect a nugget and remove it; -1: no noise model */
     double sigma_z;  /**< known sd of white noise on z (z units); 0 = unknown (estimated when detected) */
     double sigma_xy; /**< known sd of noise on x and y (ground units); 0 = unknown. Lags below 3 sigma_xy are
                           left out of the fit */
 } ft_noise_opts;
-#define FT_NOISE_OPTS_DEFAULT {0, 0.0, 0.0}
+#define FT_NOISE_OPTS_DEFAULT {.struct_size = sizeof(ft_noise_opts), .mode = 0, .sigma_z = 0.0, .sigma_xy = 0.0}
 
 /** Fits value^power = c0 + a scale^(2H) to every row of t (power 1 for FT_STRUCT_MEAN_SQ, 2 otherwise),
  *  weights 1/value^(2 power), profiling H; with sigma_z > 0, c0 is held at the nugget that sigma_z gives.
@@ -65,6 +66,7 @@ FT_API int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_
                          const ft_loglog_opts *fit, const ft_dim_map *map, ft_dim_result **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_variogram_opts); see FT_OPTS in core.h */
     double min_lag;     /**< smallest lag in cells; 0 = 1 */
     double max_lag;     /**< largest lag in cells; 0 = automatic */
     int nlags;          /**< lags in the geometric series; 0 = automatic */
@@ -77,7 +79,10 @@ typedef struct {
     void *progress_arg;
     ft_noise_opts noise; /**< white noise on z (nugget): detected and removed by default */
 } ft_variogram_opts;
-#define FT_VARIOGRAM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, FT_NOISE_OPTS_DEFAULT}
+#define FT_VARIOGRAM_OPTS_DEFAULT                                                                                    \
+    {.struct_size = sizeof(ft_variogram_opts), .min_lag = 0.0, .max_lag = 0.0, .nlags = 0, .pairs = 0, .seed = 1,    \
+     .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL,                    \
+     .noise = FT_NOISE_OPTS_DEFAULT}
 
 /** Variogram dimension of a grid: mean squared elevation difference against lag (in ground units),
  *  D = 3 - slope/2. Pairs touching nodata are skipped. */
@@ -96,6 +101,7 @@ FT_API int ft_surface_dim_yokoya(const ft_grid *g, const ft_variogram_opts *opts
 FT_API int ft_surface_dim_pentland(const ft_grid *g, const ft_variogram_opts *opts, ft_dim_result **out);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_spectrum_opts); see FT_OPTS in core.h */
     double min_wavelength; /**< shortest wavelength fitted, cells, >= 2; 0 = 8 (the band near the Nyquist
                                 frequency, flattened by aliasing, is left out) */
     double max_wavelength; /**< longest, cells, <= tile; 0 = tile / 8 (at least twice min_wavelength):
@@ -116,7 +122,10 @@ typedef struct {
                                 while none is). 1: the periodogram of the detrended elevations, tapered
                                 as window says, on tiles free of nodata (as described above). */
 } ft_spectrum_opts;
-#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, 0}
+#define FT_SPECTRUM_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_spectrum_opts), .min_wavelength = 0.0, .max_wavelength = 0.0, .nbins = 0, .tile = 0,   \
+     .window = 1, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL,       \
+     .elevations = 0}
 
 /** Power-spectrum dimension: square tiles overlapping by half (Welch); by default the periodograms of
  *  the first differences along rows and columns (nodata-aware, the differencing gain divided out), or
@@ -128,6 +137,7 @@ FT_API int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opt
 
 /** Options of the estimators measuring at cell sizes by powers of two (prism, cubes). */
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_dyadic_opts); see FT_OPTS in core.h */
     double min_size;   /**< smallest square side or cube side, cells, rounded up to a power of two; 0 = 1 */
     double max_size;   /**< largest, cells, rounded down to a power of two; 0 = the largest power of two
                             <= min(nx - 1, ny - 1) / 8 */
@@ -140,7 +150,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_dyadic_opts;
-#define FT_DYADIC_OPTS_DEFAULT {0.0, 0.0, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL}
+#define FT_DYADIC_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_dyadic_opts), .min_size = 0.0, .max_size = 0.0, .zscale = 0.0,                         \
+     .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL}
 
 /** Clarke's (1986) triangular prism surface area: squares of side s = 2^k cells, four triangles from
  *  the edges to the centre (mean of the corners); surface area over planimetric area against s,
@@ -166,6 +178,7 @@ typedef enum {
 
 /** Options of the dispatcher: each method's own options are filled from these (unset = its default). */
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_surface_dim_opts); see FT_OPTS in core.h */
     double min_scale;  /**< ground units: smallest lag, square or cube side, or wavelength; 0 = default */
     double max_scale;  /**< largest; 0 = the method's default */
     int nscales;       /**< lags or frequency bins; 0 = default; prism and cubes use powers of two */
@@ -181,8 +194,10 @@ typedef struct {
     void *progress_arg;
     ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget), default automatic */
 } ft_surface_dim_opts;
-#define FT_SURFACE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, 0.0, 0, 0.5, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL,            \
-                                     FT_NOISE_OPTS_DEFAULT}
+#define FT_SURFACE_DIM_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_surface_dim_opts), .min_scale = 0.0, .max_scale = 0.0, .nscales = 0, .pairs = 0,       \
+     .seed = 1, .zscale = 0.0, .tile = 0, .min_valid = 0.5, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0,     \
+     .progress = NULL, .progress_arg = NULL, .noise = FT_NOISE_OPTS_DEFAULT}
 
 /** "variogram", "yokoya", "pentland", "spectrum", "prism", "cubes" ("?" for a bad value). */
 FT_API const char *ft_surface_method_name(ft_surface_method m);
@@ -255,6 +270,7 @@ typedef struct {
 FT_API void ft_points_counters_free(ft_points_counters *c);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_points_dim_opts); see FT_OPTS in core.h */
     ft_points_method method;
     const double *lags;   /**< user lags Δd_i (ground units, > 0, distinct, any order), or NULL */
     size_t nuser_lags;    /**< number of user lags (>= 2 when lags is given) */
@@ -282,9 +298,11 @@ typedef struct {
                                default lags then extended to 32 x the mean spacing (at most a quarter of
                                the bounding box's shorter side); -1: no noise model */
 } ft_points_dim_opts;
-#define FT_POINTS_DIM_OPTS_DEFAULT                                                                           \
-    {FT_POINTS_YOKOYA, NULL, 0, 0.0, 0.0, 0, 0.0, 100, 0, 0, 1, 0.0, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, NULL, \
-     0.0, 0}
+#define FT_POINTS_DIM_OPTS_DEFAULT                                                                                   \
+    {.struct_size = sizeof(ft_points_dim_opts), .method = FT_POINTS_YOKOYA, .lags = NULL, .nuser_lags = 0,           \
+     .min_lag = 0.0, .max_lag = 0.0, .nlags = 0, .eps = 0.0, .min_pairs = 100, .exact = 0, .sample = 0, .seed = 1,   \
+     .noise_sigma = 0.0, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_auto = 0, .counters = NULL, .progress = NULL,           \
+     .progress_arg = NULL, .noise_sigma_xy = 0.0, .noise_mode = 0}
 
 FT_API const char *ft_points_method_name(ft_points_method m);
 /** "yokoya" or "pentland" (case-insensitive); FT_E_INVALID naming the text otherwise. */
@@ -305,13 +323,16 @@ FT_API int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *o
  *  between the centres of the four nearest cells; then independent N(0, noise_xy²) on x and y and
  *  N(0, noise_z²) on z. */
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_grid_sample_opts); see FT_OPTS in core.h */
     double fraction;  /**< in (0, 1]; default 0.05 */
     int jitter;       /**< default 0 */
     double noise_xy;  /**< ground units, >= 0; default 0 */
     double noise_z;   /**< elevation units, >= 0; default 0 */
     uint64_t seed;    /**< default 1 */
 } ft_grid_sample_opts;
-#define FT_GRID_SAMPLE_OPTS_DEFAULT {0.05, 0, 0.0, 0.0, 1}
+#define FT_GRID_SAMPLE_OPTS_DEFAULT                                                                                  \
+    {.struct_size = sizeof(ft_grid_sample_opts), .fraction = 0.05, .jitter = 0, .noise_xy = 0.0, .noise_z = 0.0,     \
+     .seed = 1}
 
 FT_API int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opts, ft_points **out);
 

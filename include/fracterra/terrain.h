@@ -33,6 +33,7 @@ typedef enum {
 } ft_synth_method;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_synth_opts); see FT_OPTS in core.h */
     ft_synth_method method;
     double dim;        /**< fractal dimension D in (2, 3); default 2.3 */
     double sigma;      /**< standard deviation of the output; default 1 (0 = leave as generated) */
@@ -44,7 +45,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_synth_opts;
-#define FT_SYNTH_OPTS_DEFAULT {FT_SYNTH_FFT, 2.3, 1.0, 1.0, 0.0, 0.0, 0, 1, NULL, NULL}
+#define FT_SYNTH_OPTS_DEFAULT                                                                                        \
+    {.struct_size = sizeof(ft_synth_opts), .method = FT_SYNTH_FFT, .dim = 2.3, .sigma = 1.0, .cell = 1.0,            \
+     .origin_x = 0.0, .origin_y = 0.0, .periodic = 0, .seed = 1, .progress = NULL, .progress_arg = NULL}
 
 /** A new nx x ny grid of a fractional Brownian surface. Same options and seed => bit-identical cells on
  *  any thread count. */
@@ -105,6 +108,7 @@ typedef struct {
 } ft_clarke_model;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_clarke_opts); see FT_OPTS in core.h */
     double cutoff;          /**< percent of the detrended variance a harmonic must reach, in (0, 100];
                                  default 2.5 (Clarke) */
     int taper;              /**< 1 (default): the regression uses the periodogram of the residual under a
@@ -115,7 +119,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_clarke_opts;
-#define FT_CLARKE_OPTS_DEFAULT {2.5, 1, 4.0, NULL, NULL}
+#define FT_CLARKE_OPTS_DEFAULT                                                                                       \
+    {.struct_size = sizeof(ft_clarke_opts), .cutoff = 2.5, .taper = 1, .min_wavelength = 4.0, .progress = NULL,      \
+     .progress_arg = NULL}
 
 /** Fits Clarke's model to a DEM of any size (at least 4 x 4 cells with 3 valid ones not on a line).
  *  Nodata cells are filled with the trend before the Fourier analysis (model->nodata_filled says how
@@ -127,6 +133,7 @@ FT_API ft_clarke_model *ft_clarke_model_create(size_t nharmonics);
 FT_API void ft_clarke_model_free(ft_clarke_model *m);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_clarke_sim_opts); see FT_OPTS in core.h */
     int refine;             /**< K >= 1: K times more cells along each axis over the same extent; default 1 */
     int extent;             /**< E >= 1: E times the extent along each axis, from the same upper-left
                                  corner (the harmonics repeat, the trend continues); default 1 */
@@ -135,7 +142,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_clarke_sim_opts;
-#define FT_CLARKE_SIM_OPTS_DEFAULT {1, 1, 1, NULL, NULL, NULL}
+#define FT_CLARKE_SIM_OPTS_DEFAULT                                                                                   \
+    {.struct_size = sizeof(ft_clarke_sim_opts), .refine = 1, .extent = 1, .seed = 1, .c_used = NULL,                 \
+     .progress = NULL, .progress_arg = NULL}
 
 /** Simulates T + cF + H on a grid of (E K nx) x (E K ny) cells: T and H from the model, F with the
  *  fitted power per harmonic (scaled to the new harmonic spacing) and uniform random phases, at every
@@ -163,6 +172,7 @@ typedef enum {
 } ft_recon_method;
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_recon_opts); see FT_OPTS in core.h */
     ft_recon_method method;   /**< default FT_RECON_FRACTAL */
     double dim;               /**< D in (2, 3); 0 (default) = estimate from the data (points: the yokoya
                                    points estimator with its default range; grid voids: from the valid
@@ -200,7 +210,10 @@ typedef struct {
 } ft_recon_opts;
 /** ft_recon_opts.tension: the prior's blend follows D (Szeliski's eq. 7 crossover). */
 #define FT_RECON_TENSION_FROM_DIM (-1.0)
-#define FT_RECON_OPTS_DEFAULT {FT_RECON_FRACTAL, 0.0, FT_RECON_TENSION_FROM_DIM, 1.0, 0.0, 0.0, 0.0, 0, 1, 1, 0, NULL, NULL}
+#define FT_RECON_OPTS_DEFAULT                                                                                        \
+    {.struct_size = sizeof(ft_recon_opts), .method = FT_RECON_FRACTAL, .dim = 0.0,                                   \
+     .tension = FT_RECON_TENSION_FROM_DIM, .lambda = 1.0, .sigma = 0.0, .temperature = 0.0, .k = 0.0, .sweeps = 0,  \
+     .realizations = 1, .seed = 1, .threads = 0, .progress = NULL, .progress_arg = NULL}
 
 /** What a reconstruction used and achieved. */
 typedef struct {
@@ -253,6 +266,7 @@ FT_API int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, f
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_fill_opts); see FT_OPTS in core.h */
     double max_void;   /**< voids whose bounding box is longer than this many cells along either axis
                             stay nodata (coast, outside of a survey); > 0; 0 = no limit; default 100
                             (gdal_fillnodata's -md default) */
@@ -267,7 +281,9 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_fill_opts;
-#define FT_FILL_OPTS_DEFAULT {100.0, 0, 1, 0.0, 0, 1, NULL, NULL}
+#define FT_FILL_OPTS_DEFAULT                                                                                         \
+    {.struct_size = sizeof(ft_fill_opts), .max_void = 100.0, .mean = 0, .realizations = 1, .dim = 0.0, .ring = 0,    \
+     .seed = 1, .progress = NULL, .progress_arg = NULL}
 
 typedef enum {
     FT_FILL_D_RING = 0,  /**< D and v1 fitted on the void's ring */

@@ -52,6 +52,7 @@ FT_API const char *ft_area_what_name(ft_area_what w);
 FT_API int ft_area_what_parse(const char *name, ft_area_what *w);
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_area_dim_opts); see FT_OPTS in core.h */
     ft_area_what what;   /**< default FT_AREA_BOUNDARY */
     const double *cells; /**< explicit box sides in map units (ncells > 0): every one is counted (any
                               order, duplicates an error); NULL = a geometric series */
@@ -66,8 +67,10 @@ typedef struct {
     ft_progress_fn progress;
     void *progress_arg;
 } ft_area_dim_opts;
-#define FT_AREA_DIM_OPTS_DEFAULT \
-    {FT_AREA_BOUNDARY, NULL, 0, 0.0, 0.0, 0, 4, FT_LOGLOG_OPTS_DEFAULT, 0, 0, NULL, NULL}
+#define FT_AREA_DIM_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_area_dim_opts), .what = FT_AREA_BOUNDARY, .cells = NULL, .ncells = 0, .min_cell = 0.0, \
+     .max_cell = 0.0, .nscales = 0, .offsets = 4, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .fewest = 0,  \
+     .progress = NULL, .progress_arg = NULL}
 
 /** Box-counting dimension of the polygons of features[0 .. nfeatures) of the layer (features == NULL: every
  *  feature; nfeatures is then ignored). Every selected feature must be a polygon (FT_GEOM_POLYGON) or
@@ -167,6 +170,7 @@ FT_API int ft_urban_regress(const double *x, const double *y, size_t n, int log_
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
+    size_t struct_size; /**< sizeof(ft_boundary_opts); see FT_OPTS in core.h */
     double dim;      /**< D in (1, 2); no default (0 is rejected): the measured dimension of the boundary
                           (the paper's Table 1 gives 1.19-1.23 for Wuhan's boundaries) */
     double min;      /**< > 0, map units: segments no longer than this are not replaced (the paper: set by
@@ -183,7 +187,9 @@ typedef struct {
                               crossing guard (boundary_guarded.c): no leg crosses or touches another segment
                               of the layer; 1: the raw depth-first generator (boundary.c) */
 } ft_boundary_opts;
-#define FT_BOUNDARY_OPTS_DEFAULT {0.0, 0.0, 0.0, 0.0, 1, 0, 0}
+#define FT_BOUNDARY_OPTS_DEFAULT                                                                                     \
+    {.struct_size = sizeof(ft_boundary_opts), .dim = 0.0, .min = 0.0, .max = 0.0, .jitter = 0.0, .seed = 1,          \
+     .stream = 0, .allow_crossings = 0}
 
 /** A suggested min when no target scale is known: this fraction of the average chord length. */
 #define FT_BOUNDARY_MIN_FRACTION 0.1

@@ -1,7 +1,8 @@
 """ctypes mirrors of the C structs in include/fracterra/*.h.
 
 Each Structure names its C type in _c_name_ and, for options structs, the defaults macro in _c_default_
-with the same values in _defaults_ (nested structs as dicts). python/tests/test_layout.py compiles a
+with the same values in _defaults_ (nested structs as dicts). Options structs begin with struct_size
+(FT_OPTS in core.h), which default() sets: always start from default(). python/tests/test_layout.py compiles a
 small C program against the headers and checks every size, every field offset and every default
 here: a header change that is not mirrored fails that test, never a user's call.
 """
@@ -33,9 +34,18 @@ class _Opts(c.Structure):
 
     @classmethod
     def default(cls):
+        """The FT_*_OPTS_DEFAULT values, struct_size set in this struct and every nested one (FT_OPTS)."""
         o = cls()
+        _set_sizes(o)
         _apply(o, cls._defaults_)
         return o
+
+
+def _set_sizes(obj):
+    obj.struct_size = c.sizeof(obj)
+    for name, typ in obj._fields_:
+        if isinstance(typ, type) and issubclass(typ, _Opts):
+            _set_sizes(getattr(obj, name))
 
 
 def _apply(obj, values):
@@ -130,7 +140,7 @@ class ft_dim_map(c.Structure):
 class ft_loglog_opts(_Opts):
     _c_name_ = "ft_loglog_opts"
     _c_default_ = "FT_LOGLOG_OPTS_DEFAULT"
-    _fields_ = [("method", _int), ("tol", _dbl), ("width", _dbl), ("tol_sigma", _dbl), ("min_points", _sz),
+    _fields_ = [("struct_size", _sz), ("method", _int), ("tol", _dbl), ("width", _dbl), ("tol_sigma", _dbl), ("min_points", _sz),
                 ("max_iter", _int), ("min_span", _dbl), ("bounds_tol", _dbl), ("curve_dD", _dbl),
                 ("curve_alpha", _dbl), ("regime", _int)]
     _defaults_ = dict(method=2, tol=0.02, width=0.04, tol_sigma=3.0, min_points=3, max_iter=50, min_span=4.0,
@@ -183,14 +193,14 @@ class ft_dim_result(c.Structure):
 class ft_read_layer_opts(_Opts):
     _c_name_ = "ft_read_layer_opts"
     _c_default_ = "FT_READ_LAYER_OPTS_DEFAULT"
-    _fields_ = [("layer", _str), ("where", _str), ("fields", _str)]
+    _fields_ = [("struct_size", _sz), ("layer", _str), ("where", _str), ("fields", _str)]
 
 
 @_mirror
 class ft_read_grid_opts(_Opts):
     _c_name_ = "ft_read_grid_opts"
     _c_default_ = "FT_READ_GRID_OPTS_DEFAULT"
-    _fields_ = [("band", _int)]
+    _fields_ = [("struct_size", _sz), ("band", _int)]
     _defaults_ = dict(band=1)
 
 
@@ -198,21 +208,21 @@ class ft_read_grid_opts(_Opts):
 class ft_write_grid_opts(_Opts):
     _c_name_ = "ft_write_grid_opts"
     _c_default_ = "FT_WRITE_GRID_OPTS_DEFAULT"
-    _fields_ = [("driver", _str), ("co", _P(_str)), ("type", _int)]
+    _fields_ = [("struct_size", _sz), ("driver", _str), ("co", _P(_str)), ("type", _int)]
 
 
 @_mirror
 class ft_read_points_opts(_Opts):
     _c_name_ = "ft_read_points_opts"
     _c_default_ = "FT_READ_POINTS_OPTS_DEFAULT"
-    _fields_ = [("x", _str), ("y", _str), ("z", _str), ("weight", _str), ("layer", _str), ("zfield", _str)]
+    _fields_ = [("struct_size", _sz), ("x", _str), ("y", _str), ("z", _str), ("weight", _str), ("layer", _str), ("zfield", _str)]
 
 
 @_mirror
 class ft_io_hillshade_opts(_Opts):
     _c_name_ = "ft_io_hillshade_opts"
     _c_default_ = "FT_IO_HILLSHADE_OPTS_DEFAULT"
-    _fields_ = [("azimuth", _dbl), ("altitude", _dbl), ("z_factor", _dbl), ("scale", _dbl), ("color", _int),
+    _fields_ = [("struct_size", _sz), ("azimuth", _dbl), ("altitude", _dbl), ("z_factor", _dbl), ("scale", _dbl), ("color", _int),
                 ("band", _int)]
     _defaults_ = dict(azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=0, band=1)
 
@@ -231,7 +241,7 @@ class ft_crs_info(c.Structure):
 class ft_hillshade_opts(_Opts):
     _c_name_ = "ft_hillshade_opts"
     _c_default_ = "FT_HILLSHADE_OPTS_DEFAULT"
-    _fields_ = [("azimuth", _dbl), ("altitude", _dbl), ("z_factor", _dbl), ("scale", _dbl)]
+    _fields_ = [("struct_size", _sz), ("azimuth", _dbl), ("altitude", _dbl), ("z_factor", _dbl), ("scale", _dbl)]
     _defaults_ = dict(azimuth=315.0, altitude=45.0, z_factor=1.0, scale=1.0)
 
 
@@ -241,7 +251,7 @@ class ft_hillshade_opts(_Opts):
 class ft_noise_opts(_Opts):
     _c_name_ = "ft_noise_opts"
     _c_default_ = "FT_NOISE_OPTS_DEFAULT"
-    _fields_ = [("mode", _int), ("sigma_z", _dbl), ("sigma_xy", _dbl)]
+    _fields_ = [("struct_size", _sz), ("mode", _int), ("sigma_z", _dbl), ("sigma_xy", _dbl)]
     _defaults_ = dict(mode=0, sigma_z=0.0, sigma_xy=0.0)
 
 
@@ -252,7 +262,7 @@ NOISE_DEFAULTS = ft_noise_opts._defaults_
 class ft_surface_dim_opts(_Opts):
     _c_name_ = "ft_surface_dim_opts"
     _c_default_ = "FT_SURFACE_DIM_OPTS_DEFAULT"
-    _fields_ = [("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("pairs", _sz), ("seed", _u64),
+    _fields_ = [("struct_size", _sz), ("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("pairs", _sz), ("seed", _u64),
                 ("zscale", _dbl), ("tile", _sz), ("min_valid", _dbl), ("fit", ft_loglog_opts),
                 ("fit_whole_range", _int), ("progress", PROGRESS), ("progress_arg", _vp), ("noise", ft_noise_opts)]
     _defaults_ = dict(min_scale=0.0, max_scale=0.0, nscales=0, pairs=0, seed=1, zscale=0.0, tile=0,
@@ -278,7 +288,7 @@ class ft_points_counters(c.Structure):
 class ft_points_dim_opts(_Opts):
     _c_name_ = "ft_points_dim_opts"
     _c_default_ = "FT_POINTS_DIM_OPTS_DEFAULT"
-    _fields_ = [("method", _int), ("lags", _P(_dbl)), ("nuser_lags", _sz), ("min_lag", _dbl), ("max_lag", _dbl),
+    _fields_ = [("struct_size", _sz), ("method", _int), ("lags", _P(_dbl)), ("nuser_lags", _sz), ("min_lag", _dbl), ("max_lag", _dbl),
                 ("nlags", _int), ("eps", _dbl), ("min_pairs", _sz), ("exact", _int), ("sample", _sz),
                 ("seed", _u64), ("noise_sigma", _dbl), ("fit", ft_loglog_opts), ("fit_auto", _int),
                 ("counters", _P(_P(ft_points_counters))), ("progress", PROGRESS), ("progress_arg", _vp),
@@ -297,7 +307,7 @@ FT_LINE_R2_FLOOR = 0.5  # line.h: the least r² the CLI accepts
 class ft_line_dim_opts(_Opts):
     _c_name_ = "ft_line_dim_opts"
     _c_default_ = "FT_LINE_DIM_OPTS_DEFAULT"
-    _fields_ = [("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("both_ends", _int),
+    _fields_ = [("struct_size", _sz), ("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("both_ends", _int),
                 ("box_offsets", _int), ("fit", ft_loglog_opts), ("fit_whole_range", _int),
                 ("progress", PROGRESS), ("progress_arg", _vp), ("ellipsoid", _P(ft_ellipsoid)), ("min_r2", _dbl)]
     _defaults_ = dict(min_scale=0.0, max_scale=0.0, nscales=0, both_ends=1, box_offsets=4, fit=FIT_DEFAULTS,
@@ -308,7 +318,7 @@ class ft_line_dim_opts(_Opts):
 class ft_dutton_opts(_Opts):
     _c_name_ = "ft_dutton_opts"
     _c_default_ = "FT_DUTTON_OPTS_DEFAULT"
-    _fields_ = [("sd", _dbl), ("uc", _dbl), ("st", _dbl), ("sm", _dbl), ("iterations", _int),
+    _fields_ = [("struct_size", _sz), ("sd", _dbl), ("uc", _dbl), ("st", _dbl), ("sm", _dbl), ("iterations", _int),
                 ("target_dim", _dbl), ("input_dim", _dbl), ("literal_sd", _int), ("allow_crossings", _int)]
     _defaults_ = dict(sd=1.3, uc=1.0, st=INF, sm=0.0, iterations=1, target_dim=0.0, input_dim=0.0, literal_sd=0,
                       allow_crossings=0)
@@ -318,7 +328,7 @@ class ft_dutton_opts(_Opts):
 class ft_smooth_opts(_Opts):
     _c_name_ = "ft_smooth_opts"
     _c_default_ = "FT_SMOOTH_OPTS_DEFAULT"
-    _fields_ = [("passes", _int), ("roundness", _dbl), ("st", _dbl), ("sm", _dbl), ("allow_crossings", _int)]
+    _fields_ = [("struct_size", _sz), ("passes", _int), ("roundness", _dbl), ("st", _dbl), ("sm", _dbl), ("allow_crossings", _int)]
     _defaults_ = dict(passes=1, roundness=0.5, st=INF, sm=0.0, allow_crossings=0)
 
 
@@ -328,7 +338,7 @@ class ft_smooth_opts(_Opts):
 class ft_synth_opts(_Opts):
     _c_name_ = "ft_synth_opts"
     _c_default_ = "FT_SYNTH_OPTS_DEFAULT"
-    _fields_ = [("method", _int), ("dim", _dbl), ("sigma", _dbl), ("cell", _dbl), ("origin_x", _dbl),
+    _fields_ = [("struct_size", _sz), ("method", _int), ("dim", _dbl), ("sigma", _dbl), ("cell", _dbl), ("origin_x", _dbl),
                 ("origin_y", _dbl), ("periodic", _int), ("seed", _u64), ("progress", PROGRESS),
                 ("progress_arg", _vp)]
     _defaults_ = dict(method=0, dim=2.3, sigma=1.0, cell=1.0, origin_x=0.0, origin_y=0.0, periodic=0, seed=1)
@@ -338,7 +348,7 @@ class ft_synth_opts(_Opts):
 class ft_fill_opts(_Opts):
     _c_name_ = "ft_fill_opts"
     _c_default_ = "FT_FILL_OPTS_DEFAULT"
-    _fields_ = [("max_void", _dbl), ("mean", _int), ("realizations", _int), ("dim", _dbl), ("ring", _int),
+    _fields_ = [("struct_size", _sz), ("max_void", _dbl), ("mean", _int), ("realizations", _int), ("dim", _dbl), ("ring", _int),
                 ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(max_void=100.0, mean=0, realizations=1, dim=0.0, ring=0, seed=1)
 
@@ -380,7 +390,7 @@ class ft_clarke_model(c.Structure):
 class ft_clarke_opts(_Opts):
     _c_name_ = "ft_clarke_opts"
     _c_default_ = "FT_CLARKE_OPTS_DEFAULT"
-    _fields_ = [("cutoff", _dbl), ("taper", _int), ("min_wavelength", _dbl), ("progress", PROGRESS),
+    _fields_ = [("struct_size", _sz), ("cutoff", _dbl), ("taper", _int), ("min_wavelength", _dbl), ("progress", PROGRESS),
                 ("progress_arg", _vp)]
     _defaults_ = dict(cutoff=2.5, taper=1, min_wavelength=4.0)
 
@@ -389,7 +399,7 @@ class ft_clarke_opts(_Opts):
 class ft_clarke_sim_opts(_Opts):
     _c_name_ = "ft_clarke_sim_opts"
     _c_default_ = "FT_CLARKE_SIM_OPTS_DEFAULT"
-    _fields_ = [("refine", _int), ("extent", _int), ("seed", _u64), ("c_used", _P(_dbl)), ("progress", PROGRESS),
+    _fields_ = [("struct_size", _sz), ("refine", _int), ("extent", _int), ("seed", _u64), ("c_used", _P(_dbl)), ("progress", PROGRESS),
                 ("progress_arg", _vp)]
     _defaults_ = dict(refine=1, extent=1, seed=1)
 
@@ -398,7 +408,7 @@ class ft_clarke_sim_opts(_Opts):
 class ft_recon_opts(_Opts):
     _c_name_ = "ft_recon_opts"
     _c_default_ = "FT_RECON_OPTS_DEFAULT"
-    _fields_ = [("method", _int), ("dim", _dbl), ("tension", _dbl), ("lambda_", _dbl), ("sigma", _dbl),
+    _fields_ = [("struct_size", _sz), ("method", _int), ("dim", _dbl), ("tension", _dbl), ("lambda_", _dbl), ("sigma", _dbl),
                 ("temperature", _dbl), ("k", _dbl), ("sweeps", _int), ("realizations", _int), ("seed", _u64),
                 ("threads", _int), ("progress", PROGRESS), ("progress_arg", _vp)]
     _c_field_names_ = {"lambda_": "lambda"}
@@ -421,7 +431,7 @@ class ft_recon_info(c.Structure):
 class ft_area_dim_opts(_Opts):
     _c_name_ = "ft_area_dim_opts"
     _c_default_ = "FT_AREA_DIM_OPTS_DEFAULT"
-    _fields_ = [("what", _int), ("cells", _P(_dbl)), ("ncells", _sz), ("min_cell", _dbl), ("max_cell", _dbl),
+    _fields_ = [("struct_size", _sz), ("what", _int), ("cells", _P(_dbl)), ("ncells", _sz), ("min_cell", _dbl), ("max_cell", _dbl),
                 ("nscales", _int), ("offsets", _int), ("fit", ft_loglog_opts), ("fit_whole_range", _int),
                 ("fewest", _int), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(what=0, ncells=0, min_cell=0.0, max_cell=0.0, nscales=0, offsets=4, fit=FIT_DEFAULTS,
@@ -432,7 +442,7 @@ class ft_area_dim_opts(_Opts):
 class ft_boundary_opts(_Opts):
     _c_name_ = "ft_boundary_opts"
     _c_default_ = "FT_BOUNDARY_OPTS_DEFAULT"
-    _fields_ = [("dim", _dbl), ("min", _dbl), ("max", _dbl), ("jitter", _dbl), ("seed", _u64), ("stream", _u64),
+    _fields_ = [("struct_size", _sz), ("dim", _dbl), ("min", _dbl), ("max", _dbl), ("jitter", _dbl), ("seed", _u64), ("stream", _u64),
                 ("allow_crossings", _int)]
     _defaults_ = dict(dim=0.0, min=0.0, max=0.0, jitter=0.0, seed=1, stream=0, allow_crossings=0)
 
@@ -455,7 +465,7 @@ class ft_polygon_set(c.Structure):
 class ft_shrink_opts(_Opts):
     _c_name_ = "ft_shrink_opts"
     _c_default_ = "FT_SHRINK_OPTS_DEFAULT"
-    _fields_ = [("join", _int), ("dprime", _dbl), ("quad_segs", _int), ("min_area", _dbl)]
+    _fields_ = [("struct_size", _sz), ("join", _int), ("dprime", _dbl), ("quad_segs", _int), ("min_area", _dbl)]
     _defaults_ = dict(join=0, dprime=1.2, quad_segs=8, min_area=0.5)
 
 
@@ -463,7 +473,7 @@ class ft_shrink_opts(_Opts):
 class ft_fourier_opts(_Opts):
     _c_name_ = "ft_fourier_opts"
     _c_default_ = "FT_FOURIER_OPTS_DEFAULT"
-    _fields_ = [("n", _int), ("f0", _int)]
+    _fields_ = [("struct_size", _sz), ("n", _int), ("f0", _int)]
     _defaults_ = dict(n=1024, f0=256)
 
 
@@ -471,7 +481,7 @@ class ft_fourier_opts(_Opts):
 class ft_mountain_opts(_Opts):
     _c_name_ = "ft_mountain_opts"
     _c_default_ = "FT_MOUNTAIN_OPTS_DEFAULT"
-    _fields_ = [("method", _int), ("interval", _dbl), ("spacing", _dbl), ("seed_elevation", _dbl),
+    _fields_ = [("struct_size", _sz), ("method", _int), ("interval", _dbl), ("spacing", _dbl), ("seed_elevation", _dbl),
                 ("levels_up", _int), ("levels_down", _int), ("shrink", ft_shrink_opts), ("dsecond", _dbl),
                 ("theta_min", _dbl), ("theta_max", _dbl), ("fourier", ft_fourier_opts), ("collinear_deg", _dbl),
                 ("match_dim", _int), ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
@@ -497,7 +507,7 @@ class ft_contour_stack(c.Structure):
 class ft_contour_dem_opts(_Opts):
     _c_name_ = "ft_contour_dem_opts"
     _c_default_ = "FT_CONTOUR_DEM_OPTS_DEFAULT"
-    _fields_ = [("cell", _dbl), ("margin", _dbl), ("summit", _dbl), ("progress", PROGRESS), ("progress_arg", _vp)]
+    _fields_ = [("struct_size", _sz), ("cell", _dbl), ("margin", _dbl), ("summit", _dbl), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(cell=0.0, margin=0.0, summit=0.5)
 
 
@@ -517,4 +527,4 @@ class ft_urban_classes(c.Structure):
 class ft_write_layer_opts(_Opts):
     _c_name_ = "ft_write_layer_opts"
     _c_default_ = "FT_WRITE_LAYER_OPTS_DEFAULT"
-    _fields_ = [("driver", _str), ("layer", _str), ("lco", _P(_str))]
+    _fields_ = [("struct_size", _sz), ("driver", _str), ("layer", _str), ("lco", _P(_str))]

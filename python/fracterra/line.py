@@ -212,19 +212,29 @@ def _chain_op(fn, coords, y, closed, *args):
 
 def _layer_step(step, coords, y, closed, opts):
     """Runs a layer-level operation (the CLI's: one plan, the crossing guard) on one chain held in a
-    one-part layer; answers as _chain_op does (x and y: (x, y) arrays; (n, 2): an (n, 2) array)."""
-    xy = np.column_stack(xy_arrays(coords, y)) if y is not None else _coords(coords)
-    lay = check_ptr(lib.ft_layer_create(b"chain", None))
+    one-part layer; answers as _chain_op does (x and y: (x, y) arrays; (n, 2): an (n, 2) array).
+    The library's copy into the layer is the only copy in; x and y come back as views of the result
+    chain, taken from the layer before it is freed (no copy); an (n, 2) result is one interleaving copy."""
+    cin = chain_from_coords(coords, y, closed) if y is not None else chain_from_coords(_coords(coords), None, closed)
+    lay = lib.ft_layer_create(b"chain", None)
+    if not lay:
+        lib.ft_chain_free(cin)
+        check_ptr(lay)
     try:
         rc = lib.ft_layer_add_feature(lay, 0, 2 if closed else 1, 0)
         if rc < 0:
+            lib.ft_chain_free(cin)
             check(int(rc))
-        check(lib.ft_layer_add_part(lay, chain_from_coords(xy, None, closed), 1 if closed else 0, 0))
+        check(lib.ft_layer_add_part(lay, cin, 1 if closed else 0, 0))  # the layer owns cin from here
         check(step(lay, ctypes.byref(opts), 0, None))
-        out = chain_to_numpy(lay.contents.parts[0].chain)
+        part = lay.contents.parts[0]
+        if y is None:
+            return chain_to_numpy(part.chain)
+        result = ctypes.cast(part.chain, ctypes.POINTER(S.ft_chain))  # a copy of the pointer value
+        part.chain = None  # detached: freed with the last view, not with the layer
+        return chain_views(result)
     finally:
         lib.ft_layer_free(lay)
-    return (out[:, 0].copy(), out[:, 1].copy()) if y is not None else out
 
 
 def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None,

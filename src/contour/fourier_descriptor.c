@@ -95,8 +95,8 @@ int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *op
                                  uint64_t stream, ft_chain **out)
 {
     ft_fourier_opts o = FT_FOURIER_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_fourier_opts) != FT_OK)
+        return FT_E_INVALID;
     double perimeter = 0.0;
     int rc = check_input(ring, &o, out, &perimeter);
     if (rc != FT_OK)

@@ -91,6 +91,12 @@ static int check_opts(const ft_midpoint_opts *o)
 int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_opts *opts, uint64_t seed,
                                  uint64_t stream, ft_chain **out)
 {
+    ft_midpoint_opts taken = FT_MIDPOINT_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_midpoint_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     int rc = ft_edit_check_chain("midpoint displacement", in, out);
     if (rc != FT_OK)
         return rc;

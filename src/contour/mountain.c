@@ -618,8 +618,8 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
         return ft_error(FT_E_INVALID, "ft_mountain_generate: NULL output pointer");
     *out = NULL;
     ft_mountain_opts o = FT_MOUNTAIN_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_mountain_opts) != FT_OK)
+        return FT_E_INVALID;
     int rc = check_opts(&o);
     if (rc == FT_OK)
         rc = check_seed(seed);
@@ -639,6 +639,7 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
     if (gen.shrink.dprime == 0.0)
         gen.shrink.dprime = ft_mountain_default_dprime(o.method);
     gen.min_area = o.shrink.min_area * gen.d * gen.d;
+    gen.mid = (ft_midpoint_opts)FT_MIDPOINT_OPTS_DEFAULT;
     gen.mid.max_seg = 2.0 * mean_segment(seed); /* §4.1: segments longer than 2 d0 */
     gen.mid.max_offset = o.dsecond * gen.d;
     gen.mid.theta_min = o.theta_min;

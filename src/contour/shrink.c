@@ -446,8 +446,8 @@ int ft_contour_shrink(const ft_polygon_set *in, double d, const ft_shrink_opts *
     if (in == NULL)
         return ft_error(FT_E_INVALID, "ft_contour_shrink: NULL polygon set");
     ft_shrink_opts o = FT_SHRINK_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_shrink_opts) != FT_OK)
+        return FT_E_INVALID;
     if (!isfinite(d) || d == 0.0)
         return ft_error(FT_E_INVALID, "shrink distance d must be finite and non-zero, got %g", d);
     int rc = check_opts(&o);

@@ -546,6 +546,12 @@ static int build(dem_work *w, const ft_contour_stack *s, const ft_contour_dem_op
 int ft_contour_stack_to_dem(const ft_contour_stack *s, const ft_contour_dem_opts *opts, const char *crs_wkt,
                             ft_grid **out)
 {
+    ft_contour_dem_opts taken = FT_CONTOUR_DEM_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_contour_dem_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     if (out == NULL)
         return ft_error(FT_E_INVALID, "contour DEM: no output pointer given");
     *out = NULL;

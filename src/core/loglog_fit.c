@@ -17,8 +17,9 @@
 
 int ft_ll_opts_check(const ft_loglog_opts *opts, ft_loglog_opts *o)
 {
-    ft_loglog_opts defaults = FT_LOGLOG_OPTS_DEFAULT;
-    *o = opts ? *opts : defaults;
+    *o = (ft_loglog_opts)FT_LOGLOG_OPTS_DEFAULT;
+    if (FT_OPTS_TAKE(*o, opts, ft_loglog_opts) != FT_OK)
+        return FT_E_INVALID;
     if (o->method != FT_LOGLOG_ILS && o->method != FT_LOGLOG_MINIMAX && o->method != FT_LOGLOG_REGIMES)
         return ft_error(FT_E_INVALID, "log-log segmentation: unknown method %d (0 = ILS, 1 = minimax, "
                         "2 = regimes)", (int)o->method);

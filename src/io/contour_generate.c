@@ -209,7 +209,9 @@ int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_
     if (rc == FT_OK)
         rc = set_lower_levels(layer, interval, base);
     if (rc == FT_OK) {
-        ft_read_layer_opts ro = {CONTOUR_LAYER, NULL, FIELD_LOW};
+        ft_read_layer_opts ro = FT_READ_LAYER_OPTS_DEFAULT;
+        ro.layer = CONTOUR_LAYER;
+        ro.fields = FIELD_LOW;
         rc = ft_io_read_layer_ds(vds, "the grid's contours", &ro, out);
     }
     if (vds != NULL)

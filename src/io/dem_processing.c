@@ -285,6 +285,12 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
 
 int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts)
 {
+    ft_io_hillshade_opts taken = FT_IO_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_io_hillshade_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_io_hillshade_opts defaults = FT_IO_HILLSHADE_OPTS_DEFAULT;
     const ft_io_hillshade_opts *o = opts ? opts : &defaults;
     if (dem_path == NULL || out_path == NULL || *out_path == '\0')

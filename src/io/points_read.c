@@ -136,8 +136,8 @@ static int read_ogr_points(point_reader *r, const ft_read_points_opts *o)
 int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out)
 {
     ft_read_points_opts o = FT_READ_POINTS_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_read_points_opts) != FT_OK)
+        return FT_E_INVALID;
     *out = NULL;
     int text = path != NULL && (ft_io_ext_in(path, "csv xyz") || ft_io_is_stdio(path));
     if (text && (o.layer != NULL || o.zfield != NULL))

@@ -176,8 +176,8 @@ static int read_band(grid_reader *r)
 int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
 {
     ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_read_grid_opts) != FT_OK)
+        return FT_E_INVALID;
     *out = NULL;
     GDALDatasetH ds;
     int rc = ft_io_open(path, GDAL_OF_RASTER, &ds);
@@ -291,8 +291,8 @@ int ft_io_summarize_grid_ds(GDALDatasetH ds, const char *path, const ft_read_gri
 int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out)
 {
     ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_read_grid_opts) != FT_OK)
+        return FT_E_INVALID;
     memset(out, 0, sizeof *out);
     GDALDatasetH ds;
     int rc = ft_io_open(path, GDAL_OF_RASTER, &ds);

@@ -239,8 +239,8 @@ static int check_grid(const char *path, const ft_grid *g)
 int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
 {
     ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_write_grid_opts) != FT_OK)
+        return FT_E_INVALID;
     grid_writer w = {.path = path, .bands = bands, .nbands = n};
     GDALDriverH drv;
     int rc = FT_OK;

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "io/io_internal.h"
+#include "internal.h"
 
 int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
 {

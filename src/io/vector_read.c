@@ -265,8 +265,8 @@ static int read_ogr_layer(reader *r, const ft_read_layer_opts *o)
 int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out)
 {
     ft_read_layer_opts o = FT_READ_LAYER_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_read_layer_opts) != FT_OK)
+        return FT_E_INVALID;
     *out = NULL;
     if (ft_io_is_text_chains(path)) {
         if (o.where != NULL || (o.fields != NULL && o.fields[0] != '\0'))

@@ -243,8 +243,8 @@ static int write_dataset(writer *w, GDALDriverH drv, const char *tmp, const ft_w
 int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts)
 {
     ft_write_layer_opts o = FT_WRITE_LAYER_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_write_layer_opts) != FT_OK)
+        return FT_E_INVALID;
     if (layer == NULL)
         return ft_error(FT_E_INVALID, "no layer to write to '%s'", path ? path : "(null)");
     if (o.driver ? EQUAL(o.driver, "GMT-text") : ft_io_is_text_chains(path))

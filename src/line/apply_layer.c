@@ -340,6 +340,12 @@ int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ct
 int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage, ft_dutton_plan *plan,
                           ft_line_guard_stats *stats)
 {
+    ft_dutton_opts taken = FT_DUTTON_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_dutton_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     if (l == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL layer");
     int rc = ft_layer_check_finite(l);
@@ -365,6 +371,12 @@ int ft_line_enhance_layer(ft_layer *l, const ft_dutton_opts *opts, int coverage,
 
 int ft_line_smooth_layer(ft_layer *l, const ft_smooth_opts *opts, int coverage, ft_line_guard_stats *stats)
 {
+    ft_smooth_opts taken = FT_SMOOTH_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_smooth_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     if (opts == NULL)
         return ft_error(FT_E_INVALID, "smooth: NULL options");
     return ft_line_apply_layer_passes(l, ft_line_pass_smooth, opts, opts->passes, coverage, !opts->allow_crossings,

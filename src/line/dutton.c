@@ -102,6 +102,12 @@ static int measure_input_dim(const ft_chain *const *chains, size_t n, double *d)
 
 int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *o, ft_dutton_plan *p)
 {
+    ft_dutton_opts taken = FT_DUTTON_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (o != NULL) {
+        if (FT_OPTS_TAKE(taken, o, ft_dutton_opts) != FT_OK)
+            return FT_E_INVALID;
+        o = &taken;
+    }
     if (p == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL plan");
     int rc = check_opts(o);
@@ -256,6 +262,12 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
 
 int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out)
 {
+    ft_dutton_opts taken = FT_DUTTON_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_dutton_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     int rc = ft_edit_check_chain("enhance", in, out);
     ft_dutton_plan plan;
     if (rc == FT_OK)

@@ -394,6 +394,12 @@ static int looks_like_profile(const chain_set *s)
 int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, const ft_line_dim_opts *opts,
                 ft_dim_result **out)
 {
+    ft_line_dim_opts taken = FT_LINE_DIM_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_line_dim_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     if (out == NULL)
         return ft_error(FT_E_INVALID, "ft_line_dim: NULL out");
     *out = NULL;

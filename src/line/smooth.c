@@ -102,6 +102,12 @@ int ft_line_pass_smooth(const ft_chain *in, const void *ctx, ft_chain **base, ft
 
 int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out)
 {
+    ft_smooth_opts taken = FT_SMOOTH_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_smooth_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     int rc = ft_edit_check_chain("smooth", in, out);
     if (rc == FT_OK)
         rc = check_opts(opts);

@@ -174,6 +174,12 @@ static int write_scaled_png(cairo_surface_t *src, int width, int height, const c
 
 int ft_render_grid_png(const ft_grid *g, const char *path, const ft_grid_image_opts *opts)
 {
+    ft_grid_image_opts taken = FT_GRID_IMAGE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_grid_image_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_grid_image_opts defaults = FT_GRID_IMAGE_OPTS_DEFAULT;
     const ft_grid_image_opts *o = opts ? opts : &defaults;
     int rc = check_args(g, path, o);

@@ -14,6 +14,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "fracterra/render.h"
+#include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -92,6 +93,12 @@ static void shade_params_init(const ft_grid *dem, const ft_hillshade_opts *o, sh
 
 int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out)
 {
+    ft_hillshade_opts taken = FT_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_hillshade_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_hillshade_opts defaults = FT_HILLSHADE_OPTS_DEFAULT;
     const ft_hillshade_opts *o = opts ? opts : &defaults;
     if (out == NULL)

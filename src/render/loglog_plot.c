@@ -15,6 +15,7 @@
 #include "fracterra/render.h"
 #include "fracterra/surface.h"
 #include "render/render_internal.h"
+#include "internal.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -372,6 +373,12 @@ static void draw_job(cairo_t *cr, const void *arg)
 
 int ft_render_loglog_plot(const ft_dim_result *r, const char *path, const ft_plot_opts *opts)
 {
+    ft_plot_opts taken = FT_PLOT_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_plot_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_plot_opts defaults = FT_PLOT_OPTS_DEFAULT;
     const ft_plot_opts *o = opts ? opts : &defaults;
     ft_canvas_format fmt = FT_CANVAS_SVG;

@@ -15,6 +15,7 @@
 #include "fracterra/io.h"
 #include "fracterra/render.h"
 #include "render/render_internal.h"
+#include "internal.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -384,6 +385,12 @@ static int render_items(const map_item *items, size_t n, const char *path, ft_ca
 
 int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path, const ft_map_opts *opts)
 {
+    ft_map_opts taken = FT_MAP_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_map_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
     const ft_map_opts *o = opts ? opts : &defaults;
     ft_canvas_format fmt = FT_CANVAS_SVG;
@@ -407,6 +414,12 @@ int ft_render_map_layers(const ft_map_layer *layers, size_t n, const char *path,
 
 int ft_render_map(const ft_layer *layer, const char *path, const ft_map_opts *opts)
 {
+    ft_map_opts taken = FT_MAP_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_map_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_map_opts defaults = FT_MAP_OPTS_DEFAULT;
     const ft_map_opts *o = opts ? opts : &defaults;
     if (layer == NULL)

@@ -474,6 +474,12 @@ static int build_mesh(const ft_grid *dem, const ft_perspective_opts *o, mesh *m,
 
 int ft_render_perspective(const ft_grid *dem, const char *path, const ft_perspective_opts *opts)
 {
+    ft_perspective_opts taken = FT_PERSPECTIVE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_perspective_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_perspective_opts defaults = FT_PERSPECTIVE_OPTS_DEFAULT;
     const ft_perspective_opts *o = opts ? opts : &defaults;
     int rc = check_args(dem, path, o);

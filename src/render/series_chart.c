@@ -11,6 +11,7 @@
  */
 #include "fracterra/render.h"
 #include "render/render_internal.h"
+#include "internal.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -237,6 +238,12 @@ static void draw_chart(cairo_t *cr, const void *arg)
 
 int ft_render_series_chart(const ft_series *series, size_t n, const char *path, const ft_chart_opts *opts)
 {
+    ft_chart_opts taken = FT_CHART_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_chart_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_chart_opts defaults = FT_CHART_OPTS_DEFAULT;
     chart c = {.s = series, .n = n, .o = opts ? opts : &defaults};
     ft_canvas_format fmt = FT_CANVAS_SVG;

@@ -183,8 +183,8 @@ int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_
     if (r2_out != NULL)
         *r2_out = NULL;
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_surface_dim_opts) != FT_OK)
+        return FT_E_INVALID;
     int rc = check_args(g, window, step, m, &o, D_out, r2_out);
     if (rc != FT_OK)
         return rc;

@@ -103,8 +103,8 @@ int ft_surface_dyadic_dim(const ft_grid *g, const ft_dyadic_opts *opts, const ch
         return ft_error(FT_E_INVALID, "%s: output pointer is NULL", name);
     *out = NULL;
     ft_dyadic_opts o = FT_DYADIC_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_dyadic_opts) != FT_OK)
+        return FT_E_INVALID;
     int kmin, kmax;
     ft_dyadic_ctx c;
     int rc = ft_surface_dyadic_setup(g, &o, name, &kmin, &kmax, &c.zmin, &c.zs);

@@ -293,8 +293,8 @@ int ft_surface_lag_dim(const ft_grid *g, const ft_variogram_opts *opts, ft_lag_s
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
         return ft_error(FT_E_INVALID, "%s: the grid is NULL or empty", name);
     ft_variogram_opts o = FT_VARIOGRAM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_variogram_opts) != FT_OK)
+        return FT_E_INVALID;
     size_t *lags = NULL, nl = 0;
     int rc = ft_surface_lag_plan(g->nx, g->ny, &o, name, &lags, &nl);
     if (rc != FT_OK)

@@ -226,6 +226,12 @@ static int fit_from(const ft_loglog *t, double lo, int whole, const ft_loglog_op
 int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structure_stat stat, int whole,
                          const ft_loglog_opts *fit, const ft_dim_map *map, ft_dim_result **out)
 {
+    ft_noise_opts taken = FT_NOISE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (no != NULL) {
+        if (FT_OPTS_TAKE(taken, no, ft_noise_opts) != FT_OK)
+            return FT_E_INVALID;
+        no = &taken;
+    }
     *out = NULL;
     ft_noise_model m = {0};
     int given = no->sigma_z > 0.0;

@@ -243,8 +243,8 @@ int ft_surface_points_counters(const ft_points *p, const ft_points_dim_opts *opt
         return ft_error(FT_E_INVALID, "scattered points: output pointer is NULL");
     *out = NULL;
     ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_points_dim_opts) != FT_OK)
+        return FT_E_INVALID;
     double zrange = 0.0, spacing = 0.0, eps = 0.0, *lagv = NULL;
     size_t n = 0;
     int rc = check_opts(&o);

@@ -275,8 +275,8 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         return ft_error(FT_E_INVALID, "scattered points: output pointer is NULL");
     *out = NULL;
     ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_points_dim_opts) != FT_OK)
+        return FT_E_INVALID;
     if (o.counters != NULL)
         *o.counters = NULL;
     if (!(o.noise_sigma_xy >= 0.0) || !isfinite(o.noise_sigma_xy))

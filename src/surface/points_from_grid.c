@@ -53,8 +53,8 @@ int ft_surface_points_from_grid(const ft_grid *g, const ft_grid_sample_opts *opt
         return ft_error(FT_E_INVALID, "points from grid: output pointer is NULL");
     *out = NULL;
     ft_grid_sample_opts o = FT_GRID_SAMPLE_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_grid_sample_opts) != FT_OK)
+        return FT_E_INVALID;
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
         return ft_error(FT_E_INVALID, "points from grid: the grid is NULL or empty");
     if (!(o.fraction > 0.0 && o.fraction <= 1.0))

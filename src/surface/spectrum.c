@@ -698,8 +698,8 @@ int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_d
         return ft_error(FT_E_INVALID, NAME ": output pointer is NULL");
     *out = NULL;
     ft_spectrum_opts o = FT_SPECTRUM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_spectrum_opts) != FT_OK)
+        return FT_E_INVALID;
     int rc = check_opts(g, &o);
     if (rc != FT_OK)
         return rc;

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <strings.h>
 
+#include "internal.h"
 #include "surface/grid_internal.h"
 
 static const char *const method_names[FT_SURFACE_NMETHODS] = {"variogram", "yokoya", "pentland",
@@ -56,8 +57,17 @@ int ft_surface_lag_opts(const ft_surface_dim_opts *o, double cx, double cy, ft_v
         return rc;
     double lo, hi;
     scales_in_cells(o, cx, cy, &lo, &hi);
-    *v = (ft_variogram_opts){lo, hi, o->nscales, o->pairs, o->seed, o->fit, o->fit_whole_range, o->progress,
-                             o->progress_arg, o->noise};
+    *v = (ft_variogram_opts)FT_VARIOGRAM_OPTS_DEFAULT;
+    v->min_lag = lo;
+    v->max_lag = hi;
+    v->nlags = o->nscales;
+    v->pairs = o->pairs;
+    v->seed = o->seed;
+    v->fit = o->fit;
+    v->fit_whole_range = o->fit_whole_range;
+    v->progress = o->progress;
+    v->progress_arg = o->progress_arg;
+    v->noise = o->noise;
     return FT_OK;
 }
 
@@ -67,8 +77,8 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
         return ft_error(FT_E_INVALID, "surface dimension: output pointer is NULL");
     *out = NULL;
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_surface_dim_opts) != FT_OK)
+        return FT_E_INVALID;
     int rc = check_opts(&o);
     if (rc != FT_OK)
         return rc;
@@ -90,11 +100,16 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
                                          : ft_surface_dim_pentland(g, &v, out);
     }
     case FT_SURFACE_SPECTRUM: {
-        ft_spectrum_opts s = {lo, hi, o.nscales, o.tile, 1, o.fit, o.fit_whole_range, o.progress, o.progress_arg, 0};
+        ft_spectrum_opts s = {.struct_size = sizeof s, .min_wavelength = lo, .max_wavelength = hi,
+                              .nbins = o.nscales, .tile = o.tile, .window = 1, .fit = o.fit,
+                              .fit_whole_range = o.fit_whole_range, .progress = o.progress,
+                              .progress_arg = o.progress_arg, .elevations = 0};
         return ft_surface_dim_spectrum(g, &s, out);
     }
     default: {
-        ft_dyadic_opts d = {lo, hi, o.zscale, o.fit, o.fit_whole_range, o.progress, o.progress_arg};
+        ft_dyadic_opts d = {.struct_size = sizeof d, .min_size = lo, .max_size = hi, .zscale = o.zscale,
+                            .fit = o.fit, .fit_whole_range = o.fit_whole_range, .progress = o.progress,
+                            .progress_arg = o.progress_arg};
         return m == FT_SURFACE_PRISM ? ft_surface_dim_prism(g, &d, out) : ft_surface_dim_cubes(g, &d, out);
     }
     }

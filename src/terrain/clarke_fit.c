@@ -545,6 +545,12 @@ static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, cons
 
 int ft_clarke_fit(const ft_grid *dem, const ft_clarke_opts *opts, ft_clarke_model **out)
 {
+    ft_clarke_opts taken = FT_CLARKE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_clarke_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_clarke_opts defaults = FT_CLARKE_OPTS_DEFAULT;
     const ft_clarke_opts *o = opts ? opts : &defaults;
     int rc = check_input(dem, o, out);

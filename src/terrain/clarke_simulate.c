@@ -399,6 +399,12 @@ static int transform_parts(const ft_clarke_model *m, const sim_grid *s, const ft
 
 int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts *opts, ft_grid **out)
 {
+    ft_clarke_sim_opts taken = FT_CLARKE_SIM_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (opts != NULL) {
+        if (FT_OPTS_TAKE(taken, opts, ft_clarke_sim_opts) != FT_OK)
+            return FT_E_INVALID;
+        opts = &taken;
+    }
     ft_clarke_sim_opts defaults = FT_CLARKE_SIM_OPTS_DEFAULT;
     const ft_clarke_sim_opts *o = opts ? opts : &defaults;
     int rc = check_opts(m, o, out);

@@ -438,8 +438,8 @@ int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_op
                     ft_grid **sd_out, ft_fill_result **res)
 {
     ft_fill_opts o = FT_FILL_OPTS_DEFAULT;
-    if (opts)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_fill_opts) != FT_OK)
+        return FT_E_INVALID;
     if (out == NULL)
         return ft_error(FT_E_INVALID, "fill: out is NULL");
     *out = NULL;

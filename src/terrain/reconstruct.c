@@ -320,8 +320,8 @@ int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *i
     if (sd_out)
         *sd_out = NULL;
     *o = (ft_recon_opts)FT_RECON_OPTS_DEFAULT;
-    if (opts)
-        *o = *opts;
+    if (FT_OPTS_TAKE(*o, opts, ft_recon_opts) != FT_OK)
+        return FT_E_INVALID;
     memset(info, 0, sizeof *info);
     o->threads = thread_count(o->threads);
     return check_opts(o);

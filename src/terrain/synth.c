@@ -93,8 +93,8 @@ int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **
         return ft_error(FT_E_INVALID, "synth: output pointer is NULL");
     *out = NULL;
     ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
-    if (opts != NULL)
-        o = *opts;
+    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
+        return FT_E_INVALID;
     int rc = validate(nx, ny, &o);
     if (rc != FT_OK)
         return rc;

@@ -239,6 +239,12 @@ static int check_size(const ft_chain *in, const ft_boundary_opts *o, double keep
 
 int ft_urban_boundary(const ft_chain *in, const ft_boundary_opts *o, ft_chain **out)
 {
+    ft_boundary_opts taken = FT_BOUNDARY_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (o != NULL) {
+        if (FT_OPTS_TAKE(taken, o, ft_boundary_opts) != FT_OK)
+            return FT_E_INVALID;
+        o = &taken;
+    }
     if (out == NULL || o == NULL)
         return ft_error(FT_E_INVALID, "ft_urban_boundary: NULL %s", out == NULL ? "out" : "options");
     *out = NULL;

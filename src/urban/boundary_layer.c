@@ -64,6 +64,12 @@ static size_t count_kept(const ft_layer *l, double max)
 
 int ft_urban_boundary_layer(ft_layer *l, const ft_boundary_opts *o, int coverage, ft_boundary_info *info)
 {
+    ft_boundary_opts taken = FT_BOUNDARY_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (o != NULL) {
+        if (FT_OPTS_TAKE(taken, o, ft_boundary_opts) != FT_OK)
+            return FT_E_INVALID;
+        o = &taken;
+    }
     if (l == NULL || o == NULL)
         return ft_error(FT_E_INVALID, "ft_urban_boundary_layer: NULL %s", l == NULL ? "layer" : "options");
     int rc = ft_urban_boundary_check(o);

@@ -451,6 +451,12 @@ static int build_table(const polygons *p, const ft_area_dim_opts *o, const doubl
 int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeatures, const ft_area_dim_opts *o,
                       ft_dim_result **out)
 {
+    ft_area_dim_opts taken = FT_AREA_DIM_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (o != NULL) {
+        if (FT_OPTS_TAKE(taken, o, ft_area_dim_opts) != FT_OK)
+            return FT_E_INVALID;
+        o = &taken;
+    }
     if (out == NULL)
         return ft_error(FT_E_INVALID, "ft_urban_dim_area: NULL out");
     *out = NULL;

@@ -185,6 +185,12 @@ static int build_table(const class_cells *k, const ft_area_dim_opts *o, const si
 int ft_urban_dim_area_grid(const ft_grid *classes, double class_value, const ft_area_dim_opts *o,
                            ft_dim_result **out)
 {
+    ft_area_dim_opts taken = FT_AREA_DIM_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (o != NULL) {
+        if (FT_OPTS_TAKE(taken, o, ft_area_dim_opts) != FT_OK)
+            return FT_E_INVALID;
+        o = &taken;
+    }
     if (out == NULL)
         return ft_error(FT_E_INVALID, "ft_urban_dim_area_grid: NULL out");
     *out = NULL;

@@ -76,7 +76,8 @@ static void test_errors(void **state)
     assert_non_null(strstr(ft_last_error(), "no_such_file.tif"));
     assert_null(d.grid);
 
-    ft_read_grid_opts go = {2};
+    ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
+    go.band = 2;
     assert_int_equal(ft_io_read_any(VOLCANO, NULL, &go, NULL, &d), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), "band 2"));
 
