@@ -34,10 +34,13 @@ static double now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+static double est_max_lag; /* --max-lag: Est's largest lag in cells (0 = its default, N/8) */
+
 static double yokoya(const ft_grid *g)
 {
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.fit_whole_range = 1;
+    o.max_scale = est_max_lag * fabs(g->gt[1]);
     o.noise.mode = -1; /* the paper's estimator on noise-free surfaces: no nugget model */
     ft_dim_result *r = NULL;
     if (ft_surface_dim(g, FT_SURFACE_YOKOYA, &o, &r) != FT_OK) {
@@ -109,9 +112,11 @@ int main(int argc, char **argv)
             tension = atof(argv[++i]);
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             threads = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--max-lag") && i + 1 < argc)
+            est_max_lag = atof(argv[++i]);
         else {
             fprintf(stderr, "usage: recon_calibrate [--size N] [--seeds S] [--dims a,b] [--scan k1,k2] "
-                            "[--methods fractal,conditional,smooth] [--sweeps n] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n]\n");
+                            "[--methods fractal,conditional,smooth] [--sweeps n] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n] [--max-lag cells]\n");
             return 2;
         }
     }

@@ -177,8 +177,12 @@ typedef struct {
     double dim;               /**< D in (2, 3); 0 (default) = estimate from the data (points: the yokoya
                                    points estimator with its default range; grid voids: from the valid
                                    cells) */
-    double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1];
-                                   default 0.1 (Terzopoulos' splines under tension) */
+    double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1], or
+                                   FT_RECON_TENSION_FROM_DIM (default): Szeliski's crossover from D,
+                                   tau / (1 - tau) = 2 (D - 2) / (3 - D) (Arakawa & Krotkov eq. 7;
+                                   docs/terrain-reconstruct.md) for the conditional method, and for
+                                   the smooth one when dim is given (else 0.1); the fractal method
+                                   keeps 0.1, the blend its k was calibrated with */
     double lambda;            /**< weight of the prior against the data term, > 0; default 1. No effect
                                    when the data are interpolated (sigma 0, no weights). With sigmas
                                    (sigma > 0 or per-point weights) it is an upper bound: if the fit
@@ -204,10 +208,12 @@ typedef struct {
     ft_progress_fn progress;  /**< called often enough to cancel within a second */
     void *progress_arg;
 } ft_recon_opts;
+/** ft_recon_opts.tension: the prior's blend follows D (Szeliski's eq. 7 crossover). */
+#define FT_RECON_TENSION_FROM_DIM (-1.0)
 #define FT_RECON_OPTS_DEFAULT                                                                                        \
-    {.struct_size = sizeof(ft_recon_opts), .method = FT_RECON_FRACTAL, .dim = 0.0, .tension = 0.1, .lambda = 1.0,    \
-     .sigma = 0.0, .temperature = 0.0, .k = 0.0, .sweeps = 0, .realizations = 1, .seed = 1, .threads = 0,            \
-     .progress = NULL, .progress_arg = NULL}
+    {.struct_size = sizeof(ft_recon_opts), .method = FT_RECON_FRACTAL, .dim = 0.0,                                   \
+     .tension = FT_RECON_TENSION_FROM_DIM, .lambda = 1.0, .sigma = 0.0, .temperature = 0.0, .k = 0.0, .sweeps = 0,  \
+     .realizations = 1, .seed = 1, .threads = 0, .progress = NULL, .progress_arg = NULL}
 
 /** What a reconstruction used and achieved. */
 typedef struct {
@@ -224,6 +230,7 @@ typedef struct {
                                    interpolated bilinearly at the data positions */
     double lambda;            /**< the prior weight used: opts->lambda, or with soft data the discrepancy
                                    principle's value (at most opts->lambda) */
+    double tension;           /**< the prior's blend used (opts->tension, or the one D gives) */
 } ft_recon_info;
 
 /** Fixed by the eq. 11 calibration (docs/terrain-reconstruct.md says how it was measured). */

@@ -412,7 +412,7 @@ class ft_recon_opts(_Opts):
                 ("temperature", _dbl), ("k", _dbl), ("sweeps", _int), ("realizations", _int), ("seed", _u64),
                 ("threads", _int), ("progress", PROGRESS), ("progress_arg", _vp)]
     _c_field_names_ = {"lambda_": "lambda"}
-    _defaults_ = dict(method=0, dim=0.0, tension=0.1, lambda_=1.0, sigma=0.0, temperature=0.0, k=0.0, sweeps=0,
+    _defaults_ = dict(method=0, dim=0.0, tension=-1.0, lambda_=1.0, sigma=0.0, temperature=0.0, k=0.0, sweeps=0,
                       realizations=1, seed=1, threads=0)
 
 
@@ -421,7 +421,7 @@ class ft_recon_info(c.Structure):
     _c_name_ = "ft_recon_info"
     _fields_ = [("dim", _dbl), ("dim_estimated", _int), ("sigma0", _dbl), ("k", _dbl), ("temperature", _dbl),
                 ("levels", _int), ("data_used", _sz), ("data_outside", _sz), ("filled", _sz), ("data_rms", _dbl),
-                ("lambda_", _dbl)]
+                ("lambda_", _dbl), ("tension", _dbl)]
     _c_field_names_ = {"lambda_": "lambda"}
 
 

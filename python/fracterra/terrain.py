@@ -53,7 +53,7 @@ def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), 
 
 class ReconInfo:
     """What a reconstruction used and achieved (ft_recon_info): dim, dim_estimated, sigma0, k,
-    temperature, levels, data_used, data_outside, filled, data_rms, lambda_."""
+    temperature, levels, data_used, data_outside, filled, data_rms, lambda_, tension."""
 
     def __init__(self, info):
         for f, _t in S.ft_recon_info._fields_:
@@ -64,17 +64,20 @@ class ReconInfo:
         return "ReconInfo(%s)" % ", ".join("%s=%r" % (f, getattr(self, f)) for f, _ in S.ft_recon_info._fields_)
 
 
-def reconstruct(data, target=None, *, method="fractal", dim=0.0, tension=0.1, lambda_=1.0, sigma=0.0,
+def reconstruct(data, target=None, *, method="fractal", dim=0.0, tension=None, lambda_=1.0, sigma=0.0,
                 temperature=0.0, k=0.0, sweeps=0, realizations=1, seed=1, threads=0, progress=None,
                 progress_arg=None):
     """Dense terrain from sparse elevations or a DEM with voids (Arakawa & Krotkov), as
     `fracterra reconstruct`. data: a Grid/array with nodata (its voids are filled, valid cells kept),
     or (x, y, z) or (x, y, z, w) arrays with target a Grid (or array) giving the output's shape,
-    geotransform and CRS. dim 0 = estimated from the data. Returns (grid, sd, info): sd is the
+    geotransform and CRS. dim 0 = estimated from the data. tension None = the library's default (from D:
+    Szeliski's crossover, see docs/terrain-reconstruct.md). Returns (grid, sd, info): sd is the
     per-cell standard deviation over realizations (None with one realization)."""
     o = S.ft_recon_opts.default()
     o.method = parse_enum(lib.ft_recon_method_parse, method, "method")
-    o.dim, o.tension, o.lambda_, o.sigma = float(dim), float(tension), float(lambda_), float(sigma)
+    o.dim, o.lambda_, o.sigma = float(dim), float(lambda_), float(sigma)
+    if tension is not None:
+        o.tension = float(tension)
     o.temperature, o.k, o.sweeps = float(temperature), float(k), int(sweeps)
     o.realizations, o.seed, o.threads = int(realizations), int(seed), int(threads)
     pr = Progress(progress, progress_arg)

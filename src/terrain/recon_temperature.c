@@ -104,3 +104,23 @@ double ft_recon_temperature_level(double T0, double H, int level)
 {
     return T0 * pow(2.0, 2.0 * H * level);
 }
+
+/* Szeliski's prior on one level is a spline under tension: membrane weight (2 pi f0)² times the thin
+ * plate's (Arakawa & Krotkov eq. 7, f0 the crossover frequency). Discretized with h = 1 its spectrum
+ * along an axis is 1 / (M ((1 - tau) M + tau)), M = 2 - 2 cos(2 pi f) (the membrane's symbol, the thin
+ * plate's is M²), whose log-log slope is -2 - 2 (1 - tau) M / ((1 - tau) M + tau) at small f; an fBm
+ * surface's is -(2 + 2H), H = 3 - D (its spectrum falls as f^-(8 - 2D)). They agree at M when
+ * tau / (1 - tau) = M (1 - H) / H: D = 2 gives the thin plate, D -> 3 the membrane (Szeliski: the
+ * priors of dimension 2 and 3). The crossover is placed at a wavelength of 4 cells (M = 2), the scale
+ * an interpolator has to make up between data a few cells apart; docs/terrain-reconstruct.md has the
+ * measurement that chose it. */
+double ft_recon_tension_for_dim(double D)
+{
+    double H = 3.0 - D, M = 2.0 - 2.0 * cos(2.0 * M_PI / FT_RECON_TENSION_WAVELENGTH);
+    if (!(H > 0.0))
+        return 1.0;
+    if (!(H < 1.0))
+        return 0.0;
+    double r = M * (1.0 - H) / H;
+    return r / (1.0 + r);
+}

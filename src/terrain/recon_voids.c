@@ -211,7 +211,7 @@ int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid 
         cp.seed = ft_rng_mix(o.seed, (uint64_t)k);
         ft_recon_progress prog = {o.progress, o.progress_arg, 0.02 + 0.98 * (double)done / (double)nvoid,
                                   0.98 * (double)c->voids / (double)nvoid};
-        rc = ft_recon_run(p, o.lambda, o.tension, &cp, m, s, bw, &prog);
+        rc = ft_recon_run(p, o.lambda, cp.tension, &cp, m, s, bw, &prog);
         if (rc == FT_OK) {
             inf.levels = p->nlev > inf.levels ? p->nlev : inf.levels;
             for (size_t y = 0; y < bh; y++)

@@ -60,8 +60,9 @@ static int check_opts(const ft_recon_opts *o)
     if (!(o->dim == 0.0 || (o->dim > 2.0 && o->dim < 3.0)))
         return ft_error(FT_E_INVALID, "dim must be 0 (estimate from the data) or in (2, 3), got %g",
                         o->dim);
-    if (!(o->tension >= 0.0 && o->tension <= 1.0))
-        return ft_error(FT_E_INVALID, "tension must be in [0, 1], got %g", o->tension);
+    if (!((o->tension >= 0.0 && o->tension <= 1.0) || o->tension == FT_RECON_TENSION_FROM_DIM))
+        return ft_error(FT_E_INVALID, "tension must be in [0, 1] (or FT_RECON_TENSION_FROM_DIM: from D), got %g",
+                        o->tension);
     if (!(o->lambda > 0.0) || !isfinite(o->lambda))
         return ft_error(FT_E_INVALID, "lambda must be > 0 and finite, got %g", o->lambda);
     if (!(o->sigma >= 0.0) || !isfinite(o->sigma))
@@ -260,9 +261,14 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
                         ft_recon_params *par, ft_recon_info *info)
 {
     *par = (ft_recon_params){o->method, 0.0, 0.0, 0.0, o->sweeps > 0 ? o->sweeps : FT_RECON_SWEEPS_DEFAULT,
-                             o->realizations, o->seed};
+                             o->tension, o->realizations, o->seed};
+    int tension_from_dim = o->tension == FT_RECON_TENSION_FROM_DIM;
+    info->tension = o->tension;
     if (o->method == FT_RECON_SMOOTH) {
+        /* the smooth method estimates nothing: its blend follows D when D is given, else the fixed one */
         info->dim = o->dim;
+        if (tension_from_dim)
+            par->tension = info->tension = o->dim > 0.0 ? ft_recon_tension_for_dim(o->dim) : FT_RECON_FRACTAL_TENSION;
         return FT_OK;
     }
     ft_recon_line yk = {0}, pe = {0};
@@ -282,6 +288,11 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
     }
     info->dim = D;
     par->H = 3.0 - D;
+    /* the fractal method's temperature law (k) was calibrated with the fixed blend; its Gibbs sweeps with
+     * the eq. 7 blend put 15-45 % too much roughness at D >= 2.6 (docs/terrain-reconstruct.md) */
+    if (tension_from_dim)
+        par->tension = info->tension = o->method == FT_RECON_FRACTAL ? FT_RECON_FRACTAL_TENSION
+                                                                     : ft_recon_tension_for_dim(D);
     if (o->method == FT_RECON_CONDITIONAL) {
         par->amp = ft_recon_amplitude(&yk, cell);
         return FT_OK;
@@ -348,7 +359,7 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
         rc = ft_recon_outputs(target, sd_out != NULL, out, sd_out);
     if (rc == FT_OK) {
         ft_recon_progress rp = sub_progress(&prog, 0.02, 1.0);
-        rc = ft_recon_run(pr, o.lambda, o.tension, &par, (*out)->z, sd_out ? (*sd_out)->z : NULL, target->nx, &rp);
+        rc = ft_recon_run(pr, o.lambda, par.tension, &par, (*out)->z, sd_out ? (*sd_out)->z : NULL, target->nx, &rp);
     }
     if (rc == FT_OK) {
         inf.levels = pr->nlev;

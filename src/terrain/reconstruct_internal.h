@@ -156,6 +156,13 @@ double ft_recon_amplitude(const ft_recon_line *yokoya, double cell);
 double ft_recon_temperature0(double k, double H, double sigma0);
 /** T_l = T_0 2^(2 H l) (eq. 12: the SRA variance ratio of level l). */
 double ft_recon_temperature_level(double T0, double H, int level);
+/** The prior's blend for dimension D (Szeliski's eq. 7 crossover, Arakawa & Krotkov): the tension tau
+ *  whose spline-under-tension spectrum has the fBm's log-log slope -(8 - 2D) at a wavelength of
+ *  FT_RECON_TENSION_WAVELENGTH cells, tau / (1 - tau) = M (1 - H) / H, M = 2 - 2 cos(2 pi / wavelength). */
+double ft_recon_tension_for_dim(double D);
+#define FT_RECON_TENSION_WAVELENGTH 4.0
+/** The blend the fractal method's k was calibrated with (its tension when opts->tension is from D). */
+#define FT_RECON_FRACTAL_TENSION 0.1
 
 /* ---- recon_gibbs.c ---- */
 /** The fractal method: u = ustar + delta, delta sampled coarse to fine (levels L..0) by `sweeps` Gibbs
@@ -178,6 +185,7 @@ typedef struct {
     double T0;          /**< fractal: temperature of level 0 */
     double amp;         /**< conditional: RMS one-cell increment of the fBm */
     int sweeps;         /**< fractal: Gibbs sweeps per level */
+    double tension;     /**< the prior's blend (opts->tension or ft_recon_tension_for_dim(D)) */
     int realizations;
     uint64_t seed;      /**< realization r uses seed + r */
 } ft_recon_params;

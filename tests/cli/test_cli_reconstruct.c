@@ -156,6 +156,8 @@ static void test_points_extent(void **state)
     assert_string_equal(ft_test_json_str(o, "method"), "smooth");
     assert_string_equal(ft_test_json_str(o, "output"), out);
     assert_near(ft_test_json_num(o, "D"), 2.3, 1e-12);
+    /* the smooth prior's blend follows the given D (Szeliski's eq. 7): tau / (1 - tau) = 2 (D - 2) / (3 - D) */
+    assert_near(ft_test_json_num(o, "tension"), (0.6 / 0.7) / (1.0 + 0.6 / 0.7), 1e-12);
     assert_false(json_object_get_boolean(ft_test_json_key(o, "D_estimated")));
     assert_int_equal(ft_test_json_int(o, "nx"), 75); /* 7.5 / 0.1 */
     assert_int_equal(ft_test_json_int(o, "ny"), 75);
