@@ -40,8 +40,9 @@ typedef struct {
  *  m receives c0, a, H, the F statistic of c0 (automatic case) and the sigma_z c0 implies. Needs 4 rows
  *  (3 with sigma_z); FT_E_NUMERIC when no increasing power law fits. */
 FT_API int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m);
-/** 1 if the fitted model m of t holds a significant nugget: F >= 10 and c0 >= 2% of the smallest lag's
- *  value^power. */
+/** 1 if the fitted model m of t holds a significant nugget: F above the 5% point of F(1, t->n - 3) and
+ *  c0 >= 5% of the smallest lag's value^power (ft_surface_fit_noise passes the lags within 4 x the
+ *  smallest, at least 4: docs/surface-noise.md). */
 FT_API int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
 /** A new table of t with c0 removed from each value^power (rows with nothing left dropped); sets
  *  m->applied and m->floor = max(min_floor, the scale where a scale^(2H) = c0). */
@@ -49,7 +50,7 @@ FT_API int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_fl
 /** Scattered points with noise on x, y (sd sigma_p) and z: E Δz²(d) = c0 + a E|d + δ|^(2H), δ ~ N(0, s² I₂),
  *  s = sqrt(2) sigma_p, fitted to the mean squared differences q at the n increasing distances d
  *  (profiling H and s; c0 = 2 sigma_z² and s held when sigma_z, sigma_xy > 0 are given). m->detected
- *  says whether the noise terms are significant (F >= 10 on the two extra parameters and the noise >= 2%
+ *  says whether the noise terms are significant (F >= 3 on the two extra parameters and the noise >= 2%
  *  of q at the smallest lag) or given. Needs 6 lags. docs/surface-noise.md. */
 FT_API int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
                             ft_noise_model *m);

@@ -112,7 +112,7 @@ static ft_grid *fbm(double D, uint64_t seed, double snr_db, double *sigma)
 }
 
 /* White z noise at 30 dB on exact fBm grids: the default path detects it, reports its sd within 20%,
- * and its D is within 0.015 of the same surface's noise-free D; the mean over 3 surfaces is within
+ * and its D is within 0.02 of the same surface's noise-free D; the mean over 3 surfaces is within
  * 0.03 of the truth (the issue's check; one realization alone strays by more). */
 static void test_grid_white_noise(void **state)
 {
@@ -137,7 +137,8 @@ static void test_grid_white_noise(void **state)
                 assert_true(r->nugget.applied);
                 assert_non_null(ft_dim_result_find_warning(r, "noise detected"));
                 assert_near(r->nugget.sigma_z / sigma, 1.0, 0.2);
-                assert_near(r->D, rc->D, 0.015);
+                assert_false(rc->nugget.applied); /* no nugget found in the noise-free surface */
+                assert_near(r->D, rc->D, 0.02);
                 mean += r->D / 3.0;
                 ft_dim_result_free(r);
                 ft_dim_result_free(rc);
