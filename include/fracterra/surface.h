@@ -116,8 +116,10 @@ typedef struct {
                                 when half of its differences are valid; the automatic tile is halved
                                 while none is). 1: the periodogram of the detrended elevations, tapered
                                 as window says, on tiles free of nodata (as described above). */
+    ft_noise_opts noise;   /**< white noise on z: a flat floor N0 = sigma_z² under the power law, detected
+                                and removed by default (sigma_xy is not used); docs/surface-noise.md */
 } ft_spectrum_opts;
-#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, 0}
+#define FT_SPECTRUM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL, 0, FT_NOISE_OPTS_DEFAULT}
 
 /** Power-spectrum dimension: square tiles overlapping by half (Welch); by default the periodograms of
  *  the first differences along rows and columns (nodata-aware, the differencing gain divided out), or
@@ -180,7 +182,8 @@ typedef struct {
     int fit_whole_range; /**< 1: least squares over the whole range, no segmentation */
     ft_progress_fn progress;
     void *progress_arg;
-    ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget), default automatic */
+    ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget); spectrum: its white-noise
+                              floor; default automatic */
 } ft_surface_dim_opts;
 #define FT_SURFACE_DIM_OPTS_DEFAULT {0.0, 0.0, 0, 0, 1, 0.0, 0, 0.5, FT_LOGLOG_OPTS_DEFAULT, 0, NULL, NULL,            \
                                      FT_NOISE_OPTS_DEFAULT}

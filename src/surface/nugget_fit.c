@@ -55,6 +55,7 @@ typedef struct {
     size_t n;
     double c0_fixed;          /* >= 0: c0 held at this value; < 0: fitted (>= 0) */
     double *x;                /* scratch: r^e per row */
+    double emin, emax;        /* the exponents searched */
 } profile_data;
 
 double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n, double c0_fixed, double *c0_out,
@@ -105,7 +106,7 @@ static double rss_at(const profile_data *p, double e, double *c0_out, double *a_
 static double profile(const profile_data *p, double *e_out, double *c0, double *a)
 {
     double best = INFINITY, eb = NAN, cc, aa;
-    for (double e = E_MIN; e <= E_MAX + 1e-9; e += E_STEP) {
+    for (double e = p->emin; e <= p->emax + 1e-9; e += E_STEP) {
         double r = rss_at(p, e, &cc, &aa);
         if (r < best) {
             best = r;
@@ -114,7 +115,7 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
     }
     if (!isfinite(best))
         return INFINITY;
-    double lo = fmax(E_MIN, eb - E_STEP), hi = fmin(E_MAX, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
+    double lo = fmax(p->emin, eb - E_STEP), hi = fmin(p->emax, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     double f1 = rss_at(p, x1, &cc, &aa), f2 = rss_at(p, x2, &cc, &aa);
     for (int it = 0; it < 40; it++) {
@@ -143,6 +144,13 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
     return r;
 }
 
+double ft_nugget_profile(const double *lr, const double *q, const double *w, size_t n, double c0_fixed, double emin,
+                         double emax, double *scratch, double *e, double *c0, double *a)
+{
+    profile_data p = {lr, q, w, n, c0_fixed, scratch, emin, emax};
+    return profile(&p, e, c0, a);
+}
+
 int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m)
 {
     if (t == NULL || m == NULL)
@@ -159,7 +167,7 @@ int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft
     double *buf = ft_malloc(4 * t->n * sizeof *buf);
     if (buf == NULL)
         return FT_E_NOMEM;
-    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n};
+    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n, E_MIN, E_MAX};
     for (size_t i = 0; i < t->n; i++) {
         double q = pow(t->rows[i].value, m->power);
         buf[i] = log(t->rows[i].scale);

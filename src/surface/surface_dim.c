@@ -90,7 +90,8 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
                                          : ft_surface_dim_pentland(g, &v, out);
     }
     case FT_SURFACE_SPECTRUM: {
-        ft_spectrum_opts s = {lo, hi, o.nscales, o.tile, 1, o.fit, o.fit_whole_range, o.progress, o.progress_arg, 0};
+        ft_spectrum_opts s = {lo, hi, o.nscales, o.tile, 1, o.fit, o.fit_whole_range, o.progress, o.progress_arg, 0,
+                              o.noise};
         return ft_surface_dim_spectrum(g, &s, out);
     }
     default: {
