@@ -126,7 +126,8 @@ typedef struct {
  *  with opts->elevations those of the detrended, tapered elevations of nodata-free tiles; averaged and
  *  radially averaged in log-spaced frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
  *  the frequency in cycles per ground unit. A plane (nothing left after detrending) or a surface smoother
- *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". "spectrum". */
+ *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". A white-noise floor
+ *  P = N0 + A f^-beta is detected and removed by default (opts->noise; docs/surface-noise.md). "spectrum". */
 FT_API int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);
 
 /** Options of the estimators measuring at cell sizes by powers of two (prism, cubes). */
