@@ -290,6 +290,21 @@ static void test_bad_input(void **state)
     assert_int_equal(ft_surface_dim_points(p, &po, &r), FT_E_INVALID);
     assert_null(r);
     ft_points_free(p);
+    /* the spectrum's noise options, named in the message */
+    ft_grid *g = ft_grid_create(64, 64);
+    for (size_t i = 0; i < 64 * 64; i++)
+        g->z[i] = (float)((i * 7919) % 101);
+    ft_spectrum_opts so = FT_SPECTRUM_OPTS_DEFAULT;
+    so.noise.mode = 3;
+    assert_error_names(ft_surface_dim_spectrum(g, &so, &r), FT_E_INVALID, "noise.mode");
+    assert_null(r);
+    so.noise.mode = 0;
+    so.noise.sigma_z = -1.0;
+    assert_error_names(ft_surface_dim_spectrum(g, &so, &r), FT_E_INVALID, "noise.sigma_z");
+    so.noise.sigma_z = INFINITY;
+    assert_error_names(ft_surface_dim_spectrum(g, &so, &r), FT_E_INVALID, "noise.sigma_z");
+    assert_null(r);
+    ft_grid_free(g);
 }
 
 int main(void)
