@@ -348,9 +348,10 @@ static json_object *json_breaks(const ft_dim_result *r)
     return a;
 }
 
-/* The noise model of a lag estimator (docs/surface-noise.md): detected (or given) and removed or not, the
- * noise sds it implies, the fitted structure function and the floor of the fit. */
-static json_object *json_noise(const ft_noise_model *m)
+/* The noise model of a lag estimator or the spectrum (docs/surface-noise.md): detected (or given) and
+ * removed or not, the noise sds it implies, the fitted structure function and the floor of the fit (the
+ * spectrum: the highest frequency fitted, "max_frequency"). */
+static json_object *json_noise(const ft_noise_model *m, int spectrum)
 {
     json_object *o = json_object_new_object();
     json_object_object_add(o, "detected", json_object_new_boolean(m->detected || m->applied));
@@ -361,7 +362,7 @@ static json_object *json_noise(const ft_noise_model *m)
     json_object_object_add(o, "nugget", cli_json_double(m->c0));
     json_object_object_add(o, "H", cli_json_double(m->H));
     json_object_object_add(o, "F", cli_json_double(m->F));
-    json_object_object_add(o, "floor", cli_json_double(m->floor));
+    json_object_object_add(o, spectrum ? "max_frequency" : "floor", cli_json_double(m->floor));
     return o;
 }
 
@@ -388,7 +389,8 @@ static void add_result(json_object *o, const dim_item *it, int segments)
         json_object_array_add(w, json_object_new_string(r->warnings[i]));
     json_object_object_add(o, "warnings", w);
     if (r->nugget.fitted)
-        json_object_object_add(o, "noise", json_noise(&r->nugget));
+        json_object_object_add(o, "noise",
+                               json_noise(&r->nugget, r->method != NULL && strcmp(r->method, "spectrum") == 0));
     json_object_object_add(o, "table", json_table(r->table));
     if (segments)
         json_object_object_add(o, "segments", json_segments(r));
@@ -470,8 +472,9 @@ static void print_summary(const dim_item *it)
             printf("%-10s break at %.6g%s%s\n", "", r->breaks[i], r->units[0] ? " " : "", r->units);
     }
     if (r->nugget.applied)
-        printf("%-10s noise removed: sd %.4g on z%s; fit from %.6g\n", "", r->nugget.sigma_z,
-               r->nugget.s > 0.0 ? " (and x, y: see --json)" : "", r->nugget.floor);
+        printf("%-10s noise removed: sd %.4g on z%s; fit %s %.6g\n", "", r->nugget.sigma_z,
+               r->nugget.s > 0.0 ? " (and x, y: see --json)" : "",
+               r->method != NULL && strcmp(r->method, "spectrum") == 0 ? "to frequency" : "from", r->nugget.floor);
     if (it->plot)
         printf("%-10s plot %s\n", "", it->plot);
 }

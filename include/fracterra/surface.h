@@ -41,8 +41,9 @@ typedef struct {
  *  m receives c0, a, H, the F statistic of c0 (automatic case) and the sigma_z c0 implies. Needs 4 rows
  *  (3 with sigma_z); FT_E_NUMERIC when no increasing power law fits. */
 FT_API int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m);
-/** 1 if the fitted model m of t holds a significant nugget: F >= 10 and c0 >= 2% of the smallest lag's
- *  value^power. */
+/** 1 if the fitted model m of t holds a significant nugget: F above the 5% point of F(1, t->n - 3) and
+ *  c0 >= 5% of the smallest lag's value^power (ft_surface_fit_noise passes the lags within 4 x the
+ *  smallest, at least 4: docs/surface-noise.md). */
 FT_API int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t);
 /** A new table of t with c0 removed from each value^power (rows with nothing left dropped); sets
  *  m->applied and m->floor = max(min_floor, the scale where a scale^(2H) = c0). */
@@ -50,7 +51,7 @@ FT_API int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_fl
 /** Scattered points with noise on x, y (sd sigma_p) and z: E Δz²(d) = c0 + a E|d + δ|^(2H), δ ~ N(0, s² I₂),
  *  s = sqrt(2) sigma_p, fitted to the mean squared differences q at the n increasing distances d
  *  (profiling H and s; c0 = 2 sigma_z² and s held when sigma_z, sigma_xy > 0 are given). m->detected
- *  says whether the noise terms are significant (F >= 10 on the two extra parameters and the noise >= 2%
+ *  says whether the noise terms are significant (F >= 3 on the two extra parameters and the noise >= 2%
  *  of q at the smallest lag) or given. Needs 6 lags. docs/surface-noise.md. */
 FT_API int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
                             ft_noise_model *m);
@@ -121,18 +122,21 @@ typedef struct {
                                 when half of its differences are valid; the automatic tile is halved
                                 while none is). 1: the periodogram of the detrended elevations, tapered
                                 as window says, on tiles free of nodata (as described above). */
+    ft_noise_opts noise;   /**< white noise on z: a flat floor N0 = sigma_z² under the power law, detected
+                                and removed by default (sigma_xy is not used); docs/surface-noise.md */
 } ft_spectrum_opts;
 #define FT_SPECTRUM_OPTS_DEFAULT                                                                                     \
     {.struct_size = sizeof(ft_spectrum_opts), .min_wavelength = 0.0, .max_wavelength = 0.0, .nbins = 0, .tile = 0,   \
      .window = 1, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL,       \
-     .elevations = 0}
+     .elevations = 0, .noise = FT_NOISE_OPTS_DEFAULT}
 
 /** Power-spectrum dimension: square tiles overlapping by half (Welch); by default the periodograms of
  *  the first differences along rows and columns (nodata-aware, the differencing gain divided out), or
  *  with opts->elevations those of the detrended, tapered elevations of nodata-free tiles; averaged and
  *  radially averaged in log-spaced frequency bins; P(f) ~ f^-beta, D = (8 - beta) / 2 (FT_DIM_MAP_SPECTRUM_SURFACE). The table's scale is
  *  the frequency in cycles per ground unit. A plane (nothing left after detrending) or a surface smoother
- *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". "spectrum". */
+ *  than any fBm (beta > 4.2, D < 1.9) is FT_E_NUMERIC "degenerate for the spectrum". A white-noise floor
+ *  P = N0 + A f^-beta is detected and removed by default (opts->noise; docs/surface-noise.md). "spectrum". */
 FT_API int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_dim_result **out);
 
 /** Options of the estimators measuring at cell sizes by powers of two (prism, cubes). */
@@ -192,7 +196,8 @@ typedef struct {
     int fit_whole_range; /**< 1: least squares over the whole range, no segmentation */
     ft_progress_fn progress;
     void *progress_arg;
-    ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget), default automatic */
+    ft_noise_opts noise; /**< variogram, yokoya, pentland: the noise model (nugget); spectrum: its white-noise
+                              floor; default automatic */
 } ft_surface_dim_opts;
 #define FT_SURFACE_DIM_OPTS_DEFAULT                                                                                  \
     {.struct_size = sizeof(ft_surface_dim_opts), .min_scale = 0.0, .max_scale = 0.0, .nscales = 0, .pairs = 0,       \

@@ -15,7 +15,10 @@
  * for each e, c0 >= 0 and a > 0 by weighted linear least squares with weights 1/q² (equal relative
  * errors, what a log-log fit assumes); the pure power law (c0 = 0) is profiled the same way and the F
  * statistic of the extra parameter, F = (RSS0 - RSS1) / (RSS1 / (n - 3)), with the share of c0 in the
- * smallest lag's q, decides whether a nugget is there.
+ * smallest lag's q, decides whether a nugget is there. The test reads only the lags within 4 x the
+ * smallest: one realization's sample variogram bends smoothly over its larger lags (the estimates of
+ * nearby lags share their pairs and are strongly correlated, so the residuals understate that error), a
+ * bend the free exponent turns into a nugget; white noise is a constant that shows at the smallest lags.
  *
  * Position noise (errors on x and y) is handled by the same constant: a pair observed at distance d has
  * its elevations at a true distance |d + δ|, δ ~ N(0, 2σ_p² I); to second order E q = q(d) + σ_p² (2H)²
@@ -24,6 +27,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -33,10 +37,11 @@
 #define E_MIN 0.01
 #define E_MAX 2.0
 #define E_STEP 0.01
-#define DETECT_F 10.0    /* F of the nugget against the pure power law */
-#define DETECT_SHARE 0.02 /* c0 / q at the smallest lag */
+#define DETECT_P 0.05     /* level of the F test of the nugget against the pure power law, F(1, n - 3) */
+#define DETECT_SHARE 0.05 /* and c0 at least this share of q at the smallest lag */
 #define FLOOR_RATIO 1.0  /* the fit starts where a r^(2H) >= FLOOR_RATIO c0 */
-#define NUGGET_SPAN 16.0 /* the nugget is fitted over the lags up to 16 x the smallest */
+#define NUGGET_SPAN 4.0  /* the nugget is fitted over the lags up to 4 x the smallest ... */
+#define NUGGET_ROWS 4    /* ... or the smallest 4 lags, whichever are more */
 #define XY_FLOOR 3.0     /* with position noise sd σ_p given, lags below XY_FLOOR σ_p are left out */
 
 /* σ² of white noise on z per unit of c0 (the factor k in c0 = k σ²). */
@@ -50,6 +55,7 @@ typedef struct {
     size_t n;
     double c0_fixed;          /* >= 0: c0 held at this value; < 0: fitted (>= 0) */
     double *x;                /* scratch: r^e per row */
+    double emin, emax;        /* the exponents searched */
 } profile_data;
 
 double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n, double c0_fixed, double *c0_out,
@@ -100,7 +106,7 @@ static double rss_at(const profile_data *p, double e, double *c0_out, double *a_
 static double profile(const profile_data *p, double *e_out, double *c0, double *a)
 {
     double best = INFINITY, eb = NAN, cc, aa;
-    for (double e = E_MIN; e <= E_MAX + 1e-9; e += E_STEP) {
+    for (double e = p->emin; e <= p->emax + 1e-9; e += E_STEP) {
         double r = rss_at(p, e, &cc, &aa);
         if (r < best) {
             best = r;
@@ -109,7 +115,7 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
     }
     if (!isfinite(best))
         return INFINITY;
-    double lo = fmax(E_MIN, eb - E_STEP), hi = fmin(E_MAX, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
+    double lo = fmax(p->emin, eb - E_STEP), hi = fmin(p->emax, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     double f1 = rss_at(p, x1, &cc, &aa), f2 = rss_at(p, x2, &cc, &aa);
     for (int it = 0; it < 40; it++) {
@@ -138,6 +144,13 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
     return r;
 }
 
+double ft_nugget_profile(const double *lr, const double *q, const double *w, size_t n, double c0_fixed, double emin,
+                         double emax, double *scratch, double *e, double *c0, double *a)
+{
+    profile_data p = {lr, q, w, n, c0_fixed, scratch, emin, emax};
+    return profile(&p, e, c0, a);
+}
+
 int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft_noise_model *m)
 {
     if (t == NULL || m == NULL)
@@ -154,7 +167,7 @@ int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft
     double *buf = ft_malloc(4 * t->n * sizeof *buf);
     if (buf == NULL)
         return FT_E_NOMEM;
-    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n};
+    profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n, E_MIN, E_MAX};
     for (size_t i = 0; i < t->n; i++) {
         double q = pow(t->rows[i].value, m->power);
         buf[i] = log(t->rows[i].scale);
@@ -189,7 +202,7 @@ int ft_nugget_detected(const ft_noise_model *m, const ft_loglog *t)
     if (!m->fitted || !(m->c0 > 0.0) || t->n == 0)
         return 0;
     double q0 = pow(t->rows[0].value, m->power);
-    return m->F >= DETECT_F && m->c0 >= DETECT_SHARE * q0;
+    return t->n > 3 && m->F >= gsl_cdf_fdist_Qinv(DETECT_P, 1.0, (double)(t->n - 3)) && m->c0 >= DETECT_SHARE * q0;
 }
 
 int ft_nugget_remove(const ft_loglog *t, ft_noise_model *m, double min_floor, ft_loglog **out)
@@ -243,7 +256,7 @@ int ft_surface_fit_noise(const ft_loglog *t, const ft_noise_opts *no, ft_structu
     /* The nugget shows at the small lags; the large ones carry the realization's own curvature, which
      * the model would trade against c0: the fit uses the rows within NUGGET_SPAN x the smallest scale. */
     ft_loglog head = *t;
-    while (head.n > 6 && head.rows[head.n - 1].scale > NUGGET_SPAN * t->rows[0].scale)
+    while (head.n > NUGGET_ROWS && head.rows[head.n - 1].scale > NUGGET_SPAN * t->rows[0].scale)
         head.n--;
     int rc = ft_nugget_fit(&head, stat, no->sigma_z, &m);
     if (rc != FT_OK) /* no increasing power law: leave the table to the ordinary fit and its checks */

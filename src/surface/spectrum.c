@@ -30,7 +30,8 @@
  * between 1 / max_wavelength and 1 / min_wavelength (defaults 8 cells, below which aliasing flattens the
  * spectrum, and T / 8); each bin's value is the mean power of its frequencies (every frequency of the
  * plane once) over every tile, each tile weighted by its number of valid differences, its scale their
- * mean f. log P against log f is fitted as every estimator (ft_loglog_fit_auto or the whole range).
+ * mean f. log P against log f is fitted as every estimator (ft_loglog_fit_auto or the whole range), after
+ * a white-noise floor P = N0 + A f^-beta is detected and removed (spectrum_floor.c).
  *
  * The transforms are pruned to what the band needs: every row of a tile is transformed (src/fft/fft.h,
  * 1-D complex: gx + i gy, or the elevations), only the columns |kx| <= T / min_wavelength are kept and
@@ -645,6 +646,10 @@ static int check_opts(const ft_grid *g, const ft_spectrum_opts *o)
     if (o->elevations != 0 && o->elevations != 1)
         return ft_error(FT_E_INVALID, NAME ": elevations must be 0 (differences) or 1 (elevations), got %d",
                         o->elevations);
+    if (o->noise.mode != 0 && o->noise.mode != -1)
+        return ft_error(FT_E_INVALID, NAME ": noise.mode must be 0 (automatic) or -1 (off), got %d", o->noise.mode);
+    if (!(o->noise.sigma_z >= 0.0) || !isfinite(o->noise.sigma_z))
+        return ft_error(FT_E_INVALID, NAME ": noise.sigma_z must be finite and >= 0, got %g", o->noise.sigma_z);
     return FT_OK;
 }
 
@@ -747,8 +752,9 @@ int ft_surface_dim_spectrum(const ft_grid *g, const ft_spectrum_opts *opts, ft_d
     }
     ft_dim_map map = FT_DIM_MAP_SPECTRUM_SURFACE;
     if ((rc = build_table(tot, p.nbins, &t)) != FT_OK ||
-        (rc = ft_surface_fit_table(t, o.fit_whole_range, &o.fit, &map, NAME, out)) != FT_OK)
+        (rc = ft_spectrum_fit_noise(t, &o.noise, o.fit_whole_range, &o.fit, &map, out)) != FT_OK)
         goto done;
+    (*out)->method = NAME;
     if ((*out)->D < DEGENERATE_D) {
         rc = ft_error(FT_E_NUMERIC, NAME ": the surface is smoother than any fractal (beta = %.2f > 4.2, D = %.2f): "
                       "degenerate for the spectrum", 2.0 * (4.0 - (*out)->D), (*out)->D);

@@ -103,7 +103,7 @@ int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surface_dim_o
         ft_spectrum_opts s = {.struct_size = sizeof s, .min_wavelength = lo, .max_wavelength = hi,
                               .nbins = o.nscales, .tile = o.tile, .window = 1, .fit = o.fit,
                               .fit_whole_range = o.fit_whole_range, .progress = o.progress,
-                              .progress_arg = o.progress_arg, .elevations = 0};
+                              .progress_arg = o.progress_arg, .elevations = 0, .noise = o.noise};
         return ft_surface_dim_spectrum(g, &s, out);
     }
     default: {

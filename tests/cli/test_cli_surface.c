@@ -95,6 +95,19 @@ static void test_dim_surface(void **state)
     assert_int_equal(ft_test_json_int(o, "pairs"), 4000);
     json_object_put(o);
     assert_true(ft_test_dir_count() >= 1 + FT_SURFACE_NMETHODS); /* the DEM and one plot per method */
+    /* the spectrum's white-noise floor, given: removed, said, the highest frequency fitted reported */
+    const char *a5[] = {"dim", "surface", dem, "--method", "spectrum", "--noise-sigma", "0.01", "--json", NULL};
+    o = run(0, NULL, NULL, a5, 1);
+    json_object *noise = ft_test_json_key(o, "noise");
+    assert_true(json_object_get_boolean(ft_test_json_key(noise, "removed")));
+    assert_true(fabs(ft_test_json_num(noise, "nugget") - 1e-4) < 1e-12); /* N0 = sigma² */
+    assert_true(ft_test_json_num(noise, "max_frequency") > 0.0);
+    json_object *w = ft_test_json_key(o, "warnings");
+    int said = 0;
+    for (size_t i = 0; i < json_object_array_length(w); i++)
+        said |= strstr(json_object_get_string(json_object_array_get_idx(w, i)), "white spectrum") != NULL;
+    assert_true(said);
+    json_object_put(o);
     /* the real DEMs: human table, D in [2, 3] */
     const char *a3[] = {"dim", "surface", VOLCANO, "--method", "yokoya", "--json", NULL};
     o = run(0, NULL, NULL, a3, 1);

@@ -120,6 +120,9 @@ static void test_lag_estimators_on_exact_fbm(void **state)
         mean_dimensions(dims[i], 1000 + (unsigned long)i, mean, &nuggets);
         printf("  exact fBm D = %.1f  noise model detected a nugget in %d of %d noise-free fits\n", dims[i], nuggets,
                NMETHODS * REALIZATIONS);
+        /* The nugget test reads the lags within 4 x the smallest (nugget_fit.c): a false nugget is rare
+         * (measured 0, 0, 2 of 18; 12 of 54 when it read every lag to 8). */
+        assert_true(nuggets <= 2);
         for (int j = 0; j < NMETHODS; j++) {
             printf("  exact fBm D = %.1f  %-9s mean D = %.4f\n", dims[i], ft_surface_method_name(METHODS[j]), mean[j]);
             assert_near(mean[j], dims[i], tol[j]);
