@@ -21,6 +21,8 @@
 
 #define NF_UTM FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 #define NF_LONLAT FT_TEST_DATA "/gshhg_newfoundland_lonlat.geojson"
+#define SKYE_LONLAT FT_TEST_DATA "/gshhg_skye_lonlat.geojson"
+#define SKYE_UTM FT_TEST_DATA "/gshhg_skye_utm29n.geojson"
 #define US_ALBERS FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
 #define US_LONLAT FT_TEST_DATA "/dcw_us_states_small_lonlat.geojson"
 #define LUX_LONLAT FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
@@ -62,6 +64,27 @@ static void test_dim_line_twin(void **state)
     json_object *geo = ft_test_json_key(g, "geographic");
     assert_string_equal(ft_test_json_str(geo, "ellipsoid"), "WGS 84");
     assert_null(ft_test_json_key(geo, "projection")); /* walked on the ellipsoid */
+    json_object_put(g);
+    json_object_put(p);
+}
+
+/* The Isle of Skye (57.0-57.7 N) as GSHHG stores it, in lon/lat (nobody here projected it), and its ogr2ogr to
+ * UTM 29N: divider D over 0.5-10 km within 0.01, the walked length at a 1 km ruler within 0.5%. */
+static void test_dim_line_native_lonlat(void **state)
+{
+    (void)state;
+    json_object *g = FT_TEST_RUN_JSON("dim", "line", SKYE_LONLAT, "--min-scale", "500", "--max-scale", "10000",
+                                      "--json");
+    json_object *p = FT_TEST_RUN_JSON("dim", "line", SKYE_UTM, "--min-scale", "500", "--max-scale", "10000",
+                                      "--json");
+    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    double lg = row_value(g, 1000.0), lp = row_value(p, 1000.0);
+    print_message("  Skye: D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.4f%%)\n", dg, dp, lg, lp,
+                  100.0 * (lg / lp - 1.0));
+    assert_true(fabs(dg - dp) < 0.01);
+    assert_true(fabs(lg / lp - 1.0) < 0.005);
+    assert_true(lg > 400e3 && lg < 600e3); /* metres: Skye's shore is some 500 km at this ruler, not degrees */
+    assert_string_equal(ft_test_json_str(g, "units"), "m");
     json_object_put(g);
     json_object_put(p);
 }
@@ -363,7 +386,8 @@ static void test_urban_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_dim_line_twin),    cmocka_unit_test(test_dim_line_box_projection),
+        cmocka_unit_test(test_dim_line_twin),
+        cmocka_unit_test(test_dim_line_native_lonlat),    cmocka_unit_test(test_dim_line_box_projection),
         cmocka_unit_test(test_dim_line_rulers_too_long), cmocka_unit_test(test_dim_area_twin),
         cmocka_unit_test(test_dim_surface_twin), cmocka_unit_test(test_model_fit_twin),
         cmocka_unit_test(test_dim_map),          cmocka_unit_test(test_dim_points),
