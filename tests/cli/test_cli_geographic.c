@@ -89,6 +89,78 @@ static void test_dim_line_native_lonlat(void **state)
     json_object_put(p);
 }
 
+/* A wiggly line at 60 N over 1.2 degrees of longitude centred on lon_centre (180: across the antimeridian,
+ * longitudes wrapped to [-180, 180]), as a lon/lat GeoJSON in the test's temporary folder. */
+static const char *wiggly_line(const char *name, double lon_centre)
+{
+    enum { N = 1200 };
+    size_t cap = 64 * (N + 1) + 512, len = 0;
+    char *text = malloc(cap);
+    assert_non_null(text);
+    len += (size_t)snprintf(text + len, cap - len, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":"
+                            "\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[");
+    for (int i = 0; i <= N; i++) {
+        double t = -0.6 + 1.2 * i / N, lon = lon_centre + t;
+        double lat = 60.0 + 0.05 * sin(7.0 * M_PI * t) + 0.02 * sin(53.0 * t) + 0.01 * sin(211.0 * t + 1.0);
+        lon = lon > 180.0 ? lon - 360.0 : lon;
+        len += (size_t)snprintf(text + len, cap - len, "%s[%.9f,%.9f]", i ? "," : "", lon, lat);
+    }
+    snprintf(text + len, cap - len, "]}}]}");
+    const char *path = ft_test_tmp_text(name, text);
+    free(text);
+    return path;
+}
+
+/* The antimeridian: the same line across +-180 and across Greenwich gives the same divider walk (Earth-centred
+ * chords do not see the longitude jump) and the same box count (the equal-area projection is centred on 180,
+ * not on the mean longitude 0); the same grid across it gives the same variogram. Data spanning more than 180
+ * degrees of longitude either way are refused where a local projection is needed, with the span named. */
+static void test_antimeridian(void **state)
+{
+    (void)state;
+    const char *zero = wiggly_line("am_zero.geojson", 0.0), *cross = wiggly_line("am_cross.geojson", 180.0);
+    const char *methods[2] = {"divider", "box"};
+    for (int m = 0; m < 2; m++) {
+        json_object *a = FT_TEST_RUN_JSON("dim", "line", zero, "--method", methods[m], "--min-scale", "500",
+                                          "--max-scale", "5000", "--json");
+        json_object *b = FT_TEST_RUN_JSON("dim", "line", cross, "--method", methods[m], "--min-scale", "500",
+                                          "--max-scale", "5000", "--json");
+        double da = ft_test_json_num(a, "D"), db = ft_test_json_num(b, "D");
+        double va = row_value(a, 500.0), vb = row_value(b, 500.0);
+        print_message("  %s: D %.5f / %.5f, value(500 m) %.6g / %.6g\n", methods[m], da, db, va, vb);
+        assert_true(fabs(da - db) < 1e-3);
+        assert_true(fabs(va / vb - 1.0) < 1e-3);
+        if (m == 1)
+            assert_non_null(strstr(ft_test_json_str(ft_test_json_key(b, "geographic"), "projection"), "180.0000E"));
+        json_object_put(a);
+        json_object_put(b);
+    }
+    const char *wide = ft_test_tmp_text(
+        "am_wide.geojson", "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+                           "\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-170,60],[-60,61],[60,60],[170,61]]}}]}");
+    FT_TEST_EXPECT_FAILURE(1, "dim line", "am_wide.geojson spans 240.0 degrees of longitude", "dim", "line", wide,
+                           "--method", "box");
+    FT_TEST_EXPECT_FAILURE(1, "simplify", "spans 240.0 degrees of longitude", "simplify", wide,
+                           ft_test_tmp("am_wide_s.geojson"), "--tolerance", "1000");
+    assert_int_equal(access(ft_test_tmp("am_wide_s.geojson"), F_OK), -1);
+    const char *grids[2] = {ft_test_tmp("am_g0.tif"), ft_test_tmp("am_g180.tif")};
+    const char *origins[2] = {"-0.5,60.5", "179.5,60.5"};
+    double d[2];
+    for (int i = 0; i < 2; i++) {
+        ft_run_result r;
+        assert_int_equal(ft_run(&r, "synth", grids[i], "--dim", "2.3", "--size", "200x150", "--cell", "0.005",
+                                "--origin", origins[i], "--crs", "EPSG:4326", "--sigma", "50", "--seed", "5", NULL), 0);
+        assert_int_equal(r.status, 0);
+        ft_run_free(&r);
+        json_object *o = FT_TEST_RUN_JSON("dim", "surface", grids[i], "--min-scale", "500", "--max-scale", "5000",
+                                          "--json");
+        d[i] = ft_test_json_num(o, "D");
+        json_object_put(o);
+    }
+    print_message("  grid across 180: D %.6f (across Greenwich %.6f)\n", d[1], d[0]);
+    assert_true(fabs(d[0] - d[1]) < 1e-6);
+}
+
 /* Box counting of a lon/lat layer runs in a local equal-area projection, named; the result is in metres and
  * agrees with the Albers twin over the same box sizes. */
 static void test_dim_line_box_projection(void **state)
@@ -387,7 +459,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dim_line_twin),
-        cmocka_unit_test(test_dim_line_native_lonlat),    cmocka_unit_test(test_dim_line_box_projection),
+        cmocka_unit_test(test_dim_line_native_lonlat),
+        cmocka_unit_test(test_antimeridian),    cmocka_unit_test(test_dim_line_box_projection),
         cmocka_unit_test(test_dim_line_rulers_too_long), cmocka_unit_test(test_dim_area_twin),
         cmocka_unit_test(test_dim_surface_twin), cmocka_unit_test(test_model_fit_twin),
         cmocka_unit_test(test_dim_map),          cmocka_unit_test(test_dim_points),
