@@ -12,9 +12,10 @@
  * correctly). The search is a compass (pattern) search from the mode: the eight neighbours at step h
  * (0.25 cycle at first), a move to the best that improves, h halved when none does, until h < 2^-10 cycle;
  * it climbs to the local maximum the mode's energy belongs to, so two modes leaking one wave report the same
- * wave. Large grids are fitted on blocks: the block mean of the residual at the centroid of the block's valid
+ * wave. Grids over 128 cells a side are fitted on blocks: the block mean of the residual at the centroid of the block's valid
  * cells, weighted by their count (a block mean of a wave of 8 blocks or more keeps its frequency; shorter
- * waves are fitted on finer blocks, down to single cells). Only the reported wavelength and direction change:
+ * waves are fitted on finer blocks, down to single cells; sums over the blocks are reduced in a fixed order,
+ * so the result is the same on any thread count). Only the reported wavelength and direction change:
  * the model keeps the mode's coefficients, which the simulation places on the grid's modes.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -26,7 +27,7 @@
 
 #include "internal.h"
 
-#define PEAK_MAX_BLOCKS 256       /* blocks along the longer side of a large grid */
+#define PEAK_MAX_BLOCKS 128       /* blocks along the longer side of a large grid */
 #define PEAK_MIN_BLOCKS_PER_WAVE 8
 #define PEAK_FIRST_STEP 0.25      /* cycles across the grid */
 #define PEAK_LAST_STEP (1.0 / 1024.0)
@@ -89,20 +90,36 @@ static int blocks_make(const ft_grid *dem, const double *res, size_t rs, size_t 
     return FT_OK;
 }
 
+#define PEAK_CHUNKS 64 /* fixed partition of the blocks: sums reduced in chunk order on any thread count */
+
 /* Variance explained by the best plane wave at (u, v) cycles across the grid (times the weight sum):
  * v' G^-1 v with G the Gram matrix of the cosine and sine over the blocks. 0 where they are collinear. */
 static double explained(const peak_blocks *b, double u, double v)
 {
-    double cc = 0.0, ss = 0.0, cs = 0.0, rc = 0.0, rsn = 0.0;
+    double part[PEAK_CHUNKS][5];
     double fu = 2.0 * M_PI * u / (double)b->nx, fv = 2.0 * M_PI * v / (double)b->ny;
-    for (size_t i = 0; i < b->n; i++) {
-        double th = fu * b->col[i] + fv * b->row[i], c = cos(th), s = sin(th), w = b->w[i];
-        cc += w * c * c;
-        ss += w * s * s;
-        cs += w * c * s;
-        rc += w * b->r[i] * c;
-        rsn += w * b->r[i] * s;
+#pragma omp parallel for schedule(static) if (b->n > 4096)
+    for (int k = 0; k < PEAK_CHUNKS; k++) {
+        double cc = 0.0, ss = 0.0, cs = 0.0, rc = 0.0, rsn = 0.0;
+        for (size_t i = b->n * (size_t)k / PEAK_CHUNKS; i < b->n * (size_t)(k + 1) / PEAK_CHUNKS; i++) {
+            double th = fu * b->col[i] + fv * b->row[i], c = cos(th), s = sin(th), w = b->w[i];
+            cc += w * c * c;
+            ss += w * s * s;
+            cs += w * c * s;
+            rc += w * b->r[i] * c;
+            rsn += w * b->r[i] * s;
+        }
+        part[k][0] = cc;
+        part[k][1] = ss;
+        part[k][2] = cs;
+        part[k][3] = rc;
+        part[k][4] = rsn;
     }
+    double t[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+    for (int k = 0; k < PEAK_CHUNKS; k++)
+        for (int j = 0; j < 5; j++)
+            t[j] += part[k][j];
+    double cc = t[0], ss = t[1], cs = t[2], rc = t[3], rsn = t[4];
     double det = cc * ss - cs * cs;
     if (!(det > 1e-9 * (cc + ss) * (cc + ss)))
         return 0.0;
