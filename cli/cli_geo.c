@@ -192,6 +192,16 @@ int cli_geo_grid_ground(const cli_command *cmd, const char *path, ft_grid **g, f
     return CLI_CONTINUE;
 }
 
+void cli_geo_warn_square_cells(const cli_command *cmd, const char *path, const ft_grid *g, const ft_crs_info *crs)
+{
+    double per_lon, per_lat, x0, y0, x1, y1;
+    ft_grid_extent(g, &x0, &y0, &x1, &y1);
+    ft_ellipsoid_metres_per_degree(&crs->ellipsoid, 0.5 * (y0 + y1), &per_lon, &per_lat);
+    cli_warn(cmd, "%s is in longitude/latitude (%s): its cells are %.0f m x %.0f m on the ground, and the voids "
+                  "are filled as if they were square (reproject it first for an isotropic model)",
+             path, crs->name, fabs(g->gt[1]) * per_lon, fabs(g->gt[5]) * per_lat);
+}
+
 json_object *cli_geo_json(const ft_crs_info *crs, const char *projection_wkt)
 {
     json_object *o = json_object_new_object();

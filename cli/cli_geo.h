@@ -39,6 +39,10 @@ int cli_geo_grid_local(const cli_command *cmd, const ft_grid *g, ft_grid **out);
  *  Mercator in metres (cli_geo_grid_local), so that lags, wavelengths, directions and trends are on the
  *  ground. CLI_CONTINUE or CLI_FAIL (printed). */
 int cli_geo_grid_ground(const cli_command *cmd, const char *path, ft_grid **g, ft_crs_info *crs);
+/** Warns that a lon/lat grid's voids are filled in its own cells (reconstruct, fill): "PATH is in
+ *  longitude/latitude (CRS): its cells are DX m x DY m on the ground, and the voids are filled as if they were
+ *  square ...", DX and DY at the grid's middle latitude. */
+void cli_geo_warn_square_cells(const cli_command *cmd, const char *path, const ft_grid *g, const ft_crs_info *crs);
 /** A JSON description of how a geographic input was measured: {"crs", "ellipsoid", "projection"} (projection
  *  may be NULL: walked on the ellipsoid). */
 json_object *cli_geo_json(const ft_crs_info *crs, const char *projection_wkt);

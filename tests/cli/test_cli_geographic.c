@@ -386,6 +386,36 @@ static void test_refusals(void **state)
                            ft_test_tmp("m.geojson"));
 }
 
+/* fill of a lon/lat DEM fills in its own cells and says so with their ground size; model simulate of a model
+ * fitted on lon/lat writes its grid in the local transverse Mercator it was fitted in, in metres. */
+static void test_fill_and_simulate(void **state)
+{
+    (void)state;
+    const char *filled = ft_test_tmp("fill.tif"), *model = ft_test_tmp("lux-model.json");
+    const char *sim = ft_test_tmp("lux-sim.tif");
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "fill", LUX_LONLAT, filled, NULL), 0);
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.err, "its cells are 600 m x 927 m on the ground, and the voids are filled as if they "
+                                  "were square"));
+    ft_run_free(&r);
+    assert_int_equal(ft_run(&r, "model", "fit", LUX_LONLAT, "-o", model, NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    assert_int_equal(ft_run(&r, "model", "simulate", model, sim, "--seed", "3", NULL), 0);
+    assert_int_equal(r.status, 0);
+    ft_run_free(&r);
+    ft_grid *g = NULL;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    assert_int_equal(ft_io_read_grid(sim, &ro, &g), FT_OK);
+    ft_crs_info crs;
+    assert_int_equal(ft_io_crs_info(g->crs_wkt, &crs), FT_OK);
+    assert_false(crs.geographic);
+    assert_non_null(strstr(crs.name, "Transverse Mercator centred on"));
+    assert_true(fabs(g->gt[1] - 745.57) < 1.0); /* the geometric mean of the 600 m x 927 m ground cells */
+    ft_grid_free(g);
+}
+
 /* hillshade of a lon/lat DEM takes the ellipsoid's metres per degree of latitude at its centre as scale:
  * the same image as --scale 111229 (the textbook length of a degree of latitude at 50 N), within one grey
  * level, and not the image of --scale 1 (degrees taken as metres). */
@@ -460,7 +490,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dim_line_twin),
         cmocka_unit_test(test_dim_line_native_lonlat),
-        cmocka_unit_test(test_antimeridian),    cmocka_unit_test(test_dim_line_box_projection),
+        cmocka_unit_test(test_antimeridian),
+        cmocka_unit_test(test_fill_and_simulate),    cmocka_unit_test(test_dim_line_box_projection),
         cmocka_unit_test(test_dim_line_rulers_too_long), cmocka_unit_test(test_dim_area_twin),
         cmocka_unit_test(test_dim_surface_twin), cmocka_unit_test(test_model_fit_twin),
         cmocka_unit_test(test_dim_map),          cmocka_unit_test(test_dim_points),
