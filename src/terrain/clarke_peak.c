@@ -12,11 +12,11 @@
  * correctly). The search is a compass (pattern) search from the mode: the eight neighbours at step h
  * (0.25 cycle at first), a move to the best that improves, h halved when none does, until h < 2^-10 cycle;
  * it climbs to the local maximum the mode's energy belongs to, so two modes leaking one wave report the same
- * wave. Grids over 128 cells a side are fitted on blocks: the block mean of the residual at the centroid of the block's valid
- * cells, weighted by their count (a block mean of a wave of 8 blocks or more keeps its frequency; shorter
- * waves are fitted on finer blocks, down to single cells; sums over the blocks are reduced in a fixed order,
- * so the result is the same on any thread count). Only the reported wavelength and direction change:
- * the model keeps the mode's coefficients, which the simulation places on the grid's modes.
+ * wave. Grids over 128 cells a side are fitted on blocks: the block mean of the residual at the centroid of
+ * the block's valid cells, weighted by their count (a block mean of a wave of 8 blocks or more keeps its
+ * frequency; shorter waves are fitted on finer blocks, down to single cells). Serial, so the same on any
+ * thread count. Only the reported wavelength and direction change: the model keeps the mode's
+ * coefficients, which the simulation places on the grid's modes.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -90,7 +90,8 @@ static int blocks_make(const ft_grid *dem, const double *res, size_t rs, size_t 
     return FT_OK;
 }
 
-#define PEAK_CHUNKS 64 /* fixed partition of the blocks: sums reduced in chunk order on any thread count */
+#define PEAK_CHUNKS 64 /* partial sums per chunk of blocks, reduced in order (an evaluation is ~1 ms of work at
+                          most: a parallel region per evaluation costs more than it saves on a loaded machine) */
 
 /* Variance explained by the best plane wave at (u, v) cycles across the grid (times the weight sum):
  * v' G^-1 v with G the Gram matrix of the cosine and sine over the blocks. 0 where they are collinear. */
@@ -98,7 +99,6 @@ static double explained(const peak_blocks *b, double u, double v)
 {
     double part[PEAK_CHUNKS][5];
     double fu = 2.0 * M_PI * u / (double)b->nx, fv = 2.0 * M_PI * v / (double)b->ny;
-#pragma omp parallel for schedule(static) if (b->n > 4096)
     for (int k = 0; k < PEAK_CHUNKS; k++) {
         double cc = 0.0, ss = 0.0, cs = 0.0, rc = 0.0, rsn = 0.0;
         for (size_t i = b->n * (size_t)k / PEAK_CHUNKS; i < b->n * (size_t)(k + 1) / PEAK_CHUNKS; i++) {
