@@ -407,7 +407,7 @@ static int run_dim_line(const cli_command *cmd, int argc, char **argv)
     rc = cli_geo_crs(cmd, path, l->crs_wkt, &crs);
     for (int i = 0; rc == CLI_CONTINUE && crs.geographic && i < nm; i++)
         if ((ms[i] == FT_LINE_BOX || ms[i] == FT_LINE_BOX_MIN) && box_layer == NULL)
-            rc = cli_geo_layer_local(cmd, l, FT_LOCAL_LAEA, &box_layer);
+            rc = cli_geo_layer_local(cmd, path, l, FT_LOCAL_LAEA, &box_layer);
     if (rc != CLI_CONTINUE) {
         ft_layer_free(l);
         return rc;

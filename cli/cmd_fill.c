@@ -4,6 +4,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <errno.h>
@@ -263,6 +264,9 @@ static int run_fill(const cli_command *cmd, int argc, char **argv)
     if (ft_io_read_grid(in, &ro, &dem) != FT_OK)
         return cli_fail(cmd);
     rc = resolve_max_void(cmd, &a, dem, in);
+    ft_crs_info crs;
+    if (rc == CLI_CONTINUE && (rc = cli_geo_crs(cmd, in, dem->crs_wkt, &crs)) == CLI_CONTINUE && crs.geographic)
+        cli_geo_warn_square_cells(cmd, in, dem, &crs); /* filled in place: resampling would alter valid cells */
     if (rc == CLI_CONTINUE && a.mask)
         rc = read_mask(cmd, a.mask, dem, in, &valid);
     if (rc == CLI_CONTINUE) {

@@ -38,6 +38,27 @@ static int on_fit_option(const cli_command *cmd, int opt, const char *arg, void 
     }
 }
 
+/* Harmonic directions from true north: the fitted grid's azimuths are from its grid north, which turns by
+ * the meridian convergence at the grid's centre (2.2 deg for UTM 32N in Luxembourg; 0 for the local TM
+ * a lon/lat DEM is fitted on). *north: grid azimuth of true north, NAN without a CRS (grid north kept). */
+static int directions_from_true_north(const cli_command *cmd, const char *dem, ft_clarke_model *m, double *north)
+{
+    *north = NAN;
+    if (m->crs_wkt == NULL || m->crs_wkt[0] == '\0')
+        return CLI_CONTINUE;
+    double hx = 0.5 * (double)m->nx, hy = 0.5 * (double)m->ny;
+    double x = m->gt[0] + hx * m->gt[1] + hy * m->gt[2], y = m->gt[3] + hx * m->gt[4] + hy * m->gt[5];
+    if (ft_io_crs_grid_north(m->crs_wkt, x, y, north) != FT_OK) {
+        cli_error(cmd, "%s: %s", dem, ft_last_error());
+        return CLI_FAIL;
+    }
+    for (size_t i = 0; i < m->nharmonics; i++) {
+        double d = fmod(m->harmonics[i].direction - *north + 360.0, 180.0);
+        m->harmonics[i].direction = d >= 180.0 ? 0.0 : d;
+    }
+    return CLI_CONTINUE;
+}
+
 static void print_model(const char *dem, const ft_clarke_model *m)
 {
     printf("Clarke model of %s (%zu x %zu cells, %zu valid, %zu nodata filled with the trend)\n", dem, m->nx, m->ny,
@@ -57,7 +78,7 @@ static void print_model(const char *dem, const ft_clarke_model *m)
 }
 
 static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem, const ft_clarke_model *m,
-                      const ft_crs_info *crs)
+                      const ft_crs_info *crs, double north)
 {
     if (!(m->D > 2.0 && m->D < 3.0))
         cli_warn(cmd, "%s: the spectrum (beta = %.2f) is %s than any fractional Brownian surface's: D = %.2f is "
@@ -65,8 +86,10 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
                  m->D <= 2.0 ? "steeper" : "flatter", m->D);
     if (a->out && clarke_model_write(a->out, m) != FT_OK)
         return cli_fail(cmd);
+    const char *from = isnan(north) ? "grid north" : "true north";
     if (!a->json) {
         print_model(dem, m);
+        printf("  directions: azimuths of the wave vectors, degrees clockwise from %s\n", from);
         if (a->out)
             printf("wrote %s\n", a->out);
         return CLI_OK;
@@ -75,6 +98,11 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
     json_object_object_add(o, "input", json_object_new_string(dem));
     json_object_object_add(o, "output", a->out ? json_object_new_string(a->out) : NULL);
     /* wavelengths and the range in this unit, trend per unit; lon/lat input was fitted on its local TM warp */
+    json_object *hs = NULL;
+    if (json_object_object_get_ex(o, "harmonics", &hs)) {
+        json_object_object_add(hs, "direction_from", json_object_new_string(from));
+        json_object_object_add(hs, "grid_north_azimuth", isnan(north) ? NULL : json_object_new_double(north));
+    }
     json_object_object_add(o, "units", crs->scale_unit[0] ? json_object_new_string(crs->scale_unit) : NULL);
     if (crs->geographic)
         json_object_object_add(o, "geographic", cli_geo_json(crs, m->crs_wkt));
@@ -112,7 +140,11 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
     }
     ft_clarke_model *m = NULL;
     a.co.progress = cli_progress();
-    rc = ft_clarke_fit(g, &a.co, &m) == FT_OK ? fit_report(cmd, &a, argv[first], m, &crs) : cli_fail(cmd);
+    double north = NAN;
+    if (ft_clarke_fit(g, &a.co, &m) != FT_OK)
+        rc = cli_fail(cmd);
+    else if ((rc = directions_from_true_north(cmd, argv[first], m, &north)) == CLI_CONTINUE)
+        rc = fit_report(cmd, &a, argv[first], m, &crs, north);
     ft_clarke_model_free(m);
     ft_grid_free(g);
     return rc;
@@ -126,7 +158,10 @@ static const cli_command cmd_model_fit = {
     "holding at least PCT percent of its variance, F fractal noise whose power follows the log-log\n"
     "regression of harmonic power on wavelength over every harmonic. D = (8 - beta)/2 for the 2-D\n"
     "spectrum; Clarke's eq. viii value (3 - beta/2) is printed as well, labelled. Nodata cells are filled\n"
-    "with the trend before the Fourier analysis (counted in \"nodata_filled\").\n\n"
+    "with the trend before the Fourier analysis (counted in \"nodata_filled\"). A harmonic is one of the\n"
+    "grid's Fourier modes (k, l); its wavelength (ground units) and direction (clockwise from true north,\n"
+    "or grid north without a CRS) are those of the plane wave of continuous frequency fitting the detrended\n"
+    "DEM best near that mode: a property of the terrain, not of the grid's extent.\n\n"
     "Options:\n"
     "  --cutoff PCT        share of the detrended variance a harmonic must reach, in (0,100] (default 2.5)\n"
     "  --no-taper          regress on the raw periodogram (Clarke) instead of a Hann-tapered one\n"

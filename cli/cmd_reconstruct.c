@@ -332,12 +332,7 @@ static int reconstruct(const cli_command *cmd, recon_args *a, const char *in, co
     ft_crs_info crs;
     rc = cli_geo_crs(cmd, in, d.kind == FT_KIND_GRID ? d.grid->crs_wkt : d.points ? d.points->crs_wkt : NULL, &crs);
     if (rc == CLI_CONTINUE && crs.geographic && d.kind == FT_KIND_GRID) { /* voids: filled in place, in cells */
-        double per_lon, per_lat, x0, y0, x1, y1;
-        ft_grid_extent(d.grid, &x0, &y0, &x1, &y1);
-        ft_ellipsoid_metres_per_degree(&crs.ellipsoid, 0.5 * (y0 + y1), &per_lon, &per_lat);
-        cli_warn(cmd, "%s is in longitude/latitude (%s): its cells are %.0f m x %.0f m on the ground, and the voids "
-                      "are filled as if they were square (reproject it first for an isotropic model)",
-                 in, crs.name, fabs(d.grid->gt[1]) * per_lon, fabs(d.grid->gt[5]) * per_lat);
+        cli_geo_warn_square_cells(cmd, in, d.grid, &crs);
     } else if (rc == CLI_CONTINUE && crs.geographic) {
         rc = cli_geo_refuse(cmd, in, &crs, "the target grid's cells and the fractal scaling of the lags are lengths "
                             "on the ground, which degrees are not", "ogr2ogr -t_srs EPSG:32632 out.gpkg in.gpkg");

@@ -165,13 +165,8 @@ static int measure_row(const cli_command *cmd, urban_tab *t, const table_args *a
     ft_layer *l = NULL;
     const char *path = t->files[t->row];
     int rc = cli_read_layer(cmd, path, a->layer, a->where, &l);
-    ft_crs_info crs;
-    if (rc == CLI_CONTINUE) /* lon/lat: areas and boxes in a local equal-area projection, m and m² */
-        rc = cli_geo_layer_ground(cmd, path, l, FT_LOCAL_LAEA, &crs);
-    if (rc != CLI_CONTINUE) {
-        ft_layer_free(l);
+    if (rc != CLI_CONTINUE)
         return rc;
-    }
     size_t rings = 0;
     for (size_t i = 0; i < l->nparts; i++)
         rings += l->parts[i].role != FT_ROLE_LINE;
@@ -180,6 +175,11 @@ static int measure_row(const cli_command *cmd, urban_tab *t, const table_args *a
                   l->nparts, l->nparts == 1 ? "" : "s");
         ft_layer_free(l);
         return CLI_FAIL;
+    }
+    ft_crs_info crs; /* lon/lat: areas and boxes in a local equal-area projection, m and m² */
+    if ((rc = cli_geo_layer_ground(cmd, path, l, FT_LOCAL_LAEA, &crs)) != CLI_CONTINUE) {
+        ft_layer_free(l);
+        return rc;
     }
     ft_area_dim_opts o = a->box.dim;
     o.fit_whole_range = o.ncells > 0;

@@ -264,6 +264,10 @@ typedef enum {
 /** WKT (malloc'd) of a projection in metres centred on (lon0, lat0), on the datum of the geographic (or
  *  any) CRS geo_wkt; its name says what it is ("Lambert azimuthal equal-area centred on 49.6000N ..."). */
 FT_API int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt);
+/** Grid azimuth of true north at map point (x, y) of the CRS wkt, degrees clockwise from the grid's north
+ *  (the meridian convergence: -2.2 for UTM 32N at 49.8N 6.1E); 0 for a geographic CRS or no CRS. An azimuth
+ *  measured from grid north is the true azimuth plus this. FT_E_NUMERIC if the point cannot be reprojected. */
+FT_API int ft_io_crs_grid_north(const char *wkt, double x, double y, double *azimuth);
 /** Reprojects every part (and topology arc) of the layer from its CRS to dst_wkt in place (OCT, x =
  *  longitude order) and sets its CRS. FT_E_NUMERIC naming a vertex that cannot be transformed. */
 FT_API int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt);

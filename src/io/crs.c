@@ -222,3 +222,59 @@ int ft_io_points_reproject(ft_points *pts, const char *dst_wkt)
         OCTDestroyCoordinateTransformation(ct);
     return rc == FT_OK ? ft_points_set_crs(pts, dst_wkt) : rc;
 }
+
+/* The geographic base of a projected CRS as WKT (malloc'd), or NULL (error set). */
+static char *geographic_base(const char *wkt)
+{
+    OGRSpatialReferenceH p = NULL;
+    if (ft_io_srs_from_wkt(wkt, &p) != FT_OK || p == NULL)
+        return NULL;
+    OGRSpatialReferenceH g = OSRCloneGeogCS(p);
+    OSRDestroySpatialReference(p);
+    if (g == NULL) {
+        ft_error(FT_E_FORMAT, "cannot take the geographic base of '%.60s'", wkt);
+        return NULL;
+    }
+    char *out = ft_io_srs_to_wkt(g);
+    OSRDestroySpatialReference(g);
+    return out;
+}
+
+int ft_io_crs_grid_north(const char *wkt, double x, double y, double *azimuth)
+{
+    if (azimuth == NULL)
+        return ft_error(FT_E_INVALID, "ft_io_crs_grid_north: NULL azimuth");
+    *azimuth = 0.0;
+    ft_crs_info info;
+    int rc = ft_io_crs_info(wkt, &info);
+    if (rc != FT_OK || !info.has_crs || info.geographic)
+        return rc;
+    if (!isfinite(x) || !isfinite(y))
+        return ft_error(FT_E_INVALID, "grid north: the point (%g, %g) is not finite", x, y);
+    char *geo = geographic_base(wkt);
+    if (geo == NULL)
+        return ft_last_error_code();
+    OGRCoordinateTransformationH to_geo = NULL, to_map = NULL;
+    rc = make_transform(wkt, geo, &to_geo);
+    if (rc == FT_OK)
+        rc = make_transform(geo, wkt, &to_map);
+    free(geo);
+    double px[2] = {x, 0.0}, py[2] = {y, 0.0};
+    if (rc == FT_OK)
+        rc = transform_xy(to_geo, px, py, 1, "grid north");
+    if (rc == FT_OK) { /* one arc-second north of the point, back on the map */
+        double dlat = py[0] > 89.99 ? -1.0 / 3600.0 : 1.0 / 3600.0;
+        px[1] = px[0];
+        py[1] = py[0] + dlat;
+        px[0] = x;
+        py[0] = y;
+        rc = transform_xy(to_map, px + 1, py + 1, 1, "grid north");
+        if (rc == FT_OK)
+            *azimuth = atan2(copysign(1.0, dlat) * (px[1] - x), copysign(1.0, dlat) * (py[1] - y)) * 180.0 / M_PI;
+    }
+    if (to_geo)
+        OCTDestroyCoordinateTransformation(to_geo);
+    if (to_map)
+        OCTDestroyCoordinateTransformation(to_map);
+    return rc;
+}

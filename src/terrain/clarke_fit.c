@@ -7,7 +7,8 @@
  *    FFT at its own size (any size: the harmonics are those of the grid, no padding). Each real plane wave
  *    a cos(theta) + b sin(theta) has power a² + b² (eq. vi, one wave instead of Clarke's four products)
  *    and a share of the detrended variance (Parseval);
- *  - H: the waves whose share reaches the cutoff (Clarke: 2.5 %), with wavelength and direction;
+ *  - H: the waves whose share reaches the cutoff (Clarke: 2.5 %); each reports the wavelength and direction
+ *    of the continuous-frequency plane wave its energy belongs to (clarke_peak.c), not the grid mode's;
  *  - F (eqs. ix, x): least squares of log10 power on log10 wavelength over every wave of non-zero power,
  *    by default on the periodogram of the residual tapered by a 2-D Hann window (divided by the window's
  *    mean square): a DEM is not periodic, and the leakage of its strong long waves through the edges of
@@ -83,7 +84,12 @@ double clarke_wavelength(const clarke_frame *f, int k, int l)
 
 void clarke_wave_geometry(const clarke_frame *f, int k, int l, double *wavelength, double *direction)
 {
-    double fx = k / f->lx, fy = l / f->ly;
+    clarke_wave_geometry_at(f, k, l, wavelength, direction);
+}
+
+void clarke_wave_geometry_at(const clarke_frame *f, double u, double v, double *wavelength, double *direction)
+{
+    double fx = u / f->lx, fy = v / f->ly;
     double east = fx * f->ex[0] + fy * f->ey[0], north = fx * f->ex[1] + fy * f->ey[1];
     double norm = hypot(east, north);
     *wavelength = norm > 0.0 ? 1.0 / norm : INFINITY;
@@ -414,7 +420,8 @@ static double fractal_variance(const ft_clarke_model *m, const clarke_frame *fr)
     for (size_t i = 0; i < m->nharmonics; i++) {
         const ft_clarke_harmonic *h = &m->harmonics[i];
         int self = (h->k == 0 || 2 * (size_t)h->k == nx) && (h->l == 0 || 2 * (size_t)abs(h->l) == ny);
-        var -= self ? clarke_power(m, h->wavelength) : 0.5 * clarke_power(m, h->wavelength);
+        double p = clarke_power(m, clarke_wavelength(fr, h->k, h->l)); /* the mode's, as in the sum */
+        var -= self ? p : 0.5 * p;
     }
     return var;
 }
@@ -535,7 +542,10 @@ static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, cons
     if (rc == FT_OK) {
         take_harmonics(m, &hs);
         scale_c(m, fr, hs.total_var);
+        rc = residual_fill(dem, m, b0c, 0, buf, ft_fft_real_stride(dem->nx));
     }
+    if (rc == FT_OK)
+        rc = clarke_refine_harmonics(dem, buf, ft_fft_real_stride(dem->nx), fr, m->harmonics, m->nharmonics);
     free(ri.log_wavelength);
     free(ri.log_power);
     free(hs.sig);

@@ -32,6 +32,13 @@ int clarke_frame_init(const double gt[6], size_t nx, size_t ny, clarke_frame *f)
 double clarke_wavelength(const clarke_frame *f, int k, int l);
 /* Wavelength (ground units) and direction (degrees clockwise from north, in [0, 180)) of wave (k, l). */
 void clarke_wave_geometry(const clarke_frame *f, int k, int l, double *wavelength, double *direction);
+/* The same for a wave of (u, v) cycles across the grid's columns and rows, u and v not necessarily whole. */
+void clarke_wave_geometry_at(const clarke_frame *f, double u, double v, double *wavelength, double *direction);
+/* Sets the wavelength and direction of each of the n harmonics to those of the plane wave of continuous
+ * frequency that fits the residual best near the harmonic's mode (clarke_peak.c). res: the untapered
+ * residual z - T of the DEM's cells, row stride rs (read at the DEM's valid cells only). */
+int clarke_refine_harmonics(const ft_grid *dem, const double *res, size_t rs, const clarke_frame *fr,
+                            ft_clarke_harmonic *h, size_t n);
 /* The regression's power for one plane wave of this wavelength (eq. xv, log10 form). */
 double clarke_power(const ft_clarke_model *m, double wavelength);
 

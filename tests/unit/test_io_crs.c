@@ -167,12 +167,44 @@ static void test_grid_reproject(void **state)
     free(tm);
 }
 
+/* Grid azimuth of true north: minus the meridian convergence atan(tan(lon - lon0) sin(lat)) (spherical
+ * approximation, within 0.01 deg at these latitudes); points from gdaltransform. 0 for lon/lat and no CRS. */
+static void test_grid_north(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *crs;
+        double x, y, lon, lat, lon0;
+    } cases[] = {{"EPSG:32632", 294088.34657009, 5522182.08825041, 6.1375, 49.8167, 9.0},
+                 {"EPSG:32605", 657091.710172919, 6877812.60098824, -150.0, 62.0, -153.0}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *wkt = NULL;
+        double az = NAN, d2r = M_PI / 180.0;
+        assert_int_equal(ft_io_crs_to_wkt(cases[i].crs, &wkt), FT_OK);
+        assert_int_equal(ft_io_crs_grid_north(wkt, cases[i].x, cases[i].y, &az), FT_OK);
+        double expect = -atan(tan((cases[i].lon - cases[i].lon0) * d2r) * sin(cases[i].lat * d2r)) / d2r;
+        print_message("  %s: grid north %.4f deg, expected %.4f\n", cases[i].crs, az, expect);
+        assert_true(fabs(az - expect) < 0.01);
+        free(wkt);
+    }
+    char *geo = NULL;
+    double az = 1.0;
+    assert_int_equal(ft_io_crs_to_wkt("EPSG:4326", &geo), FT_OK);
+    assert_int_equal(ft_io_crs_grid_north(geo, 6.0, 49.0, &az), FT_OK);
+    assert_true(az == 0.0);
+    az = 1.0;
+    assert_int_equal(ft_io_crs_grid_north(NULL, 6.0, 49.0, &az), FT_OK);
+    assert_true(az == 0.0);
+    free(geo);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_geographic),        cmocka_unit_test(test_projected_units),
         cmocka_unit_test(test_no_crs_and_bad),    cmocka_unit_test(test_ellipsoid),
         cmocka_unit_test(test_layer_round_trip),  cmocka_unit_test(test_grid_reproject),
+        cmocka_unit_test(test_grid_north),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
