@@ -18,7 +18,14 @@
 extern "C" {
 #endif
 
-/** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it. */
+/** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it.
+ *
+ *  GDAL's messages: fracterra never replaces the process's GDAL error handler. Each io function pushes its
+ *  own handler on the calling thread's GDAL handler stack for the time of the call and pops it before
+ *  returning, so a host's handler (CPLSetErrorHandler or CPLPushErrorHandler) stays in place. GDAL's
+ *  failures and warnings raised inside a fracterra call do not reach the host's handler: they are returned
+ *  in ft_last_error() ("cannot open 'x.tif': <GDAL's reason>"). Debug messages (CPL_DEBUG) pass through
+ *  to the host's handler. */
 FT_API void ft_io_init(void);
 /** Releases GDAL's global state (call at program exit; optional). */
 FT_API void ft_io_cleanup(void);
