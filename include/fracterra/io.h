@@ -13,6 +13,7 @@
 #include <stdio.h>
 
 #include "core.h"
+#include "terrain.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -169,6 +170,22 @@ FT_API int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo
                            const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary);
 /** Frees what ft_io_read_any read and zeroes *d; NULL is a no-op. */
 FT_API void ft_data_clear(ft_data *d);
+
+/* ------------------------------------------------------------------------------------------------
+ * Model files (clarke_model_json.c)
+ * --------------------------------------------------------------------------------------------- */
+
+/** Clarke's scale-based model (ft_clarke_fit, terrain.h) as the JSON object of a model file: "method",
+ *  "model": "clarke1987", "D", "r2", "stderr", "range", "c", "D_clarke_eq8", "grid", "original", "trend",
+ *  "harmonics", "regression" (docs/terrain-clarke.md). Numbers have the fewest digits that read back to the
+ *  same double. malloc'd text (free()), NULL with FT_E_NOMEM. */
+FT_API char *ft_io_clarke_model_to_json(const ft_clarke_model *m);
+/** Writes that JSON to path through the atomic-write service. */
+FT_API int ft_io_write_clarke_model(const char *path, const ft_clarke_model *m);
+/** Reads a model file into *out (ft_clarke_model_free). FT_E_IO if it cannot be read; FT_E_FORMAT naming the
+ *  file and the missing or malformed key, or the byte where the JSON breaks off, if it is not a model. A file
+ *  written by ft_io_write_clarke_model reads back to the same model, bit for bit. */
+FT_API int ft_io_read_clarke_model(const char *path, ft_clarke_model **out);
 
 /* ------------------------------------------------------------------------------------------------
  * Files

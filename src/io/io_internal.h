@@ -72,7 +72,8 @@ int ft_io_srs_from_wkt(const char *wkt, OGRSpatialReferenceH *srs); /* *srs NULL
 int ft_io_grid_mem_raster(const ft_grid *g, float nodata, GDALDatasetH *out);
 
 /* Text (common.c). */
-void ft_io_put_double(FILE *f, double v);            /* shortest text that reads back to exactly v */
+void ft_io_format_double(char *buf, size_t size, double v); /* shortest text that reads back to exactly v */
+void ft_io_put_double(FILE *f, double v);            /* the same, written to f */
 int ft_io_parse_double(const char *s, double *v);    /* 1 if s is one whole number (spaces around allowed) */
 FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
 
