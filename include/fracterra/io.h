@@ -155,6 +155,34 @@ FT_API int ft_io_read_points(const char *path, const ft_read_points_opts *opts, 
 /** Writes points as CSV (x,y,z[,w]) or XYZ text by extension, or through OGR otherwise. */
 FT_API int ft_io_write_points(const char *path, const ft_points *p);
 
+/* ---- CSV (csv_tokenizer.c): the one CSV reader behind ft_io_read_points, open to any caller ----
+ * The header is the first line that is neither blank nor a # comment; the separator is the most frequent of
+ * `,` `;` tab outside quotes in it. Fields may be double-quoted (RFC 4180: "" is a quote; a quoted field may
+ * hold separators and line breaks); blanks around fields are dropped; blank and # comment lines are skipped;
+ * a UTF-8 BOM and CR LF are accepted. "-" reads standard input. */
+typedef struct ft_io_csv ft_io_csv;
+/** Opens path and reads its header. FT_E_IO if it cannot be read, FT_E_EMPTY if it has no header row,
+ *  FT_E_FORMAT on bad quoting. Close with ft_io_csv_close. */
+FT_API int ft_io_csv_open(const char *path, ft_io_csv **out);
+/** The header's column names (owned by c) and their count. */
+FT_API size_t ft_io_csv_header(const ft_io_csv *c, char *const **names);
+/** The index of the column named name (case-insensitive); FT_E_FORMAT naming the file, the name and the
+ *  columns there are otherwise. */
+FT_API int ft_io_csv_find(const ft_io_csv *c, const char *name, size_t *col);
+/** The next record's fields (owned by c, valid until the next call): 1, 0 at the end of the file, or a
+ *  negative FT_E_* code (FT_E_FORMAT naming file:line on bad quoting or a NUL byte, FT_E_IO). */
+FT_API int ft_io_csv_next(ft_io_csv *c, size_t *n, char *const **fields);
+/** The line on which the last record read starts (1-based), for messages. */
+FT_API long ft_io_csv_line(const ft_io_csv *c);
+/** The separator found in the header: ',', ';' or '\t'. */
+FT_API char ft_io_csv_separator(const ft_io_csv *c);
+/** 1 if field is one whole number (blanks around allowed; inf and nan too: check isfinite), 0 otherwise.
+ *  With ';' separators a single decimal comma reads as a point ("2,5" is 2.5). c may be NULL (no decimal
+ *  comma). */
+FT_API int ft_io_csv_number(const ft_io_csv *c, const char *field, double *v);
+/** Closes the file and frees c; NULL is a no-op. */
+FT_API void ft_io_csv_close(ft_io_csv *c);
+
 /* ------------------------------------------------------------------------------------------------
  * Any kind
  * --------------------------------------------------------------------------------------------- */
