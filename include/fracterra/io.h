@@ -295,6 +295,10 @@ typedef struct {
 /** What a WKT (or anything OSRSetFromUserInput reads) says; NULL or "" gives has_crs = 0 and FT_OK.
  *  FT_E_INVALID for a CRS GDAL does not know, FT_E_FORMAT for a geographic CRS without an ellipsoid. */
 FT_API int ft_io_crs_info(const char *wkt, ft_crs_info *out);
+/** The CRS's name (OSR's, e.g. "WGS 84 / UTM zone 32N") into name (at most size bytes) and the EPSG code
+ *  the WKT itself gives its root (ID["EPSG",...] / AUTHORITY["EPSG",...]; 0 if none: no lookup). A NULL or
+ *  empty wkt gives "" and 0; FT_E_INVALID if the WKT cannot be parsed. (crs_name.c) */
+FT_API int ft_io_crs_name(const char *wkt, char *name, size_t size, int *epsg);
 
 typedef enum {
     FT_LOCAL_LAEA = 0,  /**< Lambert azimuthal equal-area: areas and box counts */
