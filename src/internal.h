@@ -6,10 +6,27 @@
 
 #include <stddef.h>
 
+#include "fracterra/core.h"
+
 /* Safe allocation helpers: set FT_E_NOMEM on failure. */
 void *ft_malloc(size_t size);
 void *ft_calloc(size_t n, size_t size);
 void *ft_realloc_array(void *p, size_t n, size_t size); /* checks n*size overflow */
 char *ft_strdup(const char *s);                         /* NULL stays NULL */
+
+/* The input of a chain operation (Line's editing, Contour's operators): out not NULL (set to NULL), the chain
+ * not NULL, finite, with >= 2 vertices (>= 3 for a ring). Errors name the operation op. */
+static inline int ft_chain_check_operand(const char *op, const ft_chain *in, ft_chain **out)
+{
+    if (out == NULL)
+        return ft_error(FT_E_INVALID, "%s: NULL output pointer", op);
+    *out = NULL;
+    if (in == NULL)
+        return ft_error(FT_E_INVALID, "%s: NULL chain", op);
+    int rc = ft_chain_check_min_vertices(in, in->closed ? 3 : 2);
+    if (rc == FT_OK)
+        rc = ft_chain_check_finite(in);
+    return rc;
+}
 
 #endif /* FRACTERRA_INTERNAL_H */
