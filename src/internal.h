@@ -29,4 +29,19 @@ static inline int ft_chain_check_operand(const char *op, const ft_chain *in, ft_
     return rc;
 }
 
+/* Scaled progress (core/progress.c), as GDAL's GDALCreateScaledProgress: a stage of a long job reports its
+ * own fraction f in [0, 1], which reaches the caller's callback as base + span * f. */
+typedef struct {
+    ft_progress_fn fn; /* the caller's callback, may be NULL */
+    void *arg;
+    double base, span;
+} ft_progress_range;
+/** The whole of the caller's progress: fraction f reported as f. */
+ft_progress_range ft_progress_range_whole(ft_progress_fn fn, void *arg);
+/** Reports fraction f (clamped to [0, 1]) of the range; p may be NULL (nothing reported). FT_E_CANCELLED
+ *  (error set) if the callback asked to stop. */
+int ft_progress_range_report(const ft_progress_range *p, double f, const char *msg);
+/** The part [from, to] (fractions of p) of the range p; a silent range when p is NULL. */
+ft_progress_range ft_progress_range_sub(const ft_progress_range *p, double from, double to);
+
 #endif /* FRACTERRA_INTERNAL_H */
