@@ -59,22 +59,6 @@ enum {
     OPT_BAND,
 };
 
-/* --dim D in (2,3), or "auto" (0: estimated from the data). */
-static int parse_dim(const cli_command *cmd, const char *arg, double *dim)
-{
-    if (strcmp(arg, "auto") == 0) {
-        *dim = 0.0;
-        return CLI_CONTINUE;
-    }
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(arg, &end);
-    if (end == arg || *end != '\0' || errno != 0 || !(v > 2.0 && v < 3.0))
-        return cli_usage_error(cmd, "--dim must be a number in (2,3) or 'auto', got '%s'", arg);
-    *dim = v;
-    return CLI_CONTINUE;
-}
-
 /* --extent xmin,ymin,xmax,ymax: four finite numbers with xmin < xmax and ymin < ymax. */
 static int parse_extent(const cli_command *cmd, const char *arg, double *e)
 {
@@ -103,7 +87,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         return ft_recon_method_parse(arg, &a->ro.method) == FT_OK
                    ? CLI_CONTINUE
                    : cli_usage_error(cmd, "--method must be fractal, conditional or smooth, got '%s'", arg);
-    case 'd': return parse_dim(cmd, arg, &a->ro.dim);
+    case 'd': return terrain_parse_dim(cmd, arg, &a->ro.dim);
     case OPT_EXTENT: a->have_extent = 1; return parse_extent(cmd, arg, a->extent);
     case 'c': a->have_cell = 1; return cli_parse_double(cmd, "--cell", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->cell);
     case OPT_LIKE: a->like = arg; return CLI_CONTINUE;

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed)
 {
@@ -17,6 +18,21 @@ int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed)
     if (errno != 0 || end == arg || *end != '\0' || arg[0] == '-' || arg[0] == '+')
         return cli_usage_error(cmd, "--seed must be an integer in [0,18446744073709551615], got '%s'", arg);
     *seed = (uint64_t)v;
+    return CLI_CONTINUE;
+}
+
+int terrain_parse_dim(const cli_command *cmd, const char *arg, double *dim)
+{
+    if (strcmp(arg, "auto") == 0) {
+        *dim = 0.0;
+        return CLI_CONTINUE;
+    }
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (end == arg || *end != '\0' || errno != 0 || !(v > 2.0 && v < 3.0))
+        return cli_usage_error(cmd, "--dim must be a number in (2,3) or 'auto', got '%s'", arg);
+    *dim = v;
     return CLI_CONTINUE;
 }
 
