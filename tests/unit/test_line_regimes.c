@@ -1,4 +1,4 @@
-/* fracterra — tests/unit/test_line_regimes.c: regimes and breaks of line log-log plots (issue 13). A Koch
+/* fracterra — tests/unit/test_line_regimes.c: regimes and breaks of line log-log plots. A Koch
  * curve, a circle and a straight line report exactly one regime; a Koch-type curve whose generator angle
  * changes between levels reports two, each with the dimension of its generator, and the break near the
  * segment length where the generator changes; box counting of a circle of radius 50 km with boxes of 5 to
