@@ -174,14 +174,6 @@ static int check_kind(const cli_command *cmd, const recon_args *a, const char *i
     return CLI_CONTINUE;
 }
 
-/* Columns or rows of a side of length len in cells of size cell (the last may reach past the end); 0 if
- * there would be more than RECON_MAX_SIDE. */
-static size_t cells_along(double len, double cell)
-{
-    double n = ceil(len / cell - 1e-9);
-    return n >= 1.0 && n <= RECON_MAX_SIDE ? (size_t)n : n < 1.0 ? 1 : 0;
-}
-
 /* The target grid of point input: --like's shape and CRS, or --extent/--cell (upper-left corner at
  * xmin, ymax), or the points' bounding box snapped outward to multiples of the cell, with the points
  * strictly inside the right and bottom edges. CRS: --crs, else --like's, else the points'. */
@@ -216,23 +208,21 @@ static int target_grid(const cli_command *cmd, const recon_args *a, const ft_poi
         y1 = a->extent[3];
     } else {
         ft_points_bbox(p, &x0, &y0, &x1, &y1);
-        x0 = floor(x0 / c) * c;
-        x1 = (floor(x1 / c) + 1.0) * c;
-        y0 = (ceil(y0 / c) - 1.0) * c;
-        y1 = ceil(y1 / c) * c;
     }
-    size_t nx = cells_along(x1 - x0, c), ny = cells_along(y1 - y0, c);
-    if (nx == 0 || ny == 0 || (double)nx * (double)ny > RECON_MAX_CELLS)
+    size_t nx = 0, ny = 0;
+    double gt[6];
+    if (ft_grid_shape_for_extent(x0, y0, x1, y1, c, !a->have_extent, &nx, &ny, gt) != FT_OK || nx > RECON_MAX_SIDE ||
+        ny > RECON_MAX_SIDE || (double)nx * (double)ny > RECON_MAX_CELLS)
         return cli_usage_error(cmd, "--cell %g gives a grid of %.0f x %.0f cells over %g x %g; at most %d per side "
                                "and %.0f in all", c, ceil((x1 - x0) / c), ceil((y1 - y0) / c), x1 - x0, y1 - y0,
                                RECON_MAX_SIDE, RECON_MAX_CELLS);
     char what[200];
-    snprintf(what, sizeof what, "--cell %g over %g x %g (%zu x %zu cells)", c, x1 - x0, y1 - y0, nx, ny);
+    snprintf(what, sizeof what, "--cell %g over %g x %g (%zu x %zu cells)", c, gt[1] * (double)nx,
+             gt[1] * (double)ny, nx, ny);
     if (ft_check_memory((double)nx * (double)ny * RECON_BYTES_PER_CELL, what) != FT_OK)
         return cli_fail(cmd);
     if ((t = ft_grid_create(nx, ny)) == NULL)
         return cli_fail(cmd);
-    const double gt[6] = {x0, c, 0.0, y1, 0.0, -c};
     memcpy(t->gt, gt, sizeof gt);
     if (ft_grid_set_crs(t, crs) != FT_OK) {
         ft_grid_free(t);

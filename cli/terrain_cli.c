@@ -63,28 +63,16 @@ json_object *terrain_report_start(int json, const char *in, const char *out)
 
 json_object *terrain_grid_figures(const ft_grid *g)
 {
-    double s = 0.0, ss = 0.0, zmin = INFINITY, zmax = -INFINITY;
-    size_t n = 0;
-    for (size_t i = 0; i < g->nx * g->ny; i++) {
-        if ((g->mask && !g->mask[i]) || !isfinite(g->z[i]))
-            continue;
-        s += g->z[i];
-        zmin = fmin(zmin, g->z[i]);
-        zmax = fmax(zmax, g->z[i]);
-        n++;
-    }
-    double mean = n ? s / (double)n : NAN;
-    for (size_t i = 0; i < g->nx * g->ny && n; i++)
-        if ((g->mask == NULL || g->mask[i]) && isfinite(g->z[i]))
-            ss += (g->z[i] - mean) * (g->z[i] - mean);
+    ft_grid_stats st;
+    ft_grid_compute_stats(g, &st);
     json_object *o = json_object_new_object(), *size = json_object_new_array();
     json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
     json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
     json_object_object_add(o, "size", size);
-    json_object_object_add(o, "mean", cli_json_double(mean));
-    json_object_object_add(o, "sd", cli_json_double(n ? sqrt(ss / (double)n) : NAN));
-    json_object_object_add(o, "min", cli_json_double(zmin));
-    json_object_object_add(o, "max", cli_json_double(zmax));
+    json_object_object_add(o, "mean", cli_json_double(st.mean));
+    json_object_object_add(o, "sd", cli_json_double(st.sd));
+    json_object_object_add(o, "min", cli_json_double(st.min));
+    json_object_object_add(o, "max", cli_json_double(st.max));
     return o;
 }
 
