@@ -35,22 +35,35 @@ struct ft_io_csv {
     size_t nhead;
 };
 
-/* Appends one more line to the record; 1 if there was one, 0 at the end of the file, < 0 on error. */
-static int append_line(ft_io_csv *c)
+/* Reads one line into *buf (getline's), without its line end, into *len; 1 if there was one, 0 at the end
+ * of the file, < 0 on error. */
+static int read_line(ft_io_csv *c, char **buf, size_t *cap, size_t *len)
 {
     errno = 0;
-    ssize_t len = getline(&c->line, &c->line_cap, c->f);
-    if (len < 0) {
+    ssize_t n = getline(buf, cap, c->f);
+    if (n < 0) {
         if (ferror(c->f))
             return ft_error(FT_E_IO, "cannot read '%s': %s", c->path, strerror(errno ? errno : EIO));
         return 0;
     }
     c->line_no++;
-    if (memchr(c->line, '\0', (size_t)len) != NULL)
+    if (memchr(*buf, '\0', (size_t)n) != NULL)
         return ft_error(FT_E_FORMAT, "%s:%ld: a NUL byte: not a text table", c->path, c->line_no);
-    while (len > 0 && (c->line[len - 1] == '\n' || c->line[len - 1] == '\r'))
-        len--;
-    size_t need = c->rec_len + (size_t)len + 2;
+    while (n > 0 && ((*buf)[n - 1] == '\n' || (*buf)[n - 1] == '\r'))
+        n--;
+    (*buf)[n] = '\0';
+    *len = (size_t)n;
+    return 1;
+}
+
+/* Appends one more line to the record (after a line break inside quotes); 1, 0 at the end, < 0 on error. */
+static int append_line(ft_io_csv *c)
+{
+    size_t len = 0;
+    int rc = read_line(c, &c->line, &c->line_cap, &len);
+    if (rc != 1)
+        return rc;
+    size_t need = c->rec_len + len + 2;
     if (need > c->rec_cap) {
         size_t cap = need > 2 * c->rec_cap ? need : 2 * c->rec_cap;
         char *r = ft_realloc_array(c->rec, cap, 1);
@@ -59,10 +72,9 @@ static int append_line(ft_io_csv *c)
         c->rec = r;
         c->rec_cap = cap;
     }
-    if (c->rec_len > 0)
-        c->rec[c->rec_len++] = '\n';
-    memcpy(c->rec + c->rec_len, c->line, (size_t)len);
-    c->rec_len += (size_t)len;
+    c->rec[c->rec_len++] = '\n';
+    memcpy(c->rec + c->rec_len, c->line, len);
+    c->rec_len += len;
     c->rec[c->rec_len] = '\0';
     return 1;
 }
@@ -71,8 +83,10 @@ static int append_line(ft_io_csv *c)
 static int quote_open(const char *s)
 {
     int open = 0;
-    for (; *s; s++)
-        open ^= *s == '"';
+    while ((s = strchr(s, '"')) != NULL) {
+        open ^= 1;
+        s++;
+    }
     return open;
 }
 
@@ -87,8 +101,7 @@ static int read_record(ft_io_csv *c)
 {
     int rc;
     do {
-        c->rec_len = 0;
-        if ((rc = append_line(c)) != 1)
+        if ((rc = read_line(c, &c->rec, &c->rec_cap, &c->rec_len)) != 1)
             return rc;
         c->rec_line = c->line_no;
     } while (is_skipped(c->rec));
@@ -136,7 +149,7 @@ static int split(ft_io_csv *c, char *s)
                                 c->rec_line, c->n + 1);
         } else {
             s += strcspn(s, stop);
-            for (dst = s; dst > start && strchr(blanks, dst[-1]) != NULL; dst--)
+            for (dst = s; dst > start && (dst[-1] == ' ' || (dst[-1] == '\t' && c->sep != '\t')); dst--)
                 ;
         }
         int more = *s == c->sep;
@@ -262,8 +275,8 @@ char ft_io_csv_separator(const ft_io_csv *c)
 
 int ft_io_csv_number(const ft_io_csv *c, const char *field, double *v)
 {
-    const char *comma = strchr(field, ',');
-    if (c == NULL || c->sep != ';' || comma == NULL || strchr(field, '.') != NULL || strchr(comma + 1, ',') != NULL)
+    const char *comma = c != NULL && c->sep == ';' ? strchr(field, ',') : NULL;
+    if (comma == NULL || strchr(field, '.') != NULL || strchr(comma + 1, ',') != NULL)
         return ft_io_parse_double(field, v);
     char buf[64];
     size_t len = strlen(field);
