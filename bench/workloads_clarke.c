@@ -1,4 +1,4 @@
-/* fracterra — workloads_clarke.c: Clarke's scale-based model in `make bench` (issue 5: a model fit of a
+/* fracterra — workloads_clarke.c: Clarke's scale-based model in `make bench` (speed target: a model fit of a
  * 4096² DEM under 3 s).
  *
  * Input, made in the child before the timed run (untimed): a 4096 x 4096 DEM of 10 m cells, a plane plus

@@ -1,4 +1,4 @@
-/* fracterra — workloads_contour.c: the contour mountain workloads of `make bench` (issue 8's speed targets: a
+/* fracterra — workloads_contour.c: the contour mountain workloads of `make bench` (speed targets: a
  * 2,000-vertex seed to a 60-level mountain with the improved method in under 1 s; a contour stack to a 2048²
  * DEM in under 2 s).
  *

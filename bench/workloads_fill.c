@@ -1,4 +1,4 @@
-/* fracterra — workloads_fill.c: void filling (issue 14; ft_terrain_fill, docs/terrain-fill.md) in
+/* fracterra — workloads_fill.c: void filling (ft_terrain_fill, docs/terrain-fill.md) in
  * `make bench`, against GDAL's FillNodata (GDALFillNodata: inverse-distance interpolation from the void's
  * edges, max search distance larger than any void, no smoothing passes) as the in-process peer on the same
  * voids.

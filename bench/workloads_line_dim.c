@@ -1,4 +1,4 @@
-/* fracterra — workloads_line_dim.c: chain-dimension workloads of `make bench` (issue 3, speed targets:
+/* fracterra — workloads_line_dim.c: chain-dimension workloads of `make bench` (speed targets:
  * divider over 16 rulers and box counting over 12 sizes of a 1,000,000-vertex chain, each under 0.5 s).
  *
  * Input, built in each child before timing (deterministic, no RNG): a midpoint-generator curve of
@@ -8,7 +8,7 @@
  * the diagonal for the divider; the median segment to 1/48 of it for boxes), with the default 4 x 4 grid
  * offsets. No peer: no installed tool measures the dimension of a line.
  *
- * line.divider.1m.lonlat (issue 12, speed target: at most 3 x line.divider.1m): the same curve laid at
+ * line.divider.1m.lonlat (speed target: at most 3 x line.divider.1m): the same curve laid at
  * 50 N in longitude/latitude degrees (x / metres per degree of longitude, y / metres per degree of
  * latitude there, WGS 84), walked on the ellipsoid (opts.ellipsoid): the chain is turned into Earth-centred
  * points once, then the 16 walks step by 3-D chords.

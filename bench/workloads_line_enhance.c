@@ -1,6 +1,6 @@
 /* fracterra — workloads_line_enhance.c: Dutton enhancement and Douglas-Peucker workloads of `make bench`
- * (issue 3's speed targets: three enhancement iterations of a 1,000,000-vertex chain under 1 s; its
- * Douglas-Peucker at least as fast as GEOS's GEOSSimplify; issue 15's: with the crossing guard, the 1M chain
+ * (speed targets: three enhancement iterations of a 1,000,000-vertex chain under 1 s; its
+ * Douglas-Peucker at least as fast as GEOS's GEOSSimplify; with the crossing guard, the 1M chain
  * within 2x the unguarded time (line.enhance.1m.x3 against line.enhance.1m.x3.raw), and one iteration on a
  * layer of 100,000 features of 20 vertices under 3 s).
  *

@@ -101,7 +101,7 @@ static int run_exact(ft_bench_case *c)
     return estimate(1);
 }
 
-/* The noise model's cost (issue 21): the default path on 100,000 points, with and without it. */
+/* The noise model's cost: the default path on 100,000 points, with and without it. */
 static int noise_prepare(ft_bench_case *c)
 {
     int rc = make_points(NOISE_SIDE);

@@ -1,4 +1,4 @@
-/* fracterra — workloads_reconstruct.c: reconstruction of dense terrain from sparse points (issue 7, speed;
+/* fracterra — workloads_reconstruct.c: reconstruction of dense terrain from sparse points (speed;
  * Arakawa & Krotkov §3) in `make bench`. The input of every workload is 5% of the cells of an n x n fft
  * surface of D = 2.3 (standard deviation 246, cell 1), each point at a uniform position inside its cell
  * with z interpolated (ft_surface_points_from_grid, jittered), reconstructed onto the surface's own grid

@@ -1,4 +1,4 @@
-/* fracterra — workloads_surface.c: the grid dimension estimators of `make bench` (issue 6, speed):
+/* fracterra — workloads_surface.c: the grid dimension estimators of `make bench` (speed):
  *
  *  - surface.<method>.<n>: ft_surface_dim with the method's defaults on an n x n fft surface of D = 2.5
  *    (prepared untimed in the child), n = 2048 and 4096, every method; the lag methods exhaustive (every
@@ -117,7 +117,7 @@ RUN_METHOD(spectrum, FT_SURFACE_SPECTRUM)
 RUN_METHOD(prism, FT_SURFACE_PRISM)
 RUN_METHOD(cubes, FT_SURFACE_CUBES)
 
-/* The variogram without the noise model (issue 21: its cost against surface.variogram.4096). */
+/* The variogram without the noise model (its cost against surface.variogram.4096). */
 static int run_variogram_nonoise(ft_bench_case *c)
 {
     (void)c;

@@ -1,4 +1,4 @@
-/* fracterra — workloads_urban.c: urban morphology workloads of `make bench` (issue 4's speed targets: box
+/* fracterra — workloads_urban.c: urban morphology workloads of `make bench` (speed targets: box
  * counting a layer of 100,000 polygons over 10 box sizes in under 2 s; the boundary generator producing
  * 1,000,000 vertices in under 0.5 s).
  *

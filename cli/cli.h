@@ -124,10 +124,6 @@ ft_progress_fn cli_progress(void);
 /** 1 once Ctrl-C (SIGINT) or SIGTERM was received (cli_init installs the handler). */
 int cli_interrupted(void);
 
-/** The CRS's top-level name (first quoted string of the WKT) into name, and its top-level EPSG code
- *  into *epsg (0 if none). name becomes "" when wkt is NULL or empty. */
-void cli_crs_describe(const char *wkt, char *name, size_t size, int *epsg);
-
 /* ---- shared with other commands ---- */
 
 /** What `fracterra info` reports about a file, as a JSON object (see cmd_info.c); warnings (all-nodata

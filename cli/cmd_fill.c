@@ -46,21 +46,6 @@ static int parse_max_void(const cli_command *cmd, const char *arg, fill_args *a)
     return CLI_CONTINUE;
 }
 
-static int parse_dim(const cli_command *cmd, const char *arg, double *dim)
-{
-    if (strcmp(arg, "auto") == 0) {
-        *dim = 0.0;
-        return CLI_CONTINUE;
-    }
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(arg, &end);
-    if (end == arg || *end != '\0' || errno != 0 || !(v > 2.0 && v < 3.0))
-        return cli_usage_error(cmd, "--dim must be a number in (2,3) or 'auto', got '%s'", arg);
-    *dim = v;
-    return CLI_CONTINUE;
-}
-
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
 {
     fill_args *a = ctx;
@@ -69,7 +54,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case OPT_MASK: a->mask = arg; return CLI_CONTINUE;
     case OPT_MEAN: a->fo.mean = 1; return CLI_CONTINUE;
     case 'n': return cli_parse_int(cmd, "--realizations", arg, 1, FILL_MAX_REALIZATIONS, &a->fo.realizations);
-    case 'd': return parse_dim(cmd, arg, &a->fo.dim);
+    case 'd': return terrain_parse_dim(cmd, arg, &a->fo.dim);
     case OPT_RING: return cli_parse_int(cmd, "--ring", arg, 2, 100000, &a->fo.ring);
     case 'S': return terrain_parse_seed(cmd, arg, &a->fo.seed);
     case OPT_BAND: return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->band);

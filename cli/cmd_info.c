@@ -67,9 +67,10 @@ static json_object *json_crs(const char *wkt)
 {
     char name[256];
     int epsg;
-    cli_crs_describe(wkt, name, sizeof name, &epsg);
-    if (name[0] == '\0' && epsg == 0)
+    if (ft_io_crs_name(wkt, name, sizeof name, &epsg) != FT_OK || (name[0] == '\0' && epsg == 0)) {
+        ft_clear_error();
         return NULL;
+    }
     json_object *o = json_object_new_object();
     json_object_object_add(o, "name", json_object_new_string(name));
     json_object_object_add(o, "epsg", epsg ? json_object_new_int(epsg) : NULL);

@@ -4,17 +4,17 @@
  *   model fit DEM.tif [--cutoff PCT] [--no-taper] [-o MODEL.json] [--json]   calibrate on a DEM
  *   model simulate MODEL.json OUT.tif [--refine K] [--extent E] [--seed N]   invert: a new DEM
  *
- * The model file is the JSON of cli/clarke_json.c; `model simulate` reads exactly what `model fit -o`
+ * The model file is the library's (ft_io_write_clarke_model, src/io/clarke_model_json.c); `model simulate` reads exactly what `model fit -o`
  * writes.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "clarke_json.h"
 #include "cli_geo.h"
 #include "terrain_cli.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* ---- model fit ---- */
@@ -84,7 +84,7 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
         cli_warn(cmd, "%s: the spectrum (beta = %.2f) is %s than any fractional Brownian surface's: D = %.2f is "
                  "outside (2,3); the model still simulates with the fitted power", dem, m->slope,
                  m->D <= 2.0 ? "steeper" : "flatter", m->D);
-    if (a->out && clarke_model_write(a->out, m) != FT_OK)
+    if (a->out && ft_io_write_clarke_model(a->out, m) != FT_OK)
         return cli_fail(cmd);
     const char *from = isnan(north) ? "grid north" : "true north";
     if (!a->json) {
@@ -94,7 +94,11 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
             printf("wrote %s\n", a->out);
         return CLI_OK;
     }
-    json_object *o = clarke_model_to_json(m);
+    char *text = ft_io_clarke_model_to_json(m);
+    json_object *o = text ? json_tokener_parse(text) : NULL;
+    free(text);
+    if (o == NULL)
+        return cli_fail(cmd);
     json_object_object_add(o, "input", json_object_new_string(dem));
     json_object_object_add(o, "output", a->out ? json_object_new_string(a->out) : NULL);
     /* wavelengths and the range in this unit, trend per unit; lon/lat input was fitted on its local TM warp */
@@ -225,7 +229,7 @@ static int simulate(const cli_command *cmd, sim_args *a, const char *model_path,
     a->so.progress = cli_progress();
     int rc = ft_io_check_writable(out);
     if (rc == FT_OK)
-        rc = clarke_model_read(model_path, &m);
+        rc = ft_io_read_clarke_model(model_path, &m);
     if (rc == FT_OK)
         rc = ft_clarke_simulate(m, &a->so, &g);
     if (rc == FT_OK)

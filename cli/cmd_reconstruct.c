@@ -59,22 +59,6 @@ enum {
     OPT_BAND,
 };
 
-/* --dim D in (2,3), or "auto" (0: estimated from the data). */
-static int parse_dim(const cli_command *cmd, const char *arg, double *dim)
-{
-    if (strcmp(arg, "auto") == 0) {
-        *dim = 0.0;
-        return CLI_CONTINUE;
-    }
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(arg, &end);
-    if (end == arg || *end != '\0' || errno != 0 || !(v > 2.0 && v < 3.0))
-        return cli_usage_error(cmd, "--dim must be a number in (2,3) or 'auto', got '%s'", arg);
-    *dim = v;
-    return CLI_CONTINUE;
-}
-
 /* --extent xmin,ymin,xmax,ymax: four finite numbers with xmin < xmax and ymin < ymax. */
 static int parse_extent(const cli_command *cmd, const char *arg, double *e)
 {
@@ -103,7 +87,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         return ft_recon_method_parse(arg, &a->ro.method) == FT_OK
                    ? CLI_CONTINUE
                    : cli_usage_error(cmd, "--method must be fractal, conditional or smooth, got '%s'", arg);
-    case 'd': return parse_dim(cmd, arg, &a->ro.dim);
+    case 'd': return terrain_parse_dim(cmd, arg, &a->ro.dim);
     case OPT_EXTENT: a->have_extent = 1; return parse_extent(cmd, arg, a->extent);
     case 'c': a->have_cell = 1; return cli_parse_double(cmd, "--cell", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->cell);
     case OPT_LIKE: a->like = arg; return CLI_CONTINUE;
@@ -190,14 +174,6 @@ static int check_kind(const cli_command *cmd, const recon_args *a, const char *i
     return CLI_CONTINUE;
 }
 
-/* Columns or rows of a side of length len in cells of size cell (the last may reach past the end); 0 if
- * there would be more than RECON_MAX_SIDE. */
-static size_t cells_along(double len, double cell)
-{
-    double n = ceil(len / cell - 1e-9);
-    return n >= 1.0 && n <= RECON_MAX_SIDE ? (size_t)n : n < 1.0 ? 1 : 0;
-}
-
 /* The target grid of point input: --like's shape and CRS, or --extent/--cell (upper-left corner at
  * xmin, ymax), or the points' bounding box snapped outward to multiples of the cell, with the points
  * strictly inside the right and bottom edges. CRS: --crs, else --like's, else the points'. */
@@ -232,23 +208,21 @@ static int target_grid(const cli_command *cmd, const recon_args *a, const ft_poi
         y1 = a->extent[3];
     } else {
         ft_points_bbox(p, &x0, &y0, &x1, &y1);
-        x0 = floor(x0 / c) * c;
-        x1 = (floor(x1 / c) + 1.0) * c;
-        y0 = (ceil(y0 / c) - 1.0) * c;
-        y1 = ceil(y1 / c) * c;
     }
-    size_t nx = cells_along(x1 - x0, c), ny = cells_along(y1 - y0, c);
-    if (nx == 0 || ny == 0 || (double)nx * (double)ny > RECON_MAX_CELLS)
+    size_t nx = 0, ny = 0;
+    double gt[6];
+    if (ft_grid_shape_for_extent(x0, y0, x1, y1, c, !a->have_extent, &nx, &ny, gt) != FT_OK || nx > RECON_MAX_SIDE ||
+        ny > RECON_MAX_SIDE || (double)nx * (double)ny > RECON_MAX_CELLS)
         return cli_usage_error(cmd, "--cell %g gives a grid of %.0f x %.0f cells over %g x %g; at most %d per side "
                                "and %.0f in all", c, ceil((x1 - x0) / c), ceil((y1 - y0) / c), x1 - x0, y1 - y0,
                                RECON_MAX_SIDE, RECON_MAX_CELLS);
     char what[200];
-    snprintf(what, sizeof what, "--cell %g over %g x %g (%zu x %zu cells)", c, x1 - x0, y1 - y0, nx, ny);
+    snprintf(what, sizeof what, "--cell %g over %g x %g (%zu x %zu cells)", c, gt[1] * (double)nx,
+             gt[1] * (double)ny, nx, ny);
     if (ft_check_memory((double)nx * (double)ny * RECON_BYTES_PER_CELL, what) != FT_OK)
         return cli_fail(cmd);
     if ((t = ft_grid_create(nx, ny)) == NULL)
         return cli_fail(cmd);
-    const double gt[6] = {x0, c, 0.0, y1, 0.0, -c};
     memcpy(t->gt, gt, sizeof gt);
     if (ft_grid_set_crs(t, crs) != FT_OK) {
         ft_grid_free(t);

@@ -31,7 +31,7 @@ static int choose_tolerance(const ft_layer *l, int coverage, void *ctx, json_obj
 {
     simplify_args *a = ctx;
     size_t n = 0;
-    int rc = line_simplify_tolerance_for(l, (size_t)a->vertices, coverage, &a->tolerance, &n);
+    int rc = ft_line_simplify_tolerance_for(l, (size_t)a->vertices, coverage, &a->tolerance, &n);
     if (rc == FT_OK)
         json_object_object_add(params, "tolerance", cli_json_double(a->tolerance));
     return rc;

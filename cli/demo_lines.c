@@ -76,7 +76,7 @@ static int run_stages(nf_stages *s)
     size_t n = 0;
     int rc = ft_layer_bbox(s->orig, &x0, &y0, &x1, &y1);
     if (rc == FT_OK)
-        rc = line_simplify_tolerance_for(s->orig, NF_TARGET, 1, &s->tolerance, &n);
+        rc = ft_line_simplify_tolerance_for(s->orig, NF_TARGET, 1, &s->tolerance, &n);
     if (rc == FT_OK)
         rc = edited_copy(s->orig, ft_line_op_simplify, &s->tolerance, &s->gen);
     s->sm = 0.01 * (x1 - x0);

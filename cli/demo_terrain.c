@@ -4,7 +4,6 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "clarke_json.h"
 #include "demo.h"
 
 #include <math.h>
@@ -99,7 +98,7 @@ static int volcano(demo_ctx *ctx)
         describe_model(m);
         const char *out = demo_add_output(ctx, "volcano_clarke_model.json", "Maunga Whau, Clarke model",
                                           model_caption, 0);
-        rc = out ? clarke_model_write(out, m) : ft_last_error_code();
+        rc = out ? ft_io_write_clarke_model(out, m) : ft_last_error_code();
     }
     ft_clarke_model_free(m);
     return rc;

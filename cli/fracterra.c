@@ -106,6 +106,9 @@ static int help_command(int argc, char **argv)
 
 static int run_command(const cli_command *cmd, int argc, char **argv)
 {
+    /* The CLI is the host: GDAL messages the library does not catch (raised on GDAL's own worker threads)
+     * stay off stderr, where fracterra's one-line errors go; CPL_DEBUG output still prints. */
+    CPLSetErrorHandler(CPLQuietErrorHandler);
     ft_io_init();
     int rc = cmd->run(cmd, argc, argv);
     if ((fflush(stdout) != 0 || ferror(stdout)) && rc == CLI_OK) {

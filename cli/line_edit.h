@@ -80,10 +80,4 @@ typedef int (*line_prepare_fn)(const ft_layer *l, int coverage, void *ctx, json_
 int line_edit_run(const cli_command *cmd, const char *input, const char *output, const line_io *io,
                   const line_step *steps, size_t nsteps, line_prepare_fn prepare, void *ctx, json_object *params);
 
-/** The smallest Douglas-Peucker tolerance that leaves at most `target` vertices in the layer (bisection; the
- *  counts only fall as the tolerance grows), with the count it gives. FT_E_INVALID if even the largest
- *  tolerance leaves more. */
-int line_simplify_tolerance_for(const ft_layer *l, size_t target, int coverage, double *tolerance,
-                                size_t *vertices);
-
 #endif /* FRACTERRA_CLI_LINE_EDIT_H */

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed)
 {
@@ -17,6 +18,21 @@ int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed)
     if (errno != 0 || end == arg || *end != '\0' || arg[0] == '-' || arg[0] == '+')
         return cli_usage_error(cmd, "--seed must be an integer in [0,18446744073709551615], got '%s'", arg);
     *seed = (uint64_t)v;
+    return CLI_CONTINUE;
+}
+
+int terrain_parse_dim(const cli_command *cmd, const char *arg, double *dim)
+{
+    if (strcmp(arg, "auto") == 0) {
+        *dim = 0.0;
+        return CLI_CONTINUE;
+    }
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (end == arg || *end != '\0' || errno != 0 || !(v > 2.0 && v < 3.0))
+        return cli_usage_error(cmd, "--dim must be a number in (2,3) or 'auto', got '%s'", arg);
+    *dim = v;
     return CLI_CONTINUE;
 }
 
@@ -47,28 +63,16 @@ json_object *terrain_report_start(int json, const char *in, const char *out)
 
 json_object *terrain_grid_figures(const ft_grid *g)
 {
-    double s = 0.0, ss = 0.0, zmin = INFINITY, zmax = -INFINITY;
-    size_t n = 0;
-    for (size_t i = 0; i < g->nx * g->ny; i++) {
-        if ((g->mask && !g->mask[i]) || !isfinite(g->z[i]))
-            continue;
-        s += g->z[i];
-        zmin = fmin(zmin, g->z[i]);
-        zmax = fmax(zmax, g->z[i]);
-        n++;
-    }
-    double mean = n ? s / (double)n : NAN;
-    for (size_t i = 0; i < g->nx * g->ny && n; i++)
-        if ((g->mask == NULL || g->mask[i]) && isfinite(g->z[i]))
-            ss += (g->z[i] - mean) * (g->z[i] - mean);
+    ft_grid_stats st;
+    ft_grid_compute_stats(g, &st);
     json_object *o = json_object_new_object(), *size = json_object_new_array();
     json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
     json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
     json_object_object_add(o, "size", size);
-    json_object_object_add(o, "mean", cli_json_double(mean));
-    json_object_object_add(o, "sd", cli_json_double(n ? sqrt(ss / (double)n) : NAN));
-    json_object_object_add(o, "min", cli_json_double(zmin));
-    json_object_object_add(o, "max", cli_json_double(zmax));
+    json_object_object_add(o, "mean", cli_json_double(st.mean));
+    json_object_object_add(o, "sd", cli_json_double(st.sd));
+    json_object_object_add(o, "min", cli_json_double(st.min));
+    json_object_object_add(o, "max", cli_json_double(st.max));
     return o;
 }
 

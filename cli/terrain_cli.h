@@ -14,6 +14,8 @@
 
 /** Parses --seed (a decimal integer in [0, 2^64 - 1]): CLI_CONTINUE, or CLI_USAGE naming the value. */
 int terrain_parse_seed(const cli_command *cmd, const char *arg, uint64_t *seed);
+/** --dim D: a number in (2,3), or "auto" (*dim = 0: estimated from the data), for fill and reconstruct. */
+int terrain_parse_dim(const cli_command *cmd, const char *arg, double *dim);
 /** Reads band 1 of a DEM: CLI_CONTINUE, or CLI_FAIL with "fracterra: CMD: <message naming the file>". */
 int terrain_read_dem(const cli_command *cmd, const char *path, ft_grid **out);
 /** Without --json, prints "wrote OUT" and returns NULL; with it, a new object {"input", "output"} for the

@@ -62,10 +62,9 @@ typedef int (*urban_set_fn)(const urban_set *s, ft_dim_result *r, void *ctx);
  *  memory and cancellation stop. FT_OK, or the error (set) that stopped it. */
 int urban_measure_layer(const ft_layer *l, const char *field, int whole, const ft_area_dim_opts *o,
                         urban_set_fn fn, void *ctx);
-/** Measures each distinct valid value of a classified raster (in increasing order), at most
- *  URBAN_MAX_CLASSES of them (FT_E_INVALID beyond: a continuous raster is not classified). */
+/** Measures each class of a classified raster (ft_urban_grid_classes: its distinct valid values, increasing,
+ *  at most FT_URBAN_MAX_CLASSES of them). */
 int urban_measure_grid(const ft_grid *g, const ft_area_dim_opts *o, urban_set_fn fn, void *ctx);
-#define URBAN_MAX_CLASSES 1000
 
 /** A set's figures as a new JSON object: "features", "polygons", "holes", "area", "perimeter" (layers) or
  *  "cells", "polygons", "area", "perimeter" (rasters). */

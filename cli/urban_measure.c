@@ -108,49 +108,11 @@ int urban_measure_layer(const ft_layer *l, const char *field, int whole, const f
     return rc;
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
-/* The distinct values of the valid cells, increasing, into *values (malloc'd); class codes are whole numbers,
- * at most URBAN_MAX_CLASSES of them. */
-static int distinct_values(const ft_grid *g, float **values, size_t *n)
-{
-    size_t cells = g->nx * g->ny, k = 0;
-    float *v = malloc((cells ? cells : 1) * sizeof *v);
-    if (v == NULL)
-        return ft_error(FT_E_NOMEM, "out of memory");
-    for (size_t i = 0; i < cells; i++)
-        if (g->mask == NULL || g->mask[i])
-            v[k++] = g->z[i];
-    qsort(v, k, sizeof *v, cmp_float);
-    size_t m = 0;
-    for (size_t i = 0; i < k; i++)
-        if (m == 0 || v[i] != v[m - 1])
-            v[m++] = v[i];
-    *values = v;
-    *n = m;
-    if (m == 0)
-        return ft_error(FT_E_EMPTY, "the raster has no valid cell");
-    for (size_t i = 0; i < m; i++)
-        if (v[i] != floorf(v[i]))
-            return ft_error(FT_E_INVALID, "the raster holds %g, not a whole number: it does not look like a "
-                                          "classified raster (one class code per cell)",
-                            (double)v[i]);
-    if (m > URBAN_MAX_CLASSES)
-        return ft_error(FT_E_INVALID, "the raster has %zu distinct values, more than %d: it does not look like a "
-                                      "classified raster (one class per cell value)",
-                        m, URBAN_MAX_CLASSES);
-    return FT_OK;
-}
-
 int urban_measure_grid(const ft_grid *g, const ft_area_dim_opts *o, urban_set_fn fn, void *ctx)
 {
     float *values = NULL;
     size_t n = 0;
-    int rc = distinct_values(g, &values, &n);
+    int rc = ft_urban_grid_classes(g, FT_URBAN_MAX_CLASSES, &values, &n);
     for (size_t i = 0; rc == FT_OK && i < n; i++) {
         char label[32];
         ft_urban_stats stats;

@@ -102,8 +102,8 @@ static int tab_column(urban_tab *t, const char *label, size_t *col)
             *col = i + 1;
             return FT_OK;
         }
-    if (t->nclasses == URBAN_MAX_CLASSES)
-        return ft_error(FT_E_INVALID, "more than %d classes: is --class a land-use field?", URBAN_MAX_CLASSES);
+    if (t->nclasses == FT_URBAN_MAX_CLASSES)
+        return ft_error(FT_E_INVALID, "more than %d classes: is --class a land-use field?", FT_URBAN_MAX_CLASSES);
     int rc = t->nclasses == t->ncap ? tab_widen(t) : FT_OK;
     char *copy = rc == FT_OK ? strdup(label) : NULL;
     if (copy == NULL)

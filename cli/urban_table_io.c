@@ -1,7 +1,7 @@
 /* fracterra — cli/urban_table_io.c: reading two numeric columns of a per-year table for `urban regress`
- * (urban_cli.h): CSV with a header row (RFC 4180: quoted fields, doubled quotes, line breaks inside quotes,
- * CRLF or LF; blank lines and lines starting with # skipped), or the JSON `urban table` writes. Empty, "NA"
- * and null values are missing (the row is skipped); anything else must be a number.
+ * (urban_cli.h): CSV through the library's CSV tokenizer (ft_io_csv_*: header row, `,` `;` or tab separators,
+ * RFC 4180 quoting, blank and # lines skipped, decimal comma with `;`), or the JSON `urban table` writes.
+ * Empty, "NA" and null values are missing (the row is skipped); anything else must be a number.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -46,18 +46,14 @@ void urban_columns_free(urban_columns *c)
 
 typedef enum { VALUE_OK, VALUE_MISSING, VALUE_BAD } value_state;
 
-static value_state parse_value(const char *s, double *v)
+/* csv: the CSV being read (its decimal comma), NULL for JSON. */
+static value_state parse_value(const ft_io_csv *csv, const char *s, double *v)
 {
     while (*s == ' ' || *s == '\t')
         s++;
     if (*s == '\0' || strcasecmp(s, "NA") == 0 || strcasecmp(s, "null") == 0)
         return VALUE_MISSING;
-    char *end = NULL;
-    errno = 0;
-    *v = strtod(s, &end);
-    while (end && (*end == ' ' || *end == '\t'))
-        end++;
-    return end != s && *end == '\0' && errno == 0 && isfinite(*v) ? VALUE_OK : VALUE_BAD;
+    return ft_io_csv_number(csv, s, v) && isfinite(*v) ? VALUE_OK : VALUE_BAD;
 }
 
 /* Grows both columns to hold row n. */
@@ -77,14 +73,14 @@ static int columns_reserve(urban_columns *c, size_t *cap)
 }
 
 /* Adds a row of two parsed values; where names the row in messages ("line 4", "row 2"). */
-static int columns_add(urban_columns *c, size_t *cap, const char *path, const char *where, const char *const cols[2],
-                       const char *const text[2])
+static int columns_add(urban_columns *c, size_t *cap, const ft_io_csv *csv, const char *path, const char *where,
+                       const char *const cols[2], const char *const text[2])
 {
     double v[2];
     value_state st[2];
     c->rows++;
     for (int k = 0; k < 2; k++) {
-        st[k] = parse_value(text[k], &v[k]);
+        st[k] = parse_value(csv, text[k], &v[k]);
         if (st[k] == VALUE_BAD)
             return ft_error(FT_E_FORMAT, "%s, %s, column '%s': '%s' is not a number", path, where, cols[k], text[k]);
     }
@@ -102,141 +98,21 @@ static int columns_add(urban_columns *c, size_t *cap, const char *path, const ch
 
 /* ---- CSV ---- */
 
-typedef struct {
-    char *p;     /* parse position in the (mutable) text */
-    size_t line; /* line number at p */
-} csv_reader;
-
-/* The next field, unquoted and NUL-terminated in place; *last is set at the end of the record. NULL for an
- * unterminated quote or text after a closing quote. */
-static char *csv_field(csv_reader *r, int *last)
+static int read_csv(const char *path, const char *const cols[2], urban_columns *out)
 {
-    char *s = r->p, *start = s, *out = s;
-    if (*s == '"') {
-        for (s++;; s++) {
-            if (*s == '\0')
-                return NULL;
-            if (*s == '"' && s[1] != '"')
-                break;
-            if (*s == '"')
-                s++;
-            r->line += *s == '\n';
-            *out++ = *s;
-        }
-        for (s++; *s == ' ' || *s == '\t'; s++)
-            ;
-        if (*s && *s != ',' && *s != '\n' && *s != '\r')
-            return NULL;
-    } else {
-        while (*s && *s != ',' && *s != '\n' && *s != '\r')
-            s++;
-        for (out = s; out > start && (out[-1] == ' ' || out[-1] == '\t'); out--)
-            ;
-        while (*start == ' ' || *start == '\t')
-            start++;
-    }
-    char delim = *s;
-    *last = delim != ',';
-    s += delim == '\r' && s[1] == '\n';
-    r->p = delim ? s + 1 : s;
-    r->line += delim == '\n' || delim == '\r';
-    *out = '\0';
-    return start;
-}
-
-/* Skips blank lines and # comments; 0 at the end of the text. */
-static int csv_skip_blank(csv_reader *r)
-{
-    for (;;) {
-        char *s = r->p;
-        while (*s == ' ' || *s == '\t')
-            s++;
-        if (*s == '\r' || *s == '\n' || *s == '#') {
-            s += strcspn(s, "\n");
-            r->p = *s ? s + 1 : s;
-            r->line++;
-            continue;
-        }
-        r->p = s;
-        return *s != '\0';
-    }
-}
-
-/* The fields of the next record into f (at most max), their count into *n; FT_E_FORMAT on a bad quote. */
-static int csv_record(csv_reader *r, const char *path, char **f, size_t max, size_t *n)
-{
-    int last = 0;
-    *n = 0;
-    size_t line = r->line;
-    while (!last) {
-        char *s = csv_field(r, &last);
-        if (s == NULL)
-            return ft_error(FT_E_FORMAT, "%s, line %zu: bad quoting (a quoted field not closed, or text after its "
-                                         "closing quote)",
-                            path, line);
-        if (*n == max)
-            return ft_error(FT_E_FORMAT, "%s, line %zu: more than %zu columns", path, line, max);
-        f[(*n)++] = s;
-    }
-    return FT_OK;
-}
-
-#define CSV_MAX_COLUMNS 4096
-
-/* The index of column name in the header, or -1. */
-static long find_column(char **head, size_t n, const char *name)
-{
-    for (size_t i = 0; i < n; i++)
-        if (strcasecmp(head[i], name) == 0)
-            return (long)i;
-    return -1;
-}
-
-static int missing_column(const char *path, const char *name, char **head, size_t n)
-{
-    char list[512] = "";
-    size_t used = 0;
-    for (size_t i = 0; i < n && used + 1 < sizeof list; i++)
-        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", head[i]);
-    return ft_error(FT_E_FORMAT, "%s has no column '%s' (its columns: %s)", path, name, list);
-}
-
-static int read_csv_rows(csv_reader *r, const char *path, const long idx[2], const char *const cols[2],
-                         urban_columns *out)
-{
-    char **f = malloc(CSV_MAX_COLUMNS * sizeof *f);
-    size_t n = 0, cap = 0;
-    int rc = f ? FT_OK : ft_error(FT_E_NOMEM, "out of memory");
-    while (rc == FT_OK && csv_skip_blank(r)) {
-        size_t line = r->line;
-        rc = csv_record(r, path, f, CSV_MAX_COLUMNS, &n);
-        char where[32];
-        snprintf(where, sizeof where, "line %zu", line);
-        const char *text[2] = {(size_t)idx[0] < n ? f[idx[0]] : "", (size_t)idx[1] < n ? f[idx[1]] : ""};
-        if (rc == FT_OK)
-            rc = columns_add(out, &cap, path, where, cols, text);
-    }
-    free(f);
-    return rc;
-}
-
-static int read_csv(char *text, const char *path, const char *const cols[2], urban_columns *out)
-{
-    csv_reader r = {text, 1};
-    char **head = malloc(CSV_MAX_COLUMNS * sizeof *head);
-    size_t n = 0;
-    int rc = head ? FT_OK : ft_error(FT_E_NOMEM, "out of memory");
-    if (rc == FT_OK && !csv_skip_blank(&r))
-        rc = ft_error(FT_E_EMPTY, "%s is empty", path);
-    if (rc == FT_OK)
-        rc = csv_record(&r, path, head, CSV_MAX_COLUMNS, &n);
-    long idx[2] = {-1, -1};
+    ft_io_csv *csv = NULL;
+    int rc = ft_io_csv_open(path, &csv);
+    size_t idx[2] = {0, 0}, n = 0, cap = 0;
     for (int k = 0; rc == FT_OK && k < 2; k++)
-        if ((idx[k] = find_column(head, n, cols[k])) < 0)
-            rc = missing_column(path, cols[k], head, n);
-    if (rc == FT_OK)
-        rc = read_csv_rows(&r, path, idx, cols, out);
-    free(head);
+        rc = ft_io_csv_find(csv, cols[k], &idx[k]);
+    char *const *f = NULL;
+    while (rc == FT_OK && (rc = ft_io_csv_next(csv, &n, &f)) == 1) {
+        char where[32];
+        snprintf(where, sizeof where, "line %ld", ft_io_csv_line(csv));
+        const char *text[2] = {idx[0] < n ? f[idx[0]] : "", idx[1] < n ? f[idx[1]] : ""};
+        rc = columns_add(out, &cap, csv, path, where, cols, text);
+    }
+    ft_io_csv_close(csv);
     return rc;
 }
 
@@ -296,7 +172,7 @@ static int read_json_row(json_object *row, size_t i, const char *path, const cha
                             where);
         text[k] = json_text(v, buf[k], sizeof buf[k]);
     }
-    return columns_add(out, cap, path, where, cols, text);
+    return columns_add(out, cap, NULL, path, where, cols, text);
 }
 
 static int read_json(const char *text, const char *path, const char *cls, const char *const measures[2],
@@ -351,14 +227,20 @@ static int read_text(const char *path, char **out)
     return FT_OK;
 }
 
-/* JSON by extension, or when the text starts with { or [. */
-static int is_json(const char *path, const char *text)
+/* 1 for JSON, 0 for CSV by extension, -1 when the text must tell. */
+static int json_by_extension(const char *path)
 {
     const char *slash = strrchr(path, '/'), *dot = strrchr(slash ? slash : path, '.');
     if (dot && strcasecmp(dot, ".json") == 0)
         return 1;
     if (dot && strcasecmp(dot, ".csv") == 0)
         return 0;
+    return -1;
+}
+
+/* JSON when the text starts with { or [. */
+static int starts_like_json(const char *text)
+{
     text += strspn(text, " \t\r\n");
     return *text == '{' || *text == '[';
 }
@@ -370,9 +252,13 @@ int urban_columns_read(const char *path, const char *cls, const char *const meas
     memset(out, 0, sizeof *out);
     for (int k = 0; k < 2; k++)
         urban_column_name(cls, measures[k], cols[k], sizeof cols[k]);
-    int rc = read_text(path, &text);
+    int json = json_by_extension(path), rc = FT_OK;
+    if (json != 0)
+        rc = read_text(path, &text);
+    if (rc == FT_OK && json < 0)
+        json = starts_like_json(text);
     if (rc == FT_OK)
-        rc = is_json(path, text) ? read_json(text, path, cls, measures, names, out) : read_csv(text, path, names, out);
+        rc = json ? read_json(text, path, cls, measures, names, out) : read_csv(path, names, out);
     free(text);
     if (rc != FT_OK)
         urban_columns_free(out);

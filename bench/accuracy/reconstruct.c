@@ -1,4 +1,4 @@
-/* fracterra — bench/accuracy/reconstruct.c: `make accuracy`, the reconstruction experiments of issue 7 run
+/* fracterra — bench/accuracy/reconstruct.c: `make accuracy`, the reconstruction experiments (targets below) run
  * on fracterra's ft_reconstruct_points (Arakawa & Krotkov §3.3-3.4):
  *
  * (a) the paper's Table 4: synthesize D = 2.2 ... 2.8 by successive random addition (256² and 512²,
@@ -55,7 +55,7 @@ static const double paper_dstar[TABLE4_ROWS] = {2.236, 2.308, 2.390, 2.476, 2.56
 static const double paper_t0[TABLE4_ROWS] = {4.4e-6, 1.5e-5, 4.5e-5, 1.4e-4, 4.1e-4, 1.3e-3, 3.8e-3};
 static const double paper_diff[TABLE4_ROWS] = {0.060, 0.044, 0.026, 0.018, 0.017, 0.035, 0.056};
 
-#define GOAL 0.02         /* issue 7: |D* - D-hat| on every row, fractal and conditional */
+#define GOAL 0.02         /* target: |D* - D-hat| on every row, fractal and conditional */
 #define SMOOTH_BELOW 0.02 /* the smooth method's D-hat must be below D* by at least this (mean) */
 #define TABLE4_SD 100.0   /* elevation units of the synthesized surfaces (D does not depend on it) */
 #define RMSE_DIM 2.3
@@ -530,7 +530,7 @@ int main(int argc, char **argv)
         return rc;
     ft_io_init();
     time_t t0 = time(NULL);
-    printf("fracterra %s reconstruction accuracy (Arakawa & Krotkov section 3, issue 7); k = %g, %d threads "
+    printf("fracterra %s reconstruction accuracy (Arakawa & Krotkov section 3); k = %g, %d threads "
            "available\n", ft_version(), FT_RECON_K_DEFAULT, omp_get_max_threads());
     int misses = 0;
     for (int k = 0; a.table4 && k < a.nsizes; k++)

@@ -1,4 +1,4 @@
-"""make bench: what the Python package adds to a library call (issue 19: at most 5% on a 2048² grid and
+"""make bench: what the Python package adds to a library call (target: at most 5% on a 2048² grid and
 a 10^5-vertex chain).
 
 Each package function is called with its library function replaced by a timing proxy, so that one run

@@ -294,10 +294,26 @@ static inline int ft_grid_is_valid(const ft_grid *g, size_t col, size_t row)
 FT_API size_t ft_grid_count_valid(const ft_grid *g);
 /** Minimum and maximum of valid cells; FT_E_EMPTY if none is valid. */
 FT_API int ft_grid_minmax(const ft_grid *g, double *zmin, double *zmax);
+/** Figures of a grid's valid, finite cells. */
+typedef struct {
+    size_t n;            /**< cells counted */
+    double mean, sd;     /**< sd: population standard deviation (divides by n) */
+    double min, max;
+} ft_grid_stats;
+/** Counts the valid, finite cells and their mean, sd, min and max (two passes in double). No valid cell is
+ *  not an error: n = 0 and the figures NaN. */
+FT_API int ft_grid_compute_stats(const ft_grid *g, ft_grid_stats *out);
 /** Georeferenced centre of a cell. */
 FT_API void ft_grid_cell_center(const ft_grid *g, double col, double row, double *x, double *y);
 /** Extent of the grid (corners through the geotransform). */
 FT_API void ft_grid_extent(const ft_grid *g, double *xmin, double *ymin, double *xmax, double *ymax);
+/** The shape and geotransform of a north-up grid of square cells of size cell over a box: upper-left corner
+ *  at (xmin, ymax) and as many cells as cover the box (snap = 0, an extent given by the user), or the box
+ *  snapped outward to whole multiples of cell with its right and bottom edges strictly inside the grid
+ *  (snap = 1, the bounding box of points that must all fall in a cell). A side shorter than a cell gets one.
+ *  FT_E_INVALID for a cell <= 0, a non-finite or inverted box, or more than 2^31 - 1 cells per side. */
+FT_API int ft_grid_shape_for_extent(double xmin, double ymin, double xmax, double ymax, double cell, int snap,
+                                    size_t *nx, size_t *ny, double gt[6]);
 /** Sets (copies) the CRS WKT; NULL clears it. */
 FT_API int ft_grid_set_crs(ft_grid *g, const char *wkt);
 /** Marks NaN and Inf cells as nodata; returns how many were found (>= 0). */

@@ -13,12 +13,20 @@
 #include <stdio.h>
 
 #include "core.h"
+#include "terrain.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it. */
+/** Registers GDAL/OGR drivers once (thread-safe, idempotent); every reader and writer calls it.
+ *
+ *  GDAL's messages: fracterra never replaces the process's GDAL error handler. Each io function pushes its
+ *  own handler on the calling thread's GDAL handler stack for the time of the call and pops it before
+ *  returning, so a host's handler (CPLSetErrorHandler or CPLPushErrorHandler) stays in place. GDAL's
+ *  failures and warnings raised inside a fracterra call do not reach the host's handler: they are returned
+ *  in ft_last_error() ("cannot open 'x.tif': <GDAL's reason>"). Debug messages (CPL_DEBUG) pass through
+ *  to the host's handler. */
 FT_API void ft_io_init(void);
 /** Releases GDAL's global state (call at program exit; optional). */
 FT_API void ft_io_cleanup(void);
@@ -156,6 +164,34 @@ FT_API int ft_io_read_points(const char *path, const ft_read_points_opts *opts, 
 /** Writes points as CSV (x,y,z[,w]) or XYZ text by extension, or through OGR otherwise. */
 FT_API int ft_io_write_points(const char *path, const ft_points *p);
 
+/* ---- CSV (csv_tokenizer.c): the one CSV reader behind ft_io_read_points, open to any caller ----
+ * The header is the first line that is neither blank nor a # comment; the separator is the most frequent of
+ * `,` `;` tab outside quotes in it. Fields may be double-quoted (RFC 4180: "" is a quote; a quoted field may
+ * hold separators and line breaks); blanks around fields are dropped; blank and # comment lines are skipped;
+ * a UTF-8 BOM and CR LF are accepted. "-" reads standard input. */
+typedef struct ft_io_csv ft_io_csv;
+/** Opens path and reads its header. FT_E_IO if it cannot be read, FT_E_EMPTY if it has no header row,
+ *  FT_E_FORMAT on bad quoting. Close with ft_io_csv_close. */
+FT_API int ft_io_csv_open(const char *path, ft_io_csv **out);
+/** The header's column names (owned by c) and their count. */
+FT_API size_t ft_io_csv_header(const ft_io_csv *c, char *const **names);
+/** The index of the column named name (case-insensitive); FT_E_FORMAT naming the file, the name and the
+ *  columns there are otherwise. */
+FT_API int ft_io_csv_find(const ft_io_csv *c, const char *name, size_t *col);
+/** The next record's fields (owned by c, valid until the next call): 1, 0 at the end of the file, or a
+ *  negative FT_E_* code (FT_E_FORMAT naming file:line on bad quoting or a NUL byte, FT_E_IO). */
+FT_API int ft_io_csv_next(ft_io_csv *c, size_t *n, char *const **fields);
+/** The line on which the last record read starts (1-based), for messages. */
+FT_API long ft_io_csv_line(const ft_io_csv *c);
+/** The separator found in the header: ',', ';' or '\t'. */
+FT_API char ft_io_csv_separator(const ft_io_csv *c);
+/** 1 if field is one whole number (blanks around allowed; inf and nan too: check isfinite), 0 otherwise.
+ *  With ';' separators a single decimal comma reads as a point ("2,5" is 2.5). c may be NULL (no decimal
+ *  comma). */
+FT_API int ft_io_csv_number(const ft_io_csv *c, const char *field, double *v);
+/** Closes the file and frees c; NULL is a no-op. */
+FT_API void ft_io_csv_close(ft_io_csv *c);
+
 /* ------------------------------------------------------------------------------------------------
  * Any kind
  * --------------------------------------------------------------------------------------------- */
@@ -171,6 +207,22 @@ FT_API int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo
                            const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary);
 /** Frees what ft_io_read_any read and zeroes *d; NULL is a no-op. */
 FT_API void ft_data_clear(ft_data *d);
+
+/* ------------------------------------------------------------------------------------------------
+ * Model files (clarke_model_json.c)
+ * --------------------------------------------------------------------------------------------- */
+
+/** Clarke's scale-based model (ft_clarke_fit, terrain.h) as the JSON object of a model file: "method",
+ *  "model": "clarke1987", "D", "r2", "stderr", "range", "c", "D_clarke_eq8", "grid", "original", "trend",
+ *  "harmonics", "regression" (docs/terrain-clarke.md). Numbers have the fewest digits that read back to the
+ *  same double. malloc'd text (free()), NULL with FT_E_NOMEM. */
+FT_API char *ft_io_clarke_model_to_json(const ft_clarke_model *m);
+/** Writes that JSON to path through the atomic-write service. */
+FT_API int ft_io_write_clarke_model(const char *path, const ft_clarke_model *m);
+/** Reads a model file into *out (ft_clarke_model_free). FT_E_IO if it cannot be read; FT_E_FORMAT naming the
+ *  file and the missing or malformed key, or the byte where the JSON breaks off, if it is not a model. A file
+ *  written by ft_io_write_clarke_model reads back to the same model, bit for bit. */
+FT_API int ft_io_read_clarke_model(const char *path, ft_clarke_model **out);
 
 /* ------------------------------------------------------------------------------------------------
  * Files
@@ -255,6 +307,10 @@ typedef struct {
 /** What a WKT (or anything OSRSetFromUserInput reads) says; NULL or "" gives has_crs = 0 and FT_OK.
  *  FT_E_INVALID for a CRS GDAL does not know, FT_E_FORMAT for a geographic CRS without an ellipsoid. */
 FT_API int ft_io_crs_info(const char *wkt, ft_crs_info *out);
+/** The CRS's name (OSR's, e.g. "WGS 84 / UTM zone 32N") into name (at most size bytes) and the EPSG code
+ *  the WKT itself gives its root (ID["EPSG",...] / AUTHORITY["EPSG",...]; 0 if none: no lookup). A NULL or
+ *  empty wkt gives "" and 0; FT_E_INVALID if the WKT cannot be parsed. (crs_name.c) */
+FT_API int ft_io_crs_name(const char *wkt, char *name, size_t size, int *epsg);
 
 typedef enum {
     FT_LOCAL_LAEA = 0,  /**< Lambert azimuthal equal-area: areas and box counts */

@@ -174,6 +174,12 @@ FT_API int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_cha
 FT_API int ft_line_weed(const ft_chain *in, double min_seg, ft_chain **out);
 /** Douglas-Peucker simplification with a distance tolerance (rings keep at least 3 vertices). */
 FT_API int ft_line_simplify(const ft_chain *in, double tolerance, ft_chain **out);
+/** The smallest Douglas-Peucker tolerance (to 1e-12 of the layer's diagonal, by bisection) that leaves the
+ *  layer at most target vertices when simplified by ft_line_apply_layer (coverage as there), and the
+ *  vertices it leaves. Tolerance 0 if the layer has no more than target already; FT_E_INVALID naming the
+ *  least reachable count when target is below it. The layer is not changed. */
+FT_API int ft_line_simplify_tolerance_for(const ft_layer *l, size_t target, int coverage, double *tolerance,
+                                          size_t *vertices);
 
 /** Number of proper self-intersections of a chain (pairs of non-adjacent segments that cross). */
 FT_API int ft_line_count_self_intersections(const ft_chain *c, size_t *count);

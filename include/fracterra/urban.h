@@ -108,6 +108,13 @@ FT_API int ft_urban_layer_stats(const ft_layer *l, const size_t *features, size_
 /** The same for the cells of one class of a classified raster. */
 FT_API int ft_urban_grid_stats(const ft_grid *classes, double class_value, ft_urban_stats *out);
 
+/** A classification's usual number of classes at most: a raster with more distinct values is continuous. */
+#define FT_URBAN_MAX_CLASSES 1000
+/** The classes of a classified raster: the distinct values of its valid cells, increasing, into *values
+ *  (malloc'd, free()) and *n. FT_E_EMPTY if no cell is valid; FT_E_INVALID, saying it does not look like a
+ *  classified raster, if a value is not a whole number or there are more than max_classes of them. */
+FT_API int ft_urban_grid_classes(const ft_grid *g, size_t max_classes, float **values, size_t *n);
+
 /** The features of a layer grouped by the value of one field (residential, industrial, ...). */
 typedef struct {
     char *label;       /**< the value as text: strings as they are, integers "%lld", reals "%.15g" */

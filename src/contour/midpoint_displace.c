@@ -20,7 +20,6 @@
  */
 #include "internal.h"
 #include "fracterra/contour.h"
-#include "line/edit_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -97,7 +96,7 @@ int ft_contour_midpoint_displace(const ft_chain *in, const ft_midpoint_opts *opt
             return FT_E_INVALID;
         opts = &taken;
     }
-    int rc = ft_edit_check_chain("midpoint displacement", in, out);
+    int rc = ft_chain_check_operand("midpoint displacement", in, out);
     if (rc != FT_OK)
         return rc;
     rc = check_opts(opts);

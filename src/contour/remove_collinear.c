@@ -14,7 +14,6 @@
  */
 #include "internal.h"
 #include "fracterra/contour.h"
-#include "line/edit_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -33,7 +32,7 @@ static double turning_angle(const ft_chain *c, size_t p, size_t v, size_t n)
 
 int ft_contour_remove_collinear(const ft_chain *in, double angle_deg, ft_chain **out)
 {
-    int rc = ft_edit_check_chain("collinear removal", in, out);
+    int rc = ft_chain_check_operand("collinear removal", in, out);
     if (rc != FT_OK)
         return rc;
     if (!(angle_deg >= 0.0) || !isfinite(angle_deg))

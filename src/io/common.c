@@ -274,14 +274,19 @@ int ft_io_srs_from_wkt(const char *wkt, OGRSpatialReferenceH *srs)
     return FT_OK;
 }
 
-void ft_io_put_double(FILE *f, double v)
+void ft_io_format_double(char *buf, size_t size, double v)
 {
-    char buf[40];
     for (int prec = 15; prec <= 17; prec++) {
-        snprintf(buf, sizeof buf, "%.*g", prec, v);
+        snprintf(buf, size, "%.*g", prec, v);
         if (prec == 17 || strtod(buf, NULL) == v || isnan(v))
             break;
     }
+}
+
+void ft_io_put_double(FILE *f, double v)
+{
+    char buf[40];
+    ft_io_format_double(buf, sizeof buf, v);
     fputs(buf, f);
 }
 

@@ -182,7 +182,7 @@ static int set_lower_levels(OGRLayerH layer, double interval, double base)
     return rc;
 }
 
-int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out)
+static int contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out)
 {
     int rc = check_args(dem, interval, base, out);
     double zmin = 0.0, zmax = 0.0;
@@ -219,4 +219,10 @@ int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_
     if (raster != NULL)
         GDALClose(raster);
     return rc;
+}
+
+int ft_io_contour_polygons(const ft_grid *dem, double interval, double base, ft_layer **out)
+{
+    ft_io_enter();
+    return ft_io_leave(contour_polygons(dem, interval, base, out));
 }

@@ -42,7 +42,7 @@ static void short_unit(const char *name, double metres, char *out, size_t size)
         copy_text(out, size, name);
 }
 
-int ft_io_crs_info(const char *wkt, ft_crs_info *out)
+static int crs_info(const char *wkt, ft_crs_info *out)
 {
     if (out == NULL)
         return ft_error(FT_E_INVALID, "ft_io_crs_info: NULL out");
@@ -88,11 +88,17 @@ int ft_io_crs_info(const char *wkt, ft_crs_info *out)
     return FT_OK;
 }
 
+int ft_io_crs_info(const char *wkt, ft_crs_info *out)
+{
+    ft_io_enter();
+    return ft_io_leave(crs_info(wkt, out));
+}
+
 /* ------------------------------------------------------------------------------------------------
  * Local projections of geographic data: metres, centred on the data, on the data's own datum.
  * --------------------------------------------------------------------------------------------- */
 
-int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt)
+static int local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt)
 {
     if (wkt == NULL)
         return ft_error(FT_E_INVALID, "ft_io_local_crs: NULL wkt");
@@ -137,6 +143,12 @@ int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, 
     return *wkt ? FT_OK : ft_error(FT_E_NOMEM, "out of memory");
 }
 
+int ft_io_local_crs(const char *geo_wkt, ft_local_projection kind, double lon0, double lat0, char **wkt)
+{
+    ft_io_enter();
+    return ft_io_leave(local_crs(geo_wkt, kind, lon0, lat0, wkt));
+}
+
 /* A transformation src -> dst in traditional GIS order (x = longitude). */
 static int make_transform(const char *src_wkt, const char *dst_wkt, OGRCoordinateTransformationH *ct)
 {
@@ -178,7 +190,7 @@ static int transform_xy(OGRCoordinateTransformationH ct, double *x, double *y, s
     return FT_OK;
 }
 
-int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt)
+static int layer_reproject(ft_layer *l, const char *dst_wkt)
 {
     if (l == NULL)
         return ft_error(FT_E_INVALID, "ft_io_layer_reproject: NULL layer");
@@ -209,7 +221,13 @@ int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt)
     return rc;
 }
 
-int ft_io_points_reproject(ft_points *pts, const char *dst_wkt)
+int ft_io_layer_reproject(ft_layer *l, const char *dst_wkt)
+{
+    ft_io_enter();
+    return ft_io_leave(layer_reproject(l, dst_wkt));
+}
+
+static int points_reproject(ft_points *pts, const char *dst_wkt)
 {
     if (pts == NULL)
         return ft_error(FT_E_INVALID, "ft_io_points_reproject: NULL points");
@@ -240,13 +258,13 @@ static char *geographic_base(const char *wkt)
     return out;
 }
 
-int ft_io_crs_grid_north(const char *wkt, double x, double y, double *azimuth)
+static int crs_grid_north(const char *wkt, double x, double y, double *azimuth)
 {
     if (azimuth == NULL)
         return ft_error(FT_E_INVALID, "ft_io_crs_grid_north: NULL azimuth");
     *azimuth = 0.0;
     ft_crs_info info;
-    int rc = ft_io_crs_info(wkt, &info);
+    int rc = crs_info(wkt, &info);
     if (rc != FT_OK || !info.has_crs || info.geographic)
         return rc;
     if (!isfinite(x) || !isfinite(y))
@@ -277,4 +295,16 @@ int ft_io_crs_grid_north(const char *wkt, double x, double y, double *azimuth)
     if (to_map)
         OCTDestroyCoordinateTransformation(to_map);
     return rc;
+}
+
+int ft_io_crs_grid_north(const char *wkt, double x, double y, double *azimuth)
+{
+    ft_io_enter();
+    return ft_io_leave(crs_grid_north(wkt, x, y, azimuth));
+}
+
+int ft_io_points_reproject(ft_points *pts, const char *dst_wkt)
+{
+    ft_io_enter();
+    return ft_io_leave(points_reproject(pts, dst_wkt));
 }

@@ -283,7 +283,7 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
     return rc;
 }
 
-int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts)
+static int hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts)
 {
     ft_io_hillshade_opts taken = FT_IO_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
     if (opts != NULL) {
@@ -310,7 +310,13 @@ int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hill
     return rc;
 }
 
-int ft_io_crs_to_wkt(const char *user_input, char **wkt)
+int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts)
+{
+    ft_io_enter();
+    return ft_io_leave(hillshade(dem_path, out_path, opts));
+}
+
+static int crs_to_wkt(const char *user_input, char **wkt)
 {
     if (wkt == NULL)
         return ft_error(FT_E_INVALID, "CRS: no output pointer given");
@@ -329,4 +335,10 @@ int ft_io_crs_to_wkt(const char *user_input, char **wkt)
         rc = ft_error(FT_E_INVALID, "CRS '%s' cannot be written as WKT", user_input);
     OSRDestroySpatialReference(srs);
     return rc;
+}
+
+int ft_io_crs_to_wkt(const char *user_input, char **wkt)
+{
+    ft_io_enter();
+    return ft_io_leave(crs_to_wkt(user_input, wkt));
 }

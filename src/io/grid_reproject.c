@@ -65,7 +65,7 @@ static int read_back(GDALDatasetH ds, size_t nx, size_t ny, const double gt[6], 
     return FT_OK;
 }
 
-int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out)
+static int grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out)
 {
     if (g == NULL || out == NULL || dst_wkt == NULL)
         return ft_error(FT_E_INVALID, "ft_io_grid_reproject: NULL %s", g == NULL ? "grid" : out ? "CRS" : "out");
@@ -110,4 +110,10 @@ int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_
     if (dst)
         GDALClose(dst);
     return rc;
+}
+
+int ft_io_grid_reproject(const ft_grid *g, const char *dst_wkt, double cell, ft_grid **out)
+{
+    ft_io_enter();
+    return ft_io_leave(grid_reproject(g, dst_wkt, cell, out));
 }

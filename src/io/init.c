@@ -1,9 +1,13 @@
-/* fracterra — io/init.c: one-time GDAL/OGR registration and the quiet error handler.
+/* fracterra — io/init.c: one-time GDAL/OGR registration and the error handler of a fracterra call.
  *
  * GDAL must not print to stderr on its own: fracterra's errors name the file and quote GDAL's reason.
- * The handler installed here keeps the last failure (else warning) message of the calling thread;
- * readers and writers reset it before a GDAL call and append it to their own message on failure.
- * Debug messages (only emitted when CPL_DEBUG is set) still go to GDAL's default handler.
+ * fracterra is a guest in the host's process: it never replaces the process-wide handler (a QGIS or
+ * Python host keeps its own). Every public io function that reaches GDAL runs between ft_io_enter and
+ * ft_io_leave, which push and pop a handler on the calling thread's GDAL handler stack (CPLPushErrorHandler,
+ * thread-local in GDAL). That handler keeps the last failure (else warning) message of the thread; readers
+ * and writers reset it before a GDAL call and append it to their own message on failure, so the host's
+ * handler receives no failure or warning of a fracterra call: it gets them through ft_last_error().
+ * Debug messages (CPL_DEBUG) are not caught: they pass to the host's handler (or GDAL's default).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -41,11 +45,7 @@ static void keep_message(const char *msg)
 static void CPL_STDCALL quiet_handler(CPLErr cls, CPLErrorNum num, const char *msg)
 {
     (void)num;
-    if (cls == CE_Debug) {
-        CPLDefaultErrorHandler(cls, num, msg);
-        return;
-    }
-    if (cls == CE_None || msg == NULL)
+    if (cls == CE_None || cls == CE_Debug || msg == NULL)
         return;
     int failure = cls >= CE_Failure;
     if (failure)
@@ -59,7 +59,6 @@ static void CPL_STDCALL quiet_handler(CPLErr cls, CPLErrorNum num, const char *m
 static void io_register(void)
 {
     GDALAllRegister();
-    CPLSetErrorHandler(quiet_handler);
 }
 
 void ft_io_init(void)
@@ -73,7 +72,19 @@ void ft_io_cleanup(void)
     ft_io_init();
     GDALDestroyDriverManager();
     OSRCleanup();
-    CPLSetErrorHandler(NULL);
+}
+
+void ft_io_enter(void)
+{
+    ft_io_init();
+    CPLPushErrorHandler(quiet_handler);
+    CPLSetCurrentErrorHandlerCatchDebug(FALSE);
+}
+
+int ft_io_leave(int rc)
+{
+    CPLPopErrorHandler();
+    return rc;
 }
 
 void ft_io_gdal_reset(void)

@@ -12,7 +12,13 @@
 
 #include "fracterra/io.h"
 
-/* GDAL messages (init.c). The quiet handler keeps the last message of this thread instead of printing it. */
+/* GDAL messages (init.c). Every public function that reaches GDAL runs its work between ft_io_enter (registers
+ * the drivers once, pushes the module's handler on this thread's GDAL handler stack) and ft_io_leave (pops it,
+ * returns rc), so the host's own handler is back on return:
+ *     int ft_io_read_x(...) { ft_io_enter(); return ft_io_leave(read_x(...)); }
+ * The pushed handler keeps the last message of this thread instead of printing it. */
+void ft_io_enter(void);
+int ft_io_leave(int rc);
 void ft_io_gdal_reset(void);       /* forgets the stored message and failure flag */
 const char *ft_io_gdal_msg(void);  /* last failure message (else last warning) since the reset, "" if none */
 int ft_io_gdal_failed(void);       /* 1 if GDAL reported a failure since the reset */
@@ -66,7 +72,8 @@ int ft_io_srs_from_wkt(const char *wkt, OGRSpatialReferenceH *srs); /* *srs NULL
 int ft_io_grid_mem_raster(const ft_grid *g, float nodata, GDALDatasetH *out);
 
 /* Text (common.c). */
-void ft_io_put_double(FILE *f, double v);            /* shortest text that reads back to exactly v */
+void ft_io_format_double(char *buf, size_t size, double v); /* shortest text that reads back to exactly v */
+void ft_io_put_double(FILE *f, double v);            /* the same, written to f */
 int ft_io_parse_double(const char *s, double *v);    /* 1 if s is one whole number (spaces around allowed) */
 FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
 

@@ -44,7 +44,7 @@ static int copy_line(OGRGeometryH line, const char *path, long long fid, double 
     return FT_OK;
 }
 
-int ft_io_read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n)
+static int read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n)
 {
     if (path == NULL || x == NULL || y == NULL || z == NULL || n == NULL)
         return ft_error(FT_E_INVALID, "ft_io_read_line_z: NULL argument");
@@ -79,4 +79,10 @@ int ft_io_read_line_z(const char *path, const char *layer, double **x, double **
         *n = 0;
     }
     return rc;
+}
+
+int ft_io_read_line_z(const char *path, const char *layer, double **x, double **y, double **z, size_t *n)
+{
+    ft_io_enter();
+    return ft_io_leave(read_line_z(path, layer, x, y, z, n));
 }

@@ -133,7 +133,7 @@ static int read_ogr_points(point_reader *r, const ft_read_points_opts *o)
     return rc;
 }
 
-int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out)
+static int read_points(const char *path, const ft_read_points_opts *opts, ft_points **out)
 {
     ft_read_points_opts o = FT_READ_POINTS_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_read_points_opts) != FT_OK)
@@ -156,6 +156,12 @@ int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_poin
     rc = ft_io_read_points_ds(ds, path, &o, out);
     GDALClose(ds);
     return rc;
+}
+
+int ft_io_read_points(const char *path, const ft_read_points_opts *opts, ft_points **out)
+{
+    ft_io_enter();
+    return ft_io_leave(read_points(path, opts, out));
 }
 
 int ft_io_read_points_ds(GDALDatasetH ds, const char *path, const ft_read_points_opts *o, ft_points **out)

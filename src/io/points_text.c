@@ -1,9 +1,8 @@
 /* fracterra — io/points_text.c: scattered points from CSV and whitespace XYZ text.
  *
- * CSV: the first non-empty line is the header; the separator is the most frequent of `,` `;` tab in
- * it; fields may be double-quoted ("" escapes a quote); columns are found by name, case-insensitive
- * (x, y, z by default, plus an optional weight column). With `;` separators a decimal comma is read as
- * a decimal point. XYZ: `x y z [w]` per line separated by blanks, tabs or commas, `#` comments, one
+ * CSV through the library's CSV tokenizer (csv_tokenizer.c: header, separator `,` `;` or tab, quoting,
+ * decimal comma with `;`); columns are found by name, case-insensitive (x, y, z by default, plus an
+ * optional weight column). XYZ: `x y z [w]` per line separated by blanks, tabs or commas, `#` comments, one
  * optional header line. Errors name the file, the line and the column of the bad value.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -20,14 +19,14 @@
 
 typedef struct {
     const char *path;
-    FILE *f;
+    FILE *f;             /* XYZ only: CSV is read through its tokenizer */
     char *buf;
     size_t cap;
     long line;
     ft_points *p;
     double *w;           /* weights, parallel to p */
     size_t wcap;
-    char **fields;       /* fields of the current line (point into buf) */
+    char **fields;       /* XYZ: fields of the current line (point into buf) */
     size_t nfields, fcap;
 } text_in;
 
@@ -44,11 +43,6 @@ static int next_line(text_in *t)
     return 1;
 }
 
-static int is_blank(const char *s)
-{
-    return s[strspn(s, " \t")] == '\0';
-}
-
 static int push_field(text_in *t, char *s)
 {
     if (t->nfields == t->fcap) {
@@ -61,38 +55,6 @@ static int push_field(text_in *t, char *s)
     }
     t->fields[t->nfields++] = s;
     return FT_OK;
-}
-
-/* Splits a CSV line in place: quotes removed, "" turned into ", fields trimmed of blanks. */
-static int split_csv(text_in *t, char *s, char delim)
-{
-    t->nfields = 0;
-    for (;;) {
-        s += strspn(s, " \t");
-        char *start = s, *dst = s;
-        if (*s == '"') {
-            for (s++; *s && !(*s == '"' && s[1] != '"'); s++) {
-                if (*s == '"')
-                    s++;
-                *dst++ = *s;
-            }
-            if (*s == '"')
-                s++;
-            s += strcspn(s, (char[]){delim, '\0'});
-        } else {
-            s += strcspn(s, (char[]){delim, '\0'});
-            dst = s;
-            while (dst > start && (dst[-1] == ' ' || dst[-1] == '\t'))
-                dst--;
-        }
-        int more = *s == delim;
-        *dst = '\0';
-        if (push_field(t, start) != FT_OK)
-            return FT_E_NOMEM;
-        if (!more)
-            return FT_OK;
-        s++;
-    }
 }
 
 /* Splits a whitespace (or comma) separated line in place. */
@@ -115,53 +77,42 @@ static int split_blanks(text_in *t, char *s)
     }
 }
 
-static char guess_delimiter(const char *header)
-{
-    size_t comma = 0, semi = 0, tab = 0;
-    int quoted = 0;
-    for (const char *s = header; *s; s++) {
-        if (*s == '"')
-            quoted = !quoted;
-        else if (!quoted && *s == ',')
-            comma++;
-        else if (!quoted && *s == ';')
-            semi++;
-        else if (!quoted && *s == '\t')
-            tab++;
-    }
-    if (semi > comma && semi >= tab)
-        return ';';
-    return tab > comma ? '\t' : ',';
-}
+/* The fields of one line and where they come from: csv is the CSV tokenizer (NULL for XYZ), for the decimal
+ * comma of `;`-separated files. */
+typedef struct {
+    char *const *f;
+    size_t n;
+    long line;
+    const ft_io_csv *csv;
+} line_fields;
 
-/* Parses field col of the current line as a finite number, naming file, line and column otherwise. */
-static int field_value(const text_in *t, size_t col, const char *name, int decimal_comma, double *v)
+/* Parses field col of the line as a finite number, naming file, line and column otherwise. */
+static int field_value(const text_in *t, const line_fields *lf, size_t col, const char *name, double *v)
 {
-    if (col >= t->nfields)
+    if (col >= lf->n)
         return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu) is missing: the line has %zu field%s", t->path,
-                        t->line, name, col + 1, t->nfields, t->nfields == 1 ? "" : "s");
-    char *s = t->fields[col];
-    if (decimal_comma && strchr(s, ',') && !strchr(s, '.'))
-        *strchr(s, ',') = '.';
+                        lf->line, name, col + 1, lf->n, lf->n == 1 ? "" : "s");
+    const char *s = lf->f[col];
     if (s[0] == '\0')
-        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu) is empty", t->path, t->line, name, col + 1);
-    if (!ft_io_parse_double(s, v))
-        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu): '%s' is not a number", t->path, t->line, name,
+        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu) is empty", t->path, lf->line, name, col + 1);
+    if (!ft_io_csv_number(lf->csv, s, v))
+        return ft_error(FT_E_FORMAT, "%s:%ld: column '%s' (%zu): '%s' is not a number", t->path, lf->line, name,
                         col + 1, s);
     if (!isfinite(*v))
-        return ft_error(FT_E_NUMERIC, "%s:%ld: column '%s' (%zu): '%s' is not finite", t->path, t->line, name,
+        return ft_error(FT_E_NUMERIC, "%s:%ld: column '%s' (%zu): '%s' is not finite", t->path, lf->line, name,
                         col + 1, s);
     return FT_OK;
 }
 
 /* Appends a point read from columns col[0..2] (x, y, z) and col[3] (weight, if >= 0). */
-static int add_point(text_in *t, const size_t *col, const long weight_col, const char *const *names, int dec_comma)
+static int add_point(text_in *t, const line_fields *lf, const size_t *col, const long weight_col,
+                     const char *const *names)
 {
     double v[4] = {0, 0, 0, 1};
     for (int k = 0; k < 4; k++) {
         if (k == 3 && weight_col < 0)
             break;
-        int rc = field_value(t, k == 3 ? (size_t)weight_col : col[k], names[k], dec_comma, &v[k]);
+        int rc = field_value(t, lf, k == 3 ? (size_t)weight_col : col[k], names[k], &v[k]);
         if (rc != FT_OK)
             return rc;
     }
@@ -181,32 +132,15 @@ static int add_point(text_in *t, const size_t *col, const long weight_col, const
     return FT_OK;
 }
 
-static int find_column(const text_in *t, const char *name, size_t *col)
-{
-    for (size_t i = 0; i < t->nfields; i++)
-        if (strcasecmp(t->fields[i], name) == 0) {
-            *col = i;
-            return FT_OK;
-        }
-    char list[1024] = "";
-    size_t used = 0;
-    for (size_t i = 0; i < t->nfields && used < sizeof list - 1; i++) {
-        int k = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", t->fields[i]);
-        if (k < 0)
-            break;
-        used += (size_t)k;
-    }
-    return ft_error(FT_E_FORMAT, "'%s' has no column '%s' (columns: %s)", t->path, name, list);
-}
-
-/* Opens the file and the points; the caller runs the body, then finish() hands the result over. */
-static int start(text_in *t, const char *path)
+/* Opens the points and, for XYZ (open_file), the file; the caller runs the body, then finish() hands the
+ * result over. */
+static int start(text_in *t, const char *path, int open_file)
 {
     memset(t, 0, sizeof *t);
     t->path = ft_io_is_stdio(path) ? "(stdin)" : path;
     int rc = ft_io_check_readable(path);
-    if (rc != FT_OK)
-        return rc;
+    if (rc != FT_OK || !open_file)
+        return rc != FT_OK ? rc : ((t->p = ft_points_create(256)) ? FT_OK : FT_E_NOMEM);
     t->f = ft_io_fopen_read(path);
     if (t->f == NULL)
         return ft_error(FT_E_IO, "cannot open '%s': %s", path, strerror(errno));
@@ -236,42 +170,34 @@ static int finish(text_in *t, int rc, ft_points **out)
     return FT_OK;
 }
 
-static int read_csv_body(text_in *t, const ft_read_points_opts *o)
+static int read_csv_body(text_in *t, const char *path, const ft_read_points_opts *o)
 {
-    int rc;
-    while ((rc = next_line(t)) == 1 && is_blank(t->buf))
-        ;
-    if (rc != 1)
-        return rc < 0 ? rc : ft_error(FT_E_EMPTY, "'%s' is empty (no header row)", t->path);
-    char *header = t->buf;
-    if ((unsigned char)header[0] == 0xEF && (unsigned char)header[1] == 0xBB && (unsigned char)header[2] == 0xBF)
-        header += 3;
-    char delim = guess_delimiter(header);
-    if (split_csv(t, header, delim) != FT_OK)
-        return FT_E_NOMEM;
+    ft_io_csv *csv = NULL;
+    int rc = ft_io_csv_open(path, &csv);
     const char *names[4] = {o->x ? o->x : "x", o->y ? o->y : "y", o->z ? o->z : "z", o->weight};
     size_t col[4] = {0, 0, 0, 0};
-    for (int k = 0; k < 4; k++)
-        if (names[k] != NULL && (rc = find_column(t, names[k], &col[k])) != FT_OK)
-            return rc;
+    for (int k = 0; rc == FT_OK && k < 4; k++)
+        if (names[k] != NULL)
+            rc = ft_io_csv_find(csv, names[k], &col[k]);
     long wcol = o->weight ? (long)col[3] : -1;
-    size_t nheader = t->nfields;
-    while ((rc = next_line(t)) == 1) {
-        if (is_blank(t->buf))
-            continue;
-        if (split_csv(t, t->buf, delim) != FT_OK)
-            return FT_E_NOMEM;
+    char *const *head = NULL;
+    size_t nheader = rc == FT_OK ? ft_io_csv_header(csv, &head) : 0;
+    line_fields lf = {NULL, 0, 0, csv};
+    char delim = rc == FT_OK ? ft_io_csv_separator(csv) : ',';
+    while (rc == FT_OK && (rc = ft_io_csv_next(csv, &lf.n, &lf.f)) == 1) {
+        lf.line = ft_io_csv_line(csv);
         /* More fields than the header names: columns would shift; with ',' separators the usual cause is a
          * decimal comma ("2,5"). */
-        if (t->nfields > nheader)
-            return ft_error(FT_E_FORMAT, "%s:%ld: %zu fields but the header names %zu%s", t->path, t->line,
-                            t->nfields, nheader,
-                            delim == ',' ? ": decimal commas with ',' separators? Use ';' between the fields or "
-                                           "quote the numbers (\"2,5\")"
-                                         : "");
-        if ((rc = add_point(t, col, wcol, names, delim == ';')) != FT_OK)
-            return rc;
+        if (lf.n > nheader)
+            rc = ft_error(FT_E_FORMAT, "%s:%ld: %zu fields but the header names %zu%s", t->path, lf.line, lf.n,
+                          nheader,
+                          delim == ',' ? ": decimal commas with ',' separators? Use ';' between the fields or "
+                                         "quote the numbers (\"2,5\")"
+                                       : "");
+        else
+            rc = add_point(t, &lf, col, wcol, names);
     }
+    ft_io_csv_close(csv);
     return rc;
 }
 
@@ -293,7 +219,8 @@ static int read_xyz_body(text_in *t, const ft_read_points_opts *o)
             continue;
         }
         first = 0;
-        if ((rc = add_point(t, col, wcol, names, 0)) != FT_OK)
+        line_fields lf = {t->fields, t->nfields, t->line, NULL};
+        if ((rc = add_point(t, &lf, col, wcol, names)) != FT_OK)
             return rc;
     }
     return rc;
@@ -302,16 +229,16 @@ static int read_xyz_body(text_in *t, const ft_read_points_opts *o)
 int ft_io_read_points_csv(const char *path, const ft_read_points_opts *o, ft_points **out)
 {
     text_in t;
-    int rc = start(&t, path);
+    int rc = start(&t, path, 0);
     if (rc == FT_OK)
-        rc = read_csv_body(&t, o);
+        rc = read_csv_body(&t, path, o);
     return finish(&t, rc, out);
 }
 
 int ft_io_read_points_xyz(const char *path, const ft_read_points_opts *o, ft_points **out)
 {
     text_in t;
-    int rc = start(&t, path);
+    int rc = start(&t, path, 1);
     if (rc == FT_OK)
         rc = read_xyz_body(&t, o);
     return finish(&t, rc, out);

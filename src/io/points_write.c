@@ -114,7 +114,7 @@ static int write_ogr(const char *path, GDALDriverH drv, const char *tmp, const f
     return rc;
 }
 
-int ft_io_write_points(const char *path, const ft_points *p)
+static int write_points(const char *path, const ft_points *p)
 {
     if (p == NULL)
         return ft_error(FT_E_INVALID, "no points to write to '%s'", path ? path : "(null)");
@@ -142,4 +142,10 @@ int ft_io_write_points(const char *path, const ft_points *p)
     rc = write_ogr(path, drv, st.target, p);
     int end = ft_io_stage_end(&st, rc == FT_OK);
     return rc != FT_OK ? rc : end;
+}
+
+int ft_io_write_points(const char *path, const ft_points *p)
+{
+    ft_io_enter();
+    return ft_io_leave(write_points(path, p));
 }

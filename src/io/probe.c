@@ -93,7 +93,7 @@ static int open_any(const char *path, GDALDatasetH *ds)
     return FT_OK;
 }
 
-int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind)
+static int probe(const char *path, const char *layer, ft_file_kind *kind)
 {
     *kind = FT_KIND_UNKNOWN;
     int rc = ft_io_check_readable(path);
@@ -107,6 +107,12 @@ int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind)
     rc = ft_io_dataset_kind(ds, path, layer, kind);
     GDALClose(ds);
     return rc;
+}
+
+int ft_io_probe(const char *path, const char *layer, ft_file_kind *kind)
+{
+    ft_io_enter();
+    return ft_io_leave(probe(path, layer, kind));
 }
 
 void ft_data_clear(ft_data *d)
@@ -173,17 +179,25 @@ static int read_any(const char *path, const ft_read_layer_opts *lo, const ft_rea
 int ft_io_read_any(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
                    const ft_read_points_opts *po, ft_data *out)
 {
-    return read_any(path, lo, go, po, out, NULL);
+    ft_io_enter();
+    return ft_io_leave(read_any(path, lo, go, po, out, NULL));
 }
 
-int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
-                           const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary)
+static int read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                            const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary)
 {
     memset(summary, 0, sizeof *summary);
     int rc = read_any(path, lo, go, po, out, summary);
     if (rc != FT_OK)
         ft_grid_summary_clear(summary);
     return rc;
+}
+
+int ft_io_read_any_summary(const char *path, const ft_read_layer_opts *lo, const ft_read_grid_opts *go,
+                           const ft_read_points_opts *po, ft_data *out, ft_grid_summary *summary)
+{
+    ft_io_enter();
+    return ft_io_leave(read_any_summary(path, lo, go, po, out, summary));
 }
 
 /* The folder part of path ("." when it has none); malloc'd. */

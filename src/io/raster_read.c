@@ -173,7 +173,7 @@ static int read_band(grid_reader *r)
     return rc;
 }
 
-int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
+static int read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
 {
     ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_read_grid_opts) != FT_OK)
@@ -186,6 +186,12 @@ int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **o
     rc = ft_io_read_grid_ds(ds, path, &o, out);
     GDALClose(ds);
     return rc;
+}
+
+int ft_io_read_grid(const char *path, const ft_read_grid_opts *opts, ft_grid **out)
+{
+    ft_io_enter();
+    return ft_io_leave(read_grid(path, opts, out));
 }
 
 int ft_io_read_grid_ds(GDALDatasetH ds, const char *path, const ft_read_grid_opts *opts, ft_grid **out)
@@ -288,7 +294,7 @@ int ft_io_summarize_grid_ds(GDALDatasetH ds, const char *path, const ft_read_gri
     return rc;
 }
 
-int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out)
+static int summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out)
 {
     ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_read_grid_opts) != FT_OK)
@@ -301,6 +307,12 @@ int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_gri
     rc = ft_io_summarize_grid_ds(ds, path, &o, out);
     GDALClose(ds);
     return rc;
+}
+
+int ft_io_summarize_grid(const char *path, const ft_read_grid_opts *opts, ft_grid_summary *out)
+{
+    ft_io_enter();
+    return ft_io_leave(summarize_grid(path, opts, out));
 }
 
 void ft_grid_summary_clear(ft_grid_summary *s)

@@ -314,7 +314,13 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     return rc;
 }
 
-int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
+static int write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
 {
     return ft_io_write_bands(path, &g, 1, opts);
+}
+
+int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_grid_opts *opts)
+{
+    ft_io_enter();
+    return ft_io_leave(write_grid(path, g, opts));
 }

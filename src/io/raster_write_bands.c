@@ -9,7 +9,7 @@
 #include "io/io_internal.h"
 #include "internal.h"
 
-int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
+static int write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
 {
     if (bands == NULL || n == 0)
         return ft_error(FT_E_INVALID, "no band to write to '%s'", path ? path : "(null)");
@@ -28,4 +28,10 @@ int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, c
                                 k + 1, path ? path : "(null)", i, g->gt[i], bands[0]->gt[i]);
     }
     return ft_io_write_bands(path, bands, n, opts);
+}
+
+int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts)
+{
+    ft_io_enter();
+    return ft_io_leave(write_grids(path, bands, n, opts));
 }

@@ -262,7 +262,7 @@ static int read_ogr_layer(reader *r, const ft_read_layer_opts *o)
     return rc;
 }
 
-int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out)
+static int read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out)
 {
     ft_read_layer_opts o = FT_READ_LAYER_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_read_layer_opts) != FT_OK)
@@ -280,6 +280,12 @@ int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer 
     rc = ft_io_read_layer_ds(ds, path, &o, out);
     GDALClose(ds);
     return rc;
+}
+
+int ft_io_read_layer(const char *path, const ft_read_layer_opts *opts, ft_layer **out)
+{
+    ft_io_enter();
+    return ft_io_leave(read_layer(path, opts, out));
 }
 
 int ft_io_read_layer_ds(GDALDatasetH ds, const char *path, const ft_read_layer_opts *o, ft_layer **out)

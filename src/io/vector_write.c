@@ -240,7 +240,7 @@ static int write_dataset(writer *w, GDALDriverH drv, const char *tmp, const ft_w
     return rc;
 }
 
-int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts)
+static int write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts)
 {
     ft_write_layer_opts o = FT_WRITE_LAYER_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_write_layer_opts) != FT_OK)
@@ -264,4 +264,10 @@ int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_la
     rc = write_dataset(&w, drv, st.target, &o);
     int end = ft_io_stage_end(&st, rc == FT_OK);
     return rc != FT_OK ? rc : end;
+}
+
+int ft_io_write_layer(const char *path, const ft_layer *layer, const ft_write_layer_opts *opts)
+{
+    ft_io_enter();
+    return ft_io_leave(write_layer(path, layer, opts));
 }

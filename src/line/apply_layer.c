@@ -189,6 +189,26 @@ static int restore_collapsed(const ft_topology *t, ft_chain **edited)
     return FT_OK;
 }
 
+/* Coverage edits committed when rc is FT_OK: the edited arcs swapped into the topology, the rings rebuilt
+ * from them, the other parts replaced by fresh. Frees what is left in both arrays; returns the outcome. */
+static int commit_edits(ft_layer *l, ft_chain **edited, ft_chain **fresh, int rc)
+{
+    ft_topology *t = l->topology;
+    if (rc == FT_OK) {
+        for (size_t a = 0; a < t->narcs; a++) {
+            ft_chain *old = t->arcs[a];
+            t->arcs[a] = edited[a];
+            edited[a] = old;
+        }
+        rc = ft_layer_apply_topology(l);
+    }
+    if (rc == FT_OK)
+        replace_parts(l, fresh);
+    free_chains(edited, edited ? t->narcs : 0);
+    free_chains(fresh, fresh ? l->nparts : 0);
+    return rc;
+}
+
 static int apply_coverage(ft_layer *l, ft_line_op op, const void *opts)
 {
     int rc = ft_layer_build_topology(l, 0.0);
@@ -205,18 +225,7 @@ static int apply_coverage(ft_layer *l, ft_line_op op, const void *opts)
         rc = restore_collapsed(t, edited);
     if (rc == FT_OK)
         rc = process_parts(l, op, opts, 1, fresh);
-    if (rc == FT_OK) {
-        for (size_t a = 0; a < t->narcs; a++) {
-            ft_chain *old = t->arcs[a];
-            t->arcs[a] = edited[a];
-            edited[a] = old;
-        }
-        rc = ft_layer_apply_topology(l);
-    }
-    if (rc == FT_OK)
-        replace_parts(l, fresh);
-    free_chains(edited, edited ? t->narcs : 0);
-    free_chains(fresh, fresh ? l->nparts : 0);
+    rc = commit_edits(l, edited, fresh, rc);
     ft_topology_free(l->topology);
     l->topology = NULL;
     return rc;
@@ -283,19 +292,7 @@ static int set_commit_coverage(ft_layer *l, chain_set *s)
         if (k < s->narcs && !t->arcs[a]->closed && (edited[a]->closed || !same_ends(t->arcs[a], edited[a])))
             rc = ft_error(FT_E_INVALID, "arc %zu: the operation moved the arc's end points (nodes)", a);
     }
-    if (rc == FT_OK) {
-        for (size_t a = 0; a < t->narcs; a++) {
-            ft_chain *old = t->arcs[a];
-            t->arcs[a] = edited[a];
-            edited[a] = old;
-        }
-        rc = ft_layer_apply_topology(l);
-    }
-    if (rc == FT_OK)
-        replace_parts(l, fresh);
-    free_chains(edited, edited ? t->narcs : 0);
-    free_chains(fresh, fresh ? l->nparts : 0);
-    return rc;
+    return commit_edits(l, edited, fresh, rc);
 }
 
 int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ctx, int passes, int coverage,

@@ -10,19 +10,12 @@
 #include <stddef.h>
 
 #include "fracterra/core.h"
+#include "internal.h"
 
-/** A chain an operation can read: not NULL, finite, >= 2 vertices (>= 3 for a ring); out not NULL. */
+/** A chain an operation can read: ft_chain_check_operand (src/internal.h), shared with Contour's operators. */
 static inline int ft_edit_check_chain(const char *op, const ft_chain *in, ft_chain **out)
 {
-    if (out == NULL)
-        return ft_error(FT_E_INVALID, "%s: NULL output pointer", op);
-    *out = NULL;
-    if (in == NULL)
-        return ft_error(FT_E_INVALID, "%s: NULL chain", op);
-    int rc = ft_chain_check_min_vertices(in, in->closed ? 3 : 2);
-    if (rc == FT_OK)
-        rc = ft_chain_check_finite(in);
-    return rc;
+    return ft_chain_check_operand(op, in, out);
 }
 
 /** The segment window of Dutton's tolerances: st > 0 (may be INFINITY), 0 <= sm finite, sm <= st. */

@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "fracterra/core.h"
+#include "line/line_shared.h"
 
 typedef struct {
     const double *x, *y; /**< the chain's arrays */
@@ -71,19 +72,5 @@ void ft_line_equipaced_length(const ft_chain *c, const double *z, double s, doub
 /** Hybrid-walk length of one chain (n >= 2) at ruler r > 0 (both_ends as for the divider); *steps gets the
  *  (mean) interpolated step count, length / r. */
 void ft_line_hybrid_length(const ft_chain *c, const double *z, double r, int both_ends, double *length, double *steps);
-
-/** Box counting at one box side: the fewest cells crossed over k x k grid origins offset by multiples of
- *  size / k from (ox, oy). Chains with fewer than 2 vertices count their single vertex's cell (n = 1) or
- *  nothing. Fails with FT_E_INVALID if the traversal would visit more than FT_BOX_MAX_CELLS cells,
- *  FT_E_NOMEM if memory runs out. */
-int ft_line_box_count_min(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
-                          uint64_t *count);
-/** The same count over the k x k origins: the fewest (fewest, may be NULL) and the mean (mean, may be NULL;
- *  an unbiased estimate of the count of a randomly placed grid). */
-int ft_line_box_count_offsets(const ft_chain *const *chains, size_t n, double size, int k, double ox, double oy,
-                              uint64_t *fewest, double *mean);
-
-/** Upper bound on the cells one box count may visit (keeps memory and time bounded for tiny boxes). */
-#define FT_BOX_MAX_CELLS ((uint64_t)1 << 30)
 
 #endif /* FRACTERRA_LINE_DIM_INTERNAL_H */

@@ -78,9 +78,7 @@ int ft_recon_conditional(const ft_recon_problem *p, const float *ustar, double H
         u[i] = L->fixed[i] ? sz[i] : 0.0f;
         rhs[i] = L->fixed[i] ? 0.0f : (float)((double)L->c[i] * (double)sz[i]);
     }
-    ft_recon_progress sub = {NULL, NULL, 0.0, 0.0};
-    if (prog)
-        sub = (ft_recon_progress){prog->fn, prog->arg, prog->base + 0.3 * prog->span, 0.7 * prog->span};
+    ft_recon_progress sub = ft_progress_range_sub(prog, 0.3, 1.0);
     rc = ft_recon_solve_rhs(p, rhs, u, prog ? &sub : NULL, NULL);
     if (rc == FT_OK) {
         /* e = s - S(s), then u = u* + kappa e with kappa² = (amp² - V(u*)) / V(e), V = mean squared

@@ -65,12 +65,8 @@ static double node_misfit(const ft_recon_problem *p, const float *u)
  * of the range). */
 static ft_recon_progress solve_progress(const ft_recon_progress *prog, int k, int last)
 {
-    ft_recon_progress sp = {NULL, NULL, 0.0, 0.0};
-    if (prog) {
-        double a = (double)k / (MAX_SOLVES + 1), b = last ? 1.0 : (double)(k + 1) / (MAX_SOLVES + 1);
-        sp = (ft_recon_progress){prog->fn, prog->arg, prog->base + prog->span * a, prog->span * (b - a)};
-    }
-    return sp;
+    double a = (double)k / (MAX_SOLVES + 1), b = last ? 1.0 : (double)(k + 1) / (MAX_SOLVES + 1);
+    return ft_progress_range_sub(prog, a, b);
 }
 
 int ft_recon_discrepancy(ft_recon_problem *p, double tension, double *lambda, float *u,

@@ -38,21 +38,6 @@ int ft_recon_method_parse(const char *name, ft_recon_method *m)
                     name);
 }
 
-int ft_recon_report(const ft_recon_progress *p, double f, const char *msg)
-{
-    if (p == NULL || p->fn == NULL)
-        return FT_OK;
-    return ft_progress(p->fn, p->arg, p->base + p->span * fmin(1.0, fmax(0.0, f)), msg);
-}
-
-static ft_recon_progress sub_progress(const ft_recon_progress *p, double from, double to)
-{
-    ft_recon_progress s = {NULL, NULL, 0.0, 0.0};
-    if (p != NULL)
-        s = (ft_recon_progress){p->fn, p->arg, p->base + from * p->span, (to - from) * p->span};
-    return s;
-}
-
 static int check_opts(const ft_recon_opts *o)
 {
     if ((unsigned)o->method >= N_METHODS)
@@ -126,7 +111,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
     }
     /* soft data: the solution at opts.lambda or, if it misses the data by more than their sigmas, at the
      * discrepancy principle's lambda (recon_discrepancy.c) */
-    ft_recon_progress sp = sub_progress(prog, 0.0, t_smooth);
+    ft_recon_progress sp = ft_progress_range_sub(prog, 0.0, t_smooth);
     if (p->ndata > 0)
         rc = ft_recon_discrepancy(p, tension, &lambda, ustar, &sp, NULL);
     else
@@ -135,7 +120,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
         rc = fix_soft_data(p, ustar, lambda, tension);
     for (int r = 0; rc == FT_OK && r < nr; r++) {
         const float *res = ustar;
-        ft_recon_progress rp = sub_progress(prog, t_smooth + (1.0 - t_smooth) * r / nr,
+        ft_recon_progress rp = ft_progress_range_sub(prog, t_smooth + (1.0 - t_smooth) * r / nr,
                                             t_smooth + (1.0 - t_smooth) * (r + 1) / nr);
         uint64_t seed = par->seed + (uint64_t)r;
         if (par->method == FT_RECON_FRACTAL)
@@ -339,7 +324,7 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
         return ft_error(FT_E_INVALID, "the target grid is NULL or empty");
     if (target->nx > ((size_t)1 << 20) || target->ny > ((size_t)1 << 20))
         return ft_error(FT_E_INVALID, "target grid %zu x %zu is too large", target->nx, target->ny);
-    ft_recon_progress prog = {o.progress, o.progress_arg, 0.0, 1.0};
+    ft_recon_progress prog = ft_progress_range_whole(o.progress, o.progress_arg);
     ft_recon_problem *pr = NULL;
     size_t outside = 0;
     rc = ft_recon_bind_points(p, target, o.sigma, o.threads, &pr, &outside);
@@ -358,7 +343,7 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
     if (rc == FT_OK)
         rc = ft_recon_outputs(target, sd_out != NULL, out, sd_out);
     if (rc == FT_OK) {
-        ft_recon_progress rp = sub_progress(&prog, 0.02, 1.0);
+        ft_recon_progress rp = ft_progress_range_sub(&prog, 0.02, 1.0);
         rc = ft_recon_run(pr, o.lambda, par.tension, &par, (*out)->z, sd_out ? (*sd_out)->z : NULL, target->nx, &rp);
     }
     if (rc == FT_OK) {

@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "fracterra/terrain.h"
+#include "internal.h"
 
 /** Gibbs sweeps per level when opts->sweeps is 0 (docs/terrain-reconstruct.md). */
 #define FT_RECON_SWEEPS_DEFAULT 2
@@ -69,13 +70,12 @@ typedef struct {
                             on these nodes can remove (several points on one node) */
 } ft_recon_problem;
 
-/** Progress over a whole job: fraction base + span * f. */
-typedef struct {
-    ft_progress_fn fn;
-    void *arg;
-    double base, span;
-} ft_recon_progress;
-int ft_recon_report(const ft_recon_progress *p, double f, const char *msg);
+/** Progress over a whole job: fraction base + span * f (Core's scaled progress, src/internal.h). */
+typedef ft_progress_range ft_recon_progress;
+static inline int ft_recon_report(const ft_recon_progress *p, double f, const char *msg)
+{
+    return ft_progress_range_report(p, f, msg);
+}
 
 /* ---- recon_binding.c ---- */
 /** Allocates a problem of nx x ny nodes (data arrays zeroed, no hierarchy yet). NULL if out of memory. */

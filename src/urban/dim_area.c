@@ -43,7 +43,7 @@
 #include "fracterra/line.h"
 #include "fracterra/urban.h"
 #include "internal.h"
-#include "line/line_dim_internal.h"
+#include "line/line_shared.h"
 #include "urban/urban_internal.h"
 
 #define HI_FRACTION_BOUNDARY (1.0 / 48)

@@ -1,5 +1,5 @@
 /* fracterra — tests/cli/test_cli_bad_input_table.c: one table of bad inputs over every command and every
- * class of issue 18 (write safety, runaway work, the crash and the UB, exit 0 with nonsense, unclear
+ * class of failure (write safety, runaway work, the crash and the UB, exit 0 with nonsense, unclear
  * errors), run through the built binary. Every row must: not die from a signal, exit with its code, print
  * "fracterra: " and a message holding its needle (and never a bare "inf" or "nan"), leave no output and no
  * temporary file behind, and leave its input untouched. A second table runs every writing command with the

@@ -24,23 +24,11 @@
 #define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
 #define LUXEMBOURG FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
 
-static ft_grid *read_band(const char *path, int band)
-{
-    ft_grid *g = NULL;
-    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
-    o.band = band;
-    int rc = ft_io_read_grid(path, &o, &g);
-    if (rc != FT_OK)
-        print_error("%s band %d: %s\n", path, band, ft_last_error());
-    assert_int_equal(rc, FT_OK);
-    return g;
-}
-
 /* The volcano with 6 x 6 voids centred in every 16 x 16 window (cols 5..10 of each window), written to
  * ft_test_tmp("holed.tif"). */
 static const char *holed_volcano(ft_grid **orig)
 {
-    ft_grid *g = read_band(VOLCANO, 1);
+    ft_grid *g = ft_test_read_band(VOLCANO, 1);
     *orig = ft_grid_copy(g);
     assert_int_equal(ft_grid_ensure_mask(g), FT_OK);
     for (size_t y = 0; y < g->ny; y++)
@@ -88,7 +76,7 @@ static void test_volcano(void **state)
     assert_true(ft_test_json_num(v, "amplitude") > 0.0);
     assert_string_equal(ft_test_json_str(v, "D_source"), "ring");
     json_object_put(o);
-    ft_grid *f = read_band(out, 1);
+    ft_grid *f = ft_test_read_band(out, 1);
     assert_int_equal(f->nx, orig->nx);
     for (size_t i = 0; i < f->nx * f->ny; i++) {
         assert_true(f->mask == NULL || f->mask[i]);
@@ -108,7 +96,7 @@ static void test_volcano(void **state)
     /* the same seed gives the same cells */
     const char *out2 = ft_test_tmp("again.tif");
     json_object_put(FT_TEST_RUN_JSON("fill", in, out2, "--json", "--seed", "3"));
-    ft_grid *f2 = read_band(out2, 1);
+    ft_grid *f2 = ft_test_read_band(out2, 1);
     assert_memory_equal(f->z, f2->z, f->nx * f->ny * sizeof(float));
     ft_grid_free(f2);
     ft_grid_free(D0);
@@ -123,7 +111,7 @@ static void test_volcano(void **state)
 static void test_luxembourg_windows(void **state)
 {
     (void)state;
-    ft_grid *orig = read_band(LUXEMBOURG, 1), *D0 = dmap(orig), *g = ft_grid_copy(orig);
+    ft_grid *orig = ft_test_read_band(LUXEMBOURG, 1), *D0 = dmap(orig), *g = ft_grid_copy(orig);
     size_t nwin = 0;
     for (size_t wy = 0; wy < D0->ny; wy++)
         for (size_t wx = 0; wx < D0->nx; wx++) {
@@ -143,7 +131,7 @@ static void test_luxembourg_windows(void **state)
         json_object *o = FT_TEST_RUN_JSON("fill", in, out, "--max-void", "10", "--seed", seeds[k], "--json");
         assert_int_equal(ft_test_json_int(o, "cells_filled"), (int64_t)(nwin * 100));
         json_object_put(o);
-        ft_grid *f = read_band(out, 1), *D1 = dmap(f);
+        ft_grid *f = ft_test_read_band(out, 1), *D1 = dmap(f);
         for (size_t i = 0; i < D0->nx * D0->ny; i++)
             if (ft_grid_is_valid(D0, i % D0->nx, i / D0->nx)) {
                 assert_true(ft_grid_is_valid(D1, i % D0->nx, i / D0->nx));
@@ -163,7 +151,7 @@ static void test_luxembourg_windows(void **state)
 static void test_luxembourg_outside_stays(void **state)
 {
     (void)state;
-    ft_grid *g = read_band(LUXEMBOURG, 1);
+    ft_grid *g = ft_test_read_band(LUXEMBOURG, 1);
     size_t outside = g->nx * g->ny - ft_grid_count_valid(g);
     /* a 5 x 4 void inside the country */
     for (size_t y = 40; y < 44; y++)
@@ -177,7 +165,7 @@ static void test_luxembourg_outside_stays(void **state)
     assert_int_equal(ft_test_json_int(o, "cells_filled"), 20);
     assert_int_equal(ft_test_json_int(o, "cells_left"), (int64_t)outside);
     json_object_put(o);
-    ft_grid *f = read_band(out, 1);
+    ft_grid *f = ft_test_read_band(out, 1);
     assert_int_equal(f->nx * f->ny - ft_grid_count_valid(f), outside);
     for (size_t i = 0; i < f->nx * f->ny; i++)
         assert_int_equal(f->mask[i], g->mask[i] || ((i / g->nx) >= 40 && (i / g->nx) < 44 && (i % g->nx) >= 45 &&
@@ -189,7 +177,7 @@ static void test_luxembourg_outside_stays(void **state)
 static void test_mask_mean_realizations(void **state)
 {
     (void)state;
-    ft_grid *g = read_band(VOLCANO, 1);
+    ft_grid *g = ft_test_read_band(VOLCANO, 1);
     ft_grid *m = ft_grid_create(g->nx, g->ny);
     for (size_t i = 0; i < g->nx * g->ny; i++)
         m->z[i] = 1.0f;
@@ -205,7 +193,7 @@ static void test_mask_mean_realizations(void **state)
     o = FT_TEST_RUN_JSON("fill", VOLCANO, out2, "--mask", mask, "--realizations", "8", "--json");
     assert_string_equal(ft_test_json_str(o, "bands"), "1: mean, 2: sd");
     json_object_put(o);
-    ft_grid *mean = read_band(out, 1), *rm = read_band(out2, 1), *sd = read_band(out2, 2);
+    ft_grid *mean = ft_test_read_band(out, 1), *rm = ft_test_read_band(out2, 1), *sd = ft_test_read_band(out2, 2);
     size_t i = 35 * g->nx + 24;
     assert_true(mean->z[i] != g->z[i]);
     assert_true(sd->z[i] > 0.0f);

@@ -196,7 +196,7 @@ static void assert_result_shape(json_object *r)
             assert_true(ft_test_json_num(row, "scale") > ft_test_json_num(ft_test_json_at(table, i - 1), "scale"));
     }
     assert_true(used >= 3);
-    /* regimes and breaks (issue 13): one break fewer than regimes, regimes by increasing scale, the
+    /* regimes and breaks: one break fewer than regimes, regimes by increasing scale, the
      * headline's regime among them (or null when D is not a regime's) */
     json_object *regimes = ft_test_json_key(r, "regimes"), *breaks = ft_test_json_key(r, "breaks");
     size_t nr = json_object_array_length(regimes);
@@ -357,7 +357,7 @@ static void test_enhance_counts_and_keys(void **state)
                 ft_test_json_num(o, "sm") == 0.0);
     assert_null(ft_test_json_key(o, "st")); /* no limit */
     assert_int_equal(ft_test_json_int(o, "iterations"), 1);
-    /* issue 15: the target is D_in + UC (SD - D_in), D_in measured; the guard reports its moves */
+    /* the calibrated target is D_in + UC (SD - D_in), D_in measured; the guard reports its moves */
     double din = ft_test_json_num(o, "input_dim");
     assert_true(din >= 1.0 && din < 1.5);
     assert_true(fabs(ft_test_json_num(o, "target_dim") - (din + 0.5 * (1.5 - din))) < 1e-12);
@@ -662,7 +662,7 @@ static size_t vertices_out(json_object *o)
  * docs/line-newfoundland.md. The issue asks for D within 0.05 of the generalized chain's; measured, the
  * stages stay within 0.07 (the enhancement standardizes every junction at the SD = 1.3 angle of 117 degrees,
  * which flattens the sharp spikes Douglas-Peucker keeps), so the bound checked is 0.08. */
-/* Issue 13: on a real coastline the automatic range gives D within 0.04 of the literature's 1-100 km fit,
+/* On a real coastline the automatic range gives D within 0.04 of the literature's 1-100 km fit,
  * or reports two regimes or more, one break between 1 and 100 km (the 1-100 km fit straddles it). GSHHG
  * full resolution: Newfoundland, the Great Britain main island (a ring) and the mainland coast of
  * south-west Norway (an open chain, 58-61.5 N). */
@@ -725,7 +725,7 @@ static void test_newfoundland_sequence(void **state)
            dsmooth = dim_on_rulers(smooth, table);
     fprintf(stderr, "Newfoundland: %zu pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f\n", n158,
             dgen, nenh, denh, nweed, dweed, nsmooth, dsmooth);
-    /* Issue 15 asks for 0.03 and it does not hold: the calibrated default aims the fine scales at
+    /* The target of 0.03 does not hold: the calibrated default aims the fine scales at
      * D_in + UC (SD - D_in) = 1.347 and the first pass pulls the coarse rulers down with it (measured 1.370,
      * 1.368, 1.405 against 1.458; docs/line-newfoundland.md). This bounds what is measured. */
     assert_true(fabs(denh - dgen) < 0.10);

@@ -1,5 +1,5 @@
 /* fracterra — tests/cli/test_cli_profile.c: `dim profile` end to end (a DEM row, a transect, a 3-D line;
- * bad input), and the issue-13 behaviours every estimator shares through the CLI: `dim line` pointing a
+ * bad input), and the log-log behaviours every estimator shares through the CLI: `dim line` pointing a
  * profile to `dim profile`, --regime, a D outside its domain as exit 1.
  * SPDX-License-Identifier: GPL-3.0-or-later
  */

@@ -28,18 +28,6 @@
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 #define DAVIS_N 52
 
-static ft_grid *read_band(const char *path, int band)
-{
-    ft_grid *g = NULL;
-    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
-    o.band = band;
-    int rc = ft_io_read_grid(path, &o, &g);
-    if (rc != FT_OK)
-        print_error("%s band %d: %s\n", path, band, ft_last_error());
-    assert_int_equal(rc, FT_OK);
-    return g;
-}
-
 static ft_points *read_davis(void)
 {
     ft_points *p = NULL;
@@ -103,7 +91,7 @@ static void assert_all_finite_no_mask(const ft_grid *g)
  * (no CRS): real elevations that fall exactly on the nodes of a --like VOLCANO grid. */
 static ft_points *volcano_points(const char *csv)
 {
-    ft_grid *g = read_band(VOLCANO, 1);
+    ft_grid *g = ft_test_read_band(VOLCANO, 1);
     ft_points *p = ft_points_create(0);
     assert_non_null(p);
     for (size_t i = 0; i < g->nx * g->ny; i++) {
@@ -170,7 +158,7 @@ static void test_points_extent(void **state)
     double data_rms = ft_test_json_num(o, "data_rms");
     json_object_put(o);
 
-    ft_grid *g = read_band(out, 1);
+    ft_grid *g = ft_test_read_band(out, 1);
     assert_int_equal(g->nx, 75);
     assert_int_equal(g->ny, 75);
     const double gt[6] = {-0.55, 0.1, 0.0, 6.95, 0.0, -0.1};
@@ -208,7 +196,7 @@ static void test_points_sigma(void **state)
     double data_rms = ft_test_json_num(o, "data_rms");
     json_object_put(o);
     assert_true(data_rms > 0.0 && data_rms <= 10.0);
-    ft_grid *g = read_band(out, 1);
+    ft_grid *g = ft_test_read_band(out, 1);
     ft_points *p = read_davis();
     double rms = rms_at_points(g, p, NULL);
     assert_true(rms >= sqrt(1.0 - 0.06) * 10.0 - 1e-3 && rms <= 10.0 + 1e-3);
@@ -228,7 +216,7 @@ static void test_points_bbox(void **state)
     assert_int_equal(ft_test_json_int(o, "data_outside"), 0);
     assert_int_equal(ft_test_json_int(o, "nx"), 26);
     json_object_put(o);
-    ft_grid *g = read_band(out, 1);
+    ft_grid *g = ft_test_read_band(out, 1);
     /* Davis: x 0.2 .. 6.3, y 0 .. 6.2. x from floor(0.2 / 0.25) = 0 to floor(6.3 / 0.25) + 1 = 26 cells; y from
      * ceil(0 / 0.25) - 1 = -1 to ceil(6.2 / 0.25) = 25 cells: 26 x 26 cells of 0.25 from (0, 6.25) */
     assert_int_equal(g->nx, 26);
@@ -274,10 +262,10 @@ static void test_points_volcano(void **state)
             assert_true(ft_test_json_int(o, "levels") >= 1);
         }
         json_object_put(o);
-        ft_grid *g = read_band(out, 1);
+        ft_grid *g = ft_test_read_band(out, 1);
         assert_int_equal(g->nx, 61);
         assert_int_equal(g->ny, 87);
-        ft_grid *v = read_band(VOLCANO, 1);
+        ft_grid *v = ft_test_read_band(VOLCANO, 1);
         for (int i = 0; i < 6; i++)
             assert_near(g->gt[i], v->gt[i], 1e-9);
         ft_test_assert_same_crs(g->crs_wkt, v->crs_wkt); /* from --like: the CSV has none */
@@ -319,7 +307,7 @@ static void test_points_like(void **state)
     /* the point on the grid's border (y = 0) may count either way; all others are decided by the extent */
     assert_true(labs((long)ft_test_json_int(o, "data_used") - (long)expect_inside) <= 1);
     json_object_put(o);
-    ft_grid *g = read_band(out, 1);
+    ft_grid *g = ft_test_read_band(out, 1);
     assert_int_equal(g->nx, 40);
     assert_int_equal(g->ny, 65);
     for (int i = 0; i < 6; i++)
@@ -360,14 +348,14 @@ static size_t punch(ft_grid *g)
 static void check_voids(const char *dem_path, const char *method)
 {
     const char *holed = ft_test_tmp("holed.tif"), *out = ft_test_tmp("filled.tif");
-    ft_grid *orig = read_band(dem_path, 1);
+    ft_grid *orig = ft_test_read_band(dem_path, 1);
     ft_grid *h = ft_grid_copy(orig);
     assert_non_null(h);
     size_t valid_before = ft_grid_count_valid(h);
     size_t punched = punch(h);
     assert_true(punched > 0);
     assert_int_equal(ft_io_write_grid(holed, h, NULL), FT_OK);
-    ft_grid *back = read_band(holed, 1); /* the file as the command reads it */
+    ft_grid *back = ft_test_read_band(holed, 1); /* the file as the command reads it */
     size_t voids = back->nx * back->ny - ft_grid_count_valid(back);
     assert_int_equal(ft_grid_count_valid(back), valid_before - punched);
 
@@ -382,7 +370,7 @@ static void check_voids(const char *dem_path, const char *method)
     assert_near(ft_test_json_num(o, "data_rms"), 0.0, 1e-6); /* known cells are kept exactly */
     json_object_put(o);
 
-    ft_grid *f = read_band(out, 1);
+    ft_grid *f = ft_test_read_band(out, 1);
     assert_int_equal(f->nx, back->nx);
     assert_int_equal(f->ny, back->ny);
     for (int i = 0; i < 6; i++)
@@ -444,7 +432,7 @@ static void test_realizations(void **state)
     assert_int_equal(ft_test_json_int(o, "realizations"), 3);
     assert_string_equal(ft_test_json_str(o, "bands"), "1: mean, 2: sd");
     json_object_put(o);
-    ft_grid *mean = read_band(out, 1), *sd = read_band(out, 2);
+    ft_grid *mean = ft_test_read_band(out, 1), *sd = ft_test_read_band(out, 2);
     ft_grid *none = NULL;
     ft_read_grid_opts b3 = FT_READ_GRID_OPTS_DEFAULT;
     b3.band = 3;
@@ -486,7 +474,7 @@ static void test_seed(void **state)
     assert_int_equal(ft_run_argv(&r, argv), 0);
     assert_int_equal(r.status, 0);
     ft_run_free(&r);
-    ft_grid *ga = read_band(a, 1), *gb = read_band(b, 1), *gc = read_band(c, 1);
+    ft_grid *ga = ft_test_read_band(a, 1), *gb = ft_test_read_band(b, 1), *gc = ft_test_read_band(c, 1);
     assert_int_equal(ga->nx, gb->nx);
     assert_int_equal(ga->ny, gb->ny);
     assert_memory_equal(ga->z, gb->z, ga->nx * ga->ny * sizeof(float));

@@ -375,6 +375,14 @@ static void test_regress_paper_table2(void **state)
     assert_int_equal(ft_test_json_int(o, "rows_skipped"), 1);
     assert_true(fabs(ft_test_json_num(o, "r") - 0.954) < 0.0005);
     json_object_put(o);
+
+    /* the same table as a spreadsheet in a comma-decimal locale saves it: ';' separators, decimal commas */
+    csv = ft_test_tmp_text("t2eu.csv", "year;area;D\r\n1959;116442;1,3614\r\n1980;190456;1,3722\r\n"
+                                       "1989;285423;1,4414\r\n1997;413110;1,4872\r\n");
+    o = FT_TEST_RUN_JSON("urban", "regress", csv, "--x", "D", "--y", "area", "--log-y", "--json");
+    assert_int_equal(ft_test_json_int(o, "n"), 4);
+    assert_true(fabs(ft_test_json_num(o, "slope") - 8.7229) < 0.001);
+    json_object_put(o);
 }
 
 /* ---- boundary ---- */

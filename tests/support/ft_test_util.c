@@ -202,6 +202,18 @@ ft_layer *ft_test_read_layer(const char *path)
     return l;
 }
 
+ft_grid *ft_test_read_band(const char *path, int band)
+{
+    ft_grid *g = NULL;
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    o.band = band;
+    int rc = ft_io_read_grid(path, &o, &g);
+    if (rc != FT_OK)
+        fprintf(stderr, "%s band %d: %s\n", path, band, ft_last_error());
+    assert_int_equal(rc, FT_OK);
+    return g;
+}
+
 double ft_test_json_num(json_object *o, const char *k)
 {
     return json_object_get_double(ft_test_json_key(o, k));

@@ -79,6 +79,8 @@ const char *ft_test_json_str(json_object *o, const char *k);
 double ft_test_json_num(json_object *o, const char *k);
 /** Reads the layer at path with the default options; prints the error and fails the test if it cannot. */
 ft_layer *ft_test_read_layer(const char *path);
+/** Reads band (1-based) of the raster at path; prints the error and fails the test if it cannot. */
+ft_grid *ft_test_read_band(const char *path, int band);
 
 /** Element i of the JSON array a; fails the test unless i < its length. */
 json_object *ft_test_json_at(json_object *a, size_t i);

@@ -10,7 +10,7 @@
  *  - stacks to layers and back (polygons, lines, gdal_contour bands of a real DEM);
  *  - the paper's observation on real contours: the divider dimension of the generated contours (rulers
  *    d0 .. 4 d0, d0 the seed's mean segment) falls towards 1 with the simple method and, with the improved
- *    one, stays within 0.05 of the seed's for every contour of at least 50 vertices (issue 8, as written):
+ *    one, stays within 0.05 of the seed's for every contour of at least 50 vertices (the accuracy target, as written):
  *    a rough seed (Luxembourg DEM, 300 m, D 1.13) and a smooth one (the bundled Maunga Whau 130 m
  *    contour, D 1.01), four random seeds each; with the paper's fixed angle range (match_dim = 0) the
  *    smooth seed's contours come out rougher than it. The hypsometric curves against the DEM's are

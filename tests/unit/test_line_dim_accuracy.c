@@ -1,5 +1,5 @@
-/* fracterra — accuracy tests of ft_line_dim (src/line/line_dim.c) on curves of known dimension, as issue 3
- * asks: straight lines and circles (D = 1), the Koch curve (log 4 / log 3), midpoint-generator curves
+/* fracterra — accuracy tests of ft_line_dim (src/line/line_dim.c) on curves of known dimension, to the
+ * accuracy targets: straight lines and circles (D = 1), the Koch curve (log 4 / log 3), midpoint-generator curves
  * (D = ln 2 / ln(2 cos a)); then the method names, the table, progress and bad input.
  *
  * Midpoint-generator curves: each segment becomes two legs at base angle a, cos a = 2^(1/D - 1), the apex on

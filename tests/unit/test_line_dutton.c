@@ -300,7 +300,7 @@ static void test_straight_line_stays(void **state)
 }
 
 /* Six iterations with UC = 1, measured by the divider over the scales the iterations made (2 finest
- * segments to half the input's mean segment). Issue 3 asks for D within 0.05 of SD = 1.3; with
+ * segments to half the input's mean segment). The target is D within 0.05 of SD = 1.3; with
  * the contract's geometry (base M1 M2, apex angle pi - 2a, cos a = 2^(1/SD - 1)) that cannot hold: each
  * pass standardizes the former midpoints, already bent to about 159 degrees by their neighbours' moves
  * (not straight as in the midpoint generator the SD-angle relation comes from), so the length grows by
@@ -308,7 +308,7 @@ static void test_straight_line_stays(void **state)
  * table). What holds, and is checked: the enhanced chain is self-similar over those scales (a straight
  * log-log line), D matches the per-pass length growth, and D rises with SD. The opt-in calibrated mode
  * (ft_dutton_opts.target_dim, ft_dutton_apex_for_dimension) picks the apex angle whose steady-state D is
- * the target; tests/unit/test_line_dutton_calibrated.c checks it, issue 3's 6-pass bullet included. */
+ * the target; tests/unit/test_line_dutton_calibrated.c checks it, the 6-pass target included. */
 static void test_divider_dimension_after_six_iterations(void **state)
 {
     (void)state;

@@ -1,7 +1,7 @@
 /* fracterra — unit tests of line/dutton_calibrate.c: calibrated mode of Dutton's (1981) enhancement.
  * The steady-state dimension of an apex angle and its inverse; that the per-pass length growth of real
  * enhanced chains is the one the canonical cell predicts; the apex angle and the wiring of target_dim;
- * issue 3's accuracy bullet (6 passes, target 1.3, UC = 1, divider over the fine scales within 0.05) on
+ * the accuracy target (6 passes, target 1.3, UC = 1, divider over the fine scales within 0.05) on
  * random walks, a coarse circle and the 158-point Newfoundland coast; the divider with rulers well inside
  * the generated scales for targets 1.1 to 1.7; bad targets.
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -251,7 +251,7 @@ static void test_growth_of_chains_is_steady_state(void **state)
     free_inputs(in);
 }
 
-/* Issue 3: after 6 iterations with UC = 1 the divider D over the fine scales (the existing test's range:
+/* The target: after 6 iterations with UC = 1 the divider D over the fine scales (the existing test's range:
  * 2 output segments to half an input segment) is within 0.05 of 1.3. The divider reads low at rulers of a
  * few segments (it needs ~10 segments to reach the scaling regime), so 6 passes give 1.25-1.27 here;
  * coarser polygons of 6-12 vertices read 1.227-1.250 (docs/line-enhance.md). The regular polygon's cells

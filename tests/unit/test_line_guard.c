@@ -1,4 +1,4 @@
-/* fracterra — tests/unit/test_line_guard.c: issue 15's promise on real lines: with UC = 1 the enhanced chain's
+/* fracterra — tests/unit/test_line_guard.c: the crossing guard's promise on real lines: with UC = 1 the enhanced chain's
  * divider dimension over the scales the enhancement generates is SD (1.1, 1.2, 1.3, 1.5) within 0.03, and
  * the crossing guard leaves no self-intersection and no contact between features (checked with GEOS, not
  * with the guard's own contact test). Inputs: the 158-point Douglas-Peucker Newfoundland (GSHHG), four DCW

@@ -1,4 +1,4 @@
-/* fracterra — tests/unit/test_line_regimes.c: regimes and breaks of line log-log plots (issue 13). A Koch
+/* fracterra — tests/unit/test_line_regimes.c: regimes and breaks of line log-log plots. A Koch
  * curve, a circle and a straight line report exactly one regime; a Koch-type curve whose generator angle
  * changes between levels (checked first: its divider length at the generators' segment lengths is the
  * closed form) reports two, each with the dimension of its generator, and the break where the box-count

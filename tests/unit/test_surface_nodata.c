@@ -1,4 +1,4 @@
-/* fracterra — unit tests of nodata in the grid estimators (issue 6: "Nodata holes (10% of cells, blobs)
+/* fracterra — unit tests of nodata in the grid estimators (the target: "Nodata holes (10% of cells, blobs)
  * change D of a synthetic surface by less than 0.02"): 512² Stein-exact surfaces of D = 2.2, 2.5 and 2.8,
  * three seeds each, measured whole and with 10 % of their cells in nodata blobs of random centres and
  * radii 5-25 cells (up to 50 cells across), by every method over its whole default range (the same

@@ -1,5 +1,5 @@
 /* fracterra — unit tests of src/urban/boundary.c and boundary_layer.c: the midpoint-subdivision generator of
- * Zhang, Yu & Fan (2008, §2). Accuracy as issue 4 asks: a curve generated from a straight segment
+ * Zhang, Yu & Fan (2008, §2). Accuracy targets: a curve generated from a straight segment
  * with D in {1.1, ..., 1.5} and no jitter has segments of exactly r / (2 cos a)^k at level k, and its divider
  * dimension over the generated scales l_k is within 0.03 of D (box counting within 0.05); with jitter the
  * median divider dimension over 10 seeds is within 0.05; segments longer than max come out vertex for
@@ -154,7 +154,7 @@ static void check_generated_dims(double jitter, double tol_div, double tol_box)
     ft_chain_free(s);
 }
 
-/* Issue 15: the guarded generator (the default of ft_urban_boundary_layer) on a unit segment, 15 levels,
+/* The crossing guard: the guarded generator (the default of ft_urban_boundary_layer) on a unit segment, 15 levels,
  * D 1.1-1.5, seeds 1-5: no self-intersection (ours and GEOS's isSimple), and the median divider D over
  * l_4 .. l_11 within 0.03 of D (every curve within 0.06). */
 static void test_guarded_boundary(void **state)

@@ -1,5 +1,5 @@
 /* fracterra — unit tests of src/urban/dim_area.c, dim_area_grid.c, row_runs.c, class_stats.c and classes.c:
- * exact box counts on hand cases, then the accuracy issue 4 asks: a filled square gives 2 +- 0.02 (area)
+ * exact box counts on hand cases, then the accuracy targets: a filled square gives 2 +- 0.02 (area)
  * and 1 +- 0.02 (boundary), a Koch island log 4 / log 3 +- 0.03 (boundary); the same on a classified
  * raster; class statistics and grouping; bad input.
  *

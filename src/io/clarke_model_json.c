@@ -1,4 +1,5 @@
-/* fracterra — cli/clarke_json.c: Clarke's scale-based model (Clarke 1987, eqs. xi-xv) as JSON.
+/* fracterra — io/clarke_model_json.c: the file format of Clarke's scale-based model (Clarke 1987, eqs. xi-xv),
+ * a JSON object: what `fracterra model fit -o` writes and `model simulate` reads (docs/terrain-clarke.md).
  *
  * The object holds everything `model simulate` needs and a reader wants to judge: the estimator keys
  * every command prints ("method", "D", "r2", "stderr", "range": wavelengths fitted), then "grid" (size,
@@ -7,12 +8,11 @@
  * wavelength, direction), "regression" (eqs. x, xv: slope, intercept, r2, stderr, pairs, taper,
  * min_wavelength_cells),
  * "D_clarke_eq8" (Clarke's eq. viii, the variogram relation, labelled) and "c". Reading is strict: every key
- * the simulation uses must be there with the right type, and the error names it.
+ * the simulation uses must be there with the right type, and the error names it. Numbers are written with
+ * the fewest digits that read back to the same double, so a model survives a write and a read bit for bit.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "clarke_json.h"
-
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -20,15 +20,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include <json-c/json.h>
+
+#include "fracterra/terrain.h"
+#include "internal.h"
+#include "io/io_internal.h"
 
 #define MODEL_NAME "clarke1987"
 
 /* ---- writing ---- */
 
+/* A finite number as the shortest text that reads back to it; null otherwise. */
 static json_object *jnum(double v)
 {
-    return cli_json_double(v);
+    if (!isfinite(v))
+        return NULL;
+    char buf[40];
+    ft_io_format_double(buf, sizeof buf, v);
+    return json_object_new_double_s(v, buf);
 }
 
 static json_object *jarray(const double *v, size_t n)
@@ -98,7 +107,7 @@ static void wavelength_range(const ft_clarke_model *m, double range[2])
     range[1] = fmax((double)m->nx * cx, (double)m->ny * cy);
 }
 
-json_object *clarke_model_to_json(const ft_clarke_model *m)
+static json_object *model_to_json(const ft_clarke_model *m)
 {
     json_object *o = json_object_new_object(), *t = json_object_new_object(), *orig = json_object_new_object();
     double range[2];
@@ -127,15 +136,36 @@ json_object *clarke_model_to_json(const ft_clarke_model *m)
     return o;
 }
 
-static int write_model(FILE *f, const void *arg)
+static const int json_flags = JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_SPACED | JSON_C_TO_STRING_NOSLASHESCAPE;
+
+char *ft_io_clarke_model_to_json(const ft_clarke_model *m)
 {
-    return cli_json_fput((json_object *)arg, f);
+    if (m == NULL) {
+        ft_error(FT_E_INVALID, "ft_io_clarke_model_to_json: NULL model");
+        return NULL;
+    }
+    json_object *o = model_to_json(m);
+    char *text = o ? ft_strdup(json_object_to_json_string_ext(o, json_flags)) : NULL;
+    json_object_put(o);
+    if (text == NULL)
+        ft_error(FT_E_NOMEM, "out of memory for the model's JSON");
+    return text;
 }
 
-int clarke_model_write(const char *path, const ft_clarke_model *m)
+static int write_model(FILE *f, const void *arg)
 {
-    json_object *o = clarke_model_to_json(m);
-    int rc = cli_write_file(path, write_model, o);
+    const char *text = json_object_to_json_string_ext((json_object *)arg, json_flags);
+    return fputs(text, f) < 0 || fputc('\n', f) == EOF ? FT_E_IO : FT_OK;
+}
+
+int ft_io_write_clarke_model(const char *path, const ft_clarke_model *m)
+{
+    if (m == NULL)
+        return ft_error(FT_E_INVALID, "ft_io_write_clarke_model: NULL model");
+    json_object *o = model_to_json(m);
+    if (o == NULL)
+        return ft_error(FT_E_NOMEM, "out of memory for the model's JSON");
+    int rc = ft_io_atomic_write(path, write_model, o);
     json_object_put(o);
     return rc;
 }
@@ -221,7 +251,7 @@ static void read_grid(reader *r, json_object *o, ft_clarke_model *m)
     if (r->rc == FT_OK && g && json_object_object_get_ex(g, "crs", &crs) && crs) {
         if (!json_object_is_type(crs, json_type_string))
             r->rc = ft_error(FT_E_FORMAT, "%s: key \"grid.crs\" must be a WKT string or null", r->what);
-        else if ((m->crs_wkt = strdup(json_object_get_string(crs))) == NULL)
+        else if ((m->crs_wkt = ft_strdup(json_object_get_string(crs))) == NULL)
             r->rc = ft_error(FT_E_NOMEM, "%s: out of memory for the CRS", r->what);
     }
 }
@@ -287,7 +317,7 @@ static void read_scalars(reader *r, json_object *o, ft_clarke_model *m)
         r->rc = ft_error(FT_E_FORMAT, "%s: key \"original.sd\" must be >= 0, got %g", r->what, m->sd);
 }
 
-int clarke_model_from_json(json_object *o, const char *what, ft_clarke_model **out)
+static int model_from_json(json_object *o, const char *what, ft_clarke_model **out)
 {
     reader r = {what, FT_OK};
     *out = NULL;
@@ -381,15 +411,17 @@ static int parse_file(const char *path, json_object **out)
     return rc;
 }
 
-int clarke_model_read(const char *path, ft_clarke_model **out)
+int ft_io_read_clarke_model(const char *path, ft_clarke_model **out)
 {
+    if (out == NULL || path == NULL)
+        return ft_error(FT_E_INVALID, "ft_io_read_clarke_model: NULL path or out");
     *out = NULL;
     json_object *o = NULL;
     int rc = parse_file(path, &o);
     if (rc != FT_OK)
         return rc;
     rc = json_object_is_type(o, json_type_object)
-                 ? clarke_model_from_json(o, path, out)
+                 ? model_from_json(o, path, out)
                  : ft_error(FT_E_FORMAT, "%s: a model must be a JSON object", path);
     json_object_put(o);
     return rc;
