@@ -325,6 +325,49 @@ static void test_bad_target(void **state)
     expect_error(INFINITY, "got inf");
 }
 
+/* Calibrated default: a straight run bends, to alternate sides (left of the direction of travel at odd input
+ * indices); --literal-sd leaves it straight. A segment 3 times the input's mean or longer is first cut into
+ * ceil(L / mean) equal pieces; one just under 3 times is not. */
+static void test_straight_runs_and_long_segments(void **state)
+{
+    (void)state;
+    const double xy[] = {0, 0, 10, 0, 20, 0, 30, 0, 40, 0};
+    ft_chain *line = ft_chain_from_arrays(xy, xy + 1, 5, 2, 0);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.allow_crossings = 1;
+    ft_chain *out = NULL;
+    assert_int_equal(ft_line_enhance(line, &o, &out), FT_OK);
+    assert_int_equal(out->n, 9);
+    for (size_t i = 1; i < 4; i++) /* input vertex i is output vertex 2i: left (y > 0) when i is odd */
+        assert_true(i % 2 ? out->y[2 * i] > 1.0 : out->y[2 * i] < -1.0);
+    ft_chain_free(out);
+    o.literal_sd = 1;
+    assert_int_equal(ft_line_enhance(line, &o, &out), FT_OK);
+    for (size_t k = 0; k < out->n; k++)
+        assert_true(out->y[k] == 0.0);
+    ft_chain_free(out);
+    ft_chain_free(line);
+
+    /* segments 10, 10, 10, 10, L: mean (40 + L) / 5; L = 100 gives mean 28 and 4 pieces (100 >= 84) */
+    const double xy2[] = {0, 0, 10, 0, 10, 10, 20, 10, 20, 20, 120, 20};
+    ft_chain *c = ft_chain_from_arrays(xy2, xy2 + 1, 6, 2, 0);
+    o = (ft_dutton_opts)FT_DUTTON_OPTS_DEFAULT;
+    o.allow_crossings = 1;
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * (6 + 3) - 1);
+    ft_chain_free(out);
+    c->x[5] = 70.0; /* L = 50: mean 18, 50 < 54: not cut */
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * 6 - 1);
+    ft_chain_free(out);
+    o.literal_sd = 1; /* nothing is cut in the literal reading */
+    c->x[5] = 120.0;
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * 6 - 1);
+    ft_chain_free(out);
+    ft_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -334,6 +377,7 @@ int main(void)
         cmocka_unit_test(test_growth_of_chains_is_steady_state),
         cmocka_unit_test(test_divider_six_passes_target_1_3),
         cmocka_unit_test(test_divider_deep_targets),
+        cmocka_unit_test(test_straight_runs_and_long_segments),
         cmocka_unit_test(test_bad_target),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
