@@ -122,6 +122,8 @@ typedef struct {
     double target_dim; /**< the divider dimension aimed at over the generated scales; NaN if literal_sd, uc <= 0 */
     double input_dim;  /**< D_in used by the uc < 1 rule; NaN if not used */
     double uc, st, sm;
+    double densify;    /**< calibrated mode: before a pass, a segment of length L >= 3 densify (and < st) is cut
+                            into ceil(L / densify) equal pieces: the input's mean segment; 0 (literal): none */
 } ft_dutton_plan;
 
 /** Resolves opts against the input chains (measures D_in if needed). FT_E_INVALID if the target cannot be

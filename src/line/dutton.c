@@ -56,6 +56,7 @@
 #define PI 3.14159265358979323846
 #define PARALLEL_MIN 32768     /* vertices below which a pass runs on one thread */
 #define MAX_ITERATIONS 64
+#define DENSIFY_RATIO 3.0 /* calibrated mode: segments this many times the input's mean segment are cut first */
 
 double ft_dutton_apex_angle(double sd)
 {
@@ -100,6 +101,18 @@ static int measure_input_dim(const ft_chain *const *chains, size_t n, double *d)
     return FT_OK;
 }
 
+/* The mean segment length of the chains (0 if none). */
+static double mean_segment(const ft_chain *const *chains, size_t n)
+{
+    double len = 0.0;
+    size_t nseg = 0;
+    for (size_t c = 0; c < n; c++) {
+        len += ft_chain_length(chains[c]);
+        nseg += ft_chain_segments(chains[c]);
+    }
+    return nseg > 0 ? len / (double)nseg : 0.0;
+}
+
 int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton_opts *o, ft_dutton_plan *p)
 {
     ft_dutton_opts taken = FT_DUTTON_OPTS_DEFAULT; /* FT_OPTS in core.h */
@@ -113,7 +126,7 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     int rc = check_opts(o);
     if (rc != FT_OK)
         return rc;
-    *p = (ft_dutton_plan){ft_dutton_apex_angle(o->sd), NAN, NAN, o->uc, o->st, o->sm};
+    *p = (ft_dutton_plan){ft_dutton_apex_angle(o->sd), NAN, NAN, o->uc, o->st, o->sm, 0.0};
     if (o->literal_sd || o->uc <= 0.0)
         return FT_OK; /* literal reading; uc = 0 moves nothing, uc < 0 exaggerates: no dimension target */
     double target = o->target_dim;
@@ -136,12 +149,14 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     }
     p->apex = apex;
     p->target_dim = target;
+    p->densify = mean_segment(chains, n);
     return FT_OK;
 }
 
 typedef struct {
     double cos_t, sin_t, uc;
     ft_edit_window w;
+    int bend_straight; /* calibrated mode: straight junctions bend, to alternate sides */
 } pass_params;
 
 /* split[i] = 1 if segment i (vertex i to i+1, cyclically on a ring) is in the window. */
@@ -162,7 +177,8 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
     size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
     double x = in->x[i], y = in->y[i];
     if (has_prev && has_next && split[ip] && split[i])
-        ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc, &x, &y);
+        ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc,
+                       pp->bend_straight ? (i % 2 ? 1 : -1) : 0, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
     if (base) {
@@ -242,6 +258,53 @@ static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **ba
     return rc;
 }
 
+/* Pieces a segment of squared length l2 is cut into before a pass: ceil(L / len) if L >= 3 len and the
+ * segment is in the window (Dutton's ST keeps longer ones straight), no piece shorter than SM; else 1. */
+static size_t densify_pieces(double l2, double len, ft_edit_window w)
+{
+    if (!(l2 >= DENSIFY_RATIO * DENSIFY_RATIO * len * len) || !ft_edit_in_window(w, l2))
+        return 1;
+    double L = sqrt(l2), m = ceil(L / len);
+    if (w.sm2 > 0.0)
+        m = fmin(m, floor(L / sqrt(w.sm2)));
+    return m > 1.0 ? (size_t)m : 1;
+}
+
+/* Calibrated mode: the segments much longer than the input's mean (a straight border drawn with two
+ * vertices) cut into pieces of about the mean, new vertices on the segment, so that every part of the
+ * chain is enhanced over the same scales (a long segment would otherwise carry its coarse, not yet steady
+ * generations into the rulers). *out stays NULL when no segment needs it. */
+static int densify(const ft_chain *in, double len, ft_edit_window w, ft_chain **out)
+{
+    size_t n = in->n, nseg = ft_chain_segments(in), extra = 0;
+    for (size_t i = 0; i < nseg; i++)
+        extra += densify_pieces(ft_edit_dist2(in, i, i + 1 < n ? i + 1 : 0), len, w) - 1;
+    if (extra == 0)
+        return FT_OK;
+    ft_chain *d = ft_chain_create(n + extra, in->closed);
+    if (d == NULL)
+        return FT_E_NOMEM;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        d->x[k] = in->x[i];
+        d->y[k] = in->y[i];
+        k++;
+        if (i >= nseg)
+            continue;
+        size_t j = i + 1 < n ? i + 1 : 0;
+        size_t m = densify_pieces(ft_edit_dist2(in, i, j), len, w);
+        for (size_t q = 1; q < m; q++) {
+            double t = (double)q / (double)m;
+            d->x[k] = in->x[i] + t * (in->x[j] - in->x[i]);
+            d->y[k] = in->y[i] + t * (in->y[j] - in->y[i]);
+            k++;
+        }
+    }
+    d->n = k;
+    *out = d;
+    return FT_OK;
+}
+
 int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
     if (raw == NULL)
@@ -256,8 +319,13 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
     int rc = ft_edit_check_chain("enhance", in, &dummy);
     if (rc != FT_OK)
         return rc;
-    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm)};
-    return enhance_pass(in, &pp, base, raw);
+    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim)};
+    ft_chain *dense = NULL;
+    if (p->densify > 0.0 && (rc = densify(in, p->densify, pp.w, &dense)) != FT_OK)
+        return rc;
+    rc = enhance_pass(dense ? dense : in, &pp, base, raw);
+    ft_chain_free(dense);
+    return rc;
 }
 
 int ft_line_enhance(const ft_chain *in, const ft_dutton_opts *opts, ft_chain **out)

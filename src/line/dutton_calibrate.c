@@ -67,7 +67,7 @@ static void cell_grow(cell_walk *w, double lx, double ly, double nx, double ny, 
     if (depth == CELL_DEPTH)
         return;
     double sx, sy;
-    ft_dutton_move(lx, ly, nx, ny, rx, ry, w->cos_t, w->sin_t, 1.0, &sx, &sy);
+    ft_dutton_move(lx, ly, nx, ny, rx, ry, w->cos_t, w->sin_t, 1.0, 0, &sx, &sy);
     cell_grow(w, lx, ly, 0.5 * (lx + nx), 0.5 * (ly + ny), sx, sy, depth + 1);
     cell_grow(w, sx, sy, 0.5 * (nx + rx), 0.5 * (ny + ry), rx, ry, depth + 1);
 }
@@ -122,7 +122,8 @@ static void ring_pass(const double *ax, const double *ay, size_t n, double cos_t
 {
     for (size_t i = 0; i < n; i++) {
         size_t ip = (i + n - 1) % n, in = (i + 1) % n;
-        ft_dutton_move(ax[ip], ay[ip], ax[i], ay[i], ax[in], ay[in], cos_t, sin_t, uc, &cx[2 * i], &cy[2 * i]);
+        ft_dutton_move(ax[ip], ay[ip], ax[i], ay[i], ax[in], ay[in], cos_t, sin_t, uc, 0, &cx[2 * i],
+                       &cy[2 * i]);
         cx[2 * i + 1] = 0.5 * (ax[i] + ax[in]);
         cy[2 * i + 1] = 0.5 * (ay[i] + ay[in]);
     }

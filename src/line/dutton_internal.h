@@ -13,9 +13,11 @@
 
 /** V's new position V + uc (V* - V) in (*ox, *oy), V* the apex of the triangle on the midpoints M1 M2 of
  *  P V and V N with apex angle theta (cos_t, sin_t), legs in the ratio |PV| / |VN|, on V's side of M1 M2.
- *  Returns 0 (and V itself) if the junction has no side (straight, reversed or a zero-length segment). */
+ *  A straight junction (V on P N, going on) has no side: with straight_side 0 it stays; +1 or -1 puts V*
+ *  left or right of P -> N. Returns 0 (and V itself) if V stays (no side, a reversal, a zero-length
+ *  segment). */
 static inline int ft_dutton_move(double px, double py, double vx, double vy, double nx, double ny, double cos_t,
-                                 double sin_t, double uc, double *ox, double *oy)
+                                 double sin_t, double uc, int straight_side, double *ox, double *oy)
 {
     double ax = vx - px, ay = vy - py, cx = nx - vx, cy = ny - vy;
     double a2 = ax * ax + ay * ay, c2 = cx * cx + cy * cy;
@@ -23,11 +25,16 @@ static inline int ft_dutton_move(double px, double py, double vx, double vy, dou
     double turn = ax * cy - ay * cx; /* a c sin(turn): < 0 turning right, so V is left of P -> N */
     *ox = vx;
     *oy = vy;
-    if (!(fabs(turn) > FT_DUTTON_STRAIGHT_SIN * ac))
+    double side;
+    if (fabs(turn) > FT_DUTTON_STRAIGHT_SIN * ac)
+        side = turn < 0.0 ? 1.0 : -1.0;
+    else if (straight_side != 0 && ac > 0.0 && ax * cx + ay * cy > 0.0)
+        side = straight_side > 0 ? 1.0 : -1.0;
+    else
         return 0;
     double e2 = a2 + c2 - 2.0 * ac * cos_t;
     double s = 0.5 * (1.0 + (a2 - c2) / e2);
-    double h = (turn < 0.0 ? 1.0 : -1.0) * ac * sin_t / e2;
+    double h = side * ac * sin_t / e2;
     double ux = 0.5 * (nx - px), uy = 0.5 * (ny - py); /* M2 - M1 */
     double sx = 0.5 * (px + vx) + s * ux - h * uy;
     double sy = 0.5 * (py + vy) + s * uy + h * ux;

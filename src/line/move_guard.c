@@ -8,9 +8,11 @@
  * segments A V, V C or the path V0 V (ft_segment_contact: a shared end point is allowed, an overlap is not)
  * or lies inside the triangles A V0 V and V0 V C (a small island the move would jump over); otherwise v
  * stays at V0. In FT_GUARD_MIRROR mode (midpoint displacements: Zhang et al.'s boundary) the mirror move
- * V0 - (raw - V0), the apex drawn on the other side with the same legs, is tried after the full move. Each accepted move is a continuous motion that touches nothing, so the layer's topology
- * (which side of which line every feature lies) is kept, not only its simplicity. The segments are found in the grid of
- * swept segments (segment_index.c), tested at their current positions.
+ * V0 - (raw - V0), the apex drawn on the other side with the same legs, is tried after the full move (the
+ * index counts the mirror in a segment's swept box). Each accepted move is a continuous motion that touches
+ * nothing, so the layer's topology (which side of which line every feature lies) is kept, not only its
+ * simplicity. The segments are found in the near lists of the block index (segment_index.c), tested at
+ * their current positions.
  *
  * Invariant: if the base geometry has no contact, every accepted move keeps it so (the only segments that
  * change are v's two, and they were just tested against all others, along the whole motion), and a refused
@@ -23,6 +25,7 @@
  */
 #include "internal.h"
 #include "fracterra/line.h"
+#include "line/segment_contact.h"
 #include "line/segment_index.h"
 
 #include <math.h>
@@ -31,7 +34,7 @@
 
 typedef struct {
     ft_chain *const *cur;
-    const ft_segment_grid *g;
+    const ft_segment_blocks *g;
 } guard;
 
 static inline double dmin(double a, double b)
@@ -44,18 +47,6 @@ static inline double dmax(double a, double b)
     return a > b ? a : b;
 }
 
-/* Current end points of segment id. */
-static void seg_points(const guard *G, uint32_t id, double p[4])
-{
-    uint32_t c = G->g->seg_chain[id];
-    const ft_chain *ch = G->cur[c];
-    size_t i = id - G->g->chain_first[c], j = i + 1 < ch->n ? i + 1 : 0;
-    p[0] = ch->x[i];
-    p[1] = ch->y[i];
-    p[2] = ch->x[j];
-    p[3] = ch->y[j];
-}
-
 static int strictly_inside(const double *a, const double *b, const double *c, double px, double py)
 {
     double o1 = (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
@@ -64,45 +55,48 @@ static int strictly_inside(const double *a, const double *b, const double *c, do
     return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
 }
 
-/* 1 if moving the vertex from b0 to b (segments a b0 -> a b with id sa, b0 c -> b c with id sb; a or c NULL
- * when absent: UINT32_MAX) would sweep another segment: contact with a b, b c or the path b0 b, or an end
- * point inside the triangles a b0 b, b0 b c. */
-static int blocked(const guard *G, const double *a, const double *b0, const double *b, const double *c,
-                   uint32_t sa, uint32_t sb)
+/* 1 if moving vertex v of chain c from b0 to b (its segments sa: a b0 -> a b, sb: b0 c -> b c; a or c NULL
+ * when absent, sa or sb then SIZE_MAX) would sweep another segment: contact with a b, b c or the path b0 b,
+ * or an end point inside the triangles a b0 b, b0 b c. Every such segment is in the near list of block nb
+ * (the block of sa, or of sb if there is no sa): the whole motion lies in that block's reach. */
+static int blocked(const guard *G, size_t c, size_t nb, const double *a, const double *b0, const double *b,
+                   const double *cc, size_t sa, size_t sb)
 {
     double box[4] = {dmin(b[0], b0[0]), dmin(b[1], b0[1]), dmax(b[0], b0[0]), dmax(b[1], b0[1])};
     if (a) {
         box[0] = dmin(box[0], a[0]), box[1] = dmin(box[1], a[1]);
         box[2] = dmax(box[2], a[0]), box[3] = dmax(box[3], a[1]);
     }
-    if (c) {
-        box[0] = dmin(box[0], c[0]), box[1] = dmin(box[1], c[1]);
-        box[2] = dmax(box[2], c[0]), box[3] = dmax(box[3], c[1]);
+    if (cc) {
+        box[0] = dmin(box[0], cc[0]), box[1] = dmin(box[1], cc[1]);
+        box[2] = dmax(box[2], cc[0]), box[3] = dmax(box[3], cc[1]);
     }
-    size_t k[4];
-    ft_segment_grid_cells(G->g, box, k);
-    for (size_t cy = k[1]; cy <= k[3]; cy++)
-        for (size_t cx = k[0]; cx <= k[2]; cx++) {
-            size_t cell = ft_segment_grid_bucket(G->g, cx, cy);
-            for (size_t e = G->g->start[cell]; e < G->g->start[cell + 1]; e++) {
-                uint32_t id = G->g->ids[e];
-                if (id == sa || id == sb)
-                    continue;
-                double p[4];
-                seg_points(G, id, p);
-                if (dmax(p[0], p[2]) < box[0] || dmin(p[0], p[2]) > box[2] || dmax(p[1], p[3]) < box[1] ||
-                    dmin(p[1], p[3]) > box[3])
-                    continue;
-                if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p[0], p[1], p[2], p[3]))
-                    return 1;
-                if (c && ft_segment_contact(b[0], b[1], c[0], c[1], p[0], p[1], p[2], p[3]))
-                    return 1;
-                if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p[0], p[1], p[2], p[3]))
-                    return 1;
-                if ((a && strictly_inside(a, b0, b, p[0], p[1])) || (c && strictly_inside(b0, b, c, p[0], p[1])))
-                    return 1;
-            }
+    const ft_segment_blocks *g = G->g;
+    for (uint32_t e = g->near_start[nb]; e < g->near_start[nb + 1]; e++) {
+        uint32_t m = g->near[e], mc = g->chain[m];
+        const double *q = g->box + 4 * (size_t)m;
+        if (q[2] < box[0] || q[0] > box[2] || q[3] < box[1] || q[1] > box[3])
+            continue;
+        const ft_chain *ch = G->cur[mc];
+        size_t n = ch->n, s0 = g->first[m], s1 = s0 + g->count[m];
+        const double *x = ch->x, *y = ch->y;
+        for (size_t s = s0; s < s1; s++) {
+            if (mc == c && (s == sa || s == sb))
+                continue;
+            size_t j = s + 1 < n ? s + 1 : 0;
+            double p0 = x[s], p1 = y[s], p2 = x[j], p3 = y[j];
+            if (dmax(p0, p2) < box[0] || dmin(p0, p2) > box[2] || dmax(p1, p3) < box[1] || dmin(p1, p3) > box[3])
+                continue;
+            if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p0, p1, p2, p3))
+                return 1;
+            if (cc && ft_segment_contact(b[0], b[1], cc[0], cc[1], p0, p1, p2, p3))
+                return 1;
+            if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p0, p1, p2, p3))
+                return 1;
+            if ((a && strictly_inside(a, b0, b, p0, p1)) || (cc && strictly_inside(b0, b, cc, p0, p1)))
+                return 1;
         }
+    }
     return 0;
 }
 
@@ -114,8 +108,8 @@ static double guard_vertex(const guard *G, size_t c, size_t i, const ft_chain *r
     size_t n = ch->n;
     int has_prev = ch->closed || i > 0, has_next = ch->closed || i + 1 < n;
     size_t ip = i > 0 ? i - 1 : n - 1, in = i + 1 < n ? i + 1 : 0;
-    uint32_t first = G->g->chain_first[c];
-    uint32_t sa = has_prev ? first + (uint32_t)ip : UINT32_MAX, sb = has_next ? first + (uint32_t)i : UINT32_MAX;
+    size_t sa = has_prev ? ip : SIZE_MAX, sb = has_next ? i : SIZE_MAX;
+    size_t nb = G->g->chain_block[c] + (has_prev ? ip : i) / FT_SEGMENT_BLOCK;
     double a[2], cc[2];
     if (has_prev)
         a[0] = ch->x[ip], a[1] = ch->y[ip];
@@ -128,7 +122,7 @@ static double guard_vertex(const guard *G, size_t c, size_t i, const ft_chain *r
         if (t < 0.0 && mode != FT_GUARD_MIRROR)
             continue;
         double b[2] = {bx + t * dx, by + t * dy};
-        if (!blocked(G, has_prev ? a : NULL, b0, b, has_next ? cc : NULL, sa, sb)) {
+        if (!blocked(G, c, nb, has_prev ? a : NULL, b0, b, has_next ? cc : NULL, sa, sb)) {
             ch->x[i] = b[0];
             ch->y[i] = b[1];
             return t;
@@ -157,8 +151,8 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
         if (rc != FT_OK)
             return rc;
     }
-    ft_segment_grid g;
-    int rc = ft_segment_grid_build(&g, (const ft_chain *const *)chains, raw, n);
+    ft_segment_blocks g;
+    int rc = ft_segment_blocks_build(&g, (const ft_chain *const *)chains, raw, n, mode == FT_GUARD_MIRROR);
     if (rc != FT_OK)
         return rc;
     guard G = {chains, &g};
@@ -175,7 +169,7 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
             s.redrawn += t < 0.0;
         }
     }
-    ft_segment_grid_free(&g);
+    ft_segment_blocks_free(&g);
     if (stats) {
         stats->moves += s.moves;
         stats->reduced += s.reduced;

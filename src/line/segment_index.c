@@ -1,14 +1,17 @@
-/* fracterra — line/segment_index.c: a uniform grid over the segments of a set of chains whose vertices move
- * during a guarded pass (move_guard.c), and the contact test between two segments.
+/* fracterra — line/segment_index.c: an index of the segments of a set of chains whose vertices move during
+ * a guarded pass (move_guard.c), and the contact test between two segments.
  *
- * Every vertex of a guarded pass ends somewhere on the straight path from its base position to its raw
- * position (move_guard.c only shortens moves), so a segment's every possible position lies in the bounding
- * box of its two end points' base and raw positions, its swept box. Each segment is filed once, in every
- * cell its swept box meets (counting pass, prefix sums, filling pass: a compressed row table, no
- * reallocation); a query returns every segment whose swept box meets the query box, and the caller tests it
- * at its current position. The cell side is the mean larger side of the swept boxes, but not below
- * sqrt(area / (4 nseg)), so the grid has at most about 4 nseg cells (row-major: the cells a walk along a
- * chain queries are next to each other in memory; hashing them, tried, was 2-5 times slower).
+ * Every vertex of a guarded pass ends on the straight line through its base and raw positions: somewhere
+ * from base to raw (move_guard.c only shortens moves) or, in mirror mode, at base - (raw - base). So a
+ * segment's every possible position lies in the bounding box of its two end points' base, raw (and mirror)
+ * positions, its swept box, widened by 1e-9 of its largest coordinate against rounding. The segments are cut
+ * into blocks of FT_SEGMENT_BLOCK consecutive segments of a chain (a chain is spatially coherent, so a
+ * block's box is small) and every block b lists the blocks whose boxes meet its reach, the union of its box
+ * and the next block's: a uniform grid over the block boxes (counting pass, prefix sums, filling pass), each
+ * pair found once, in the lowest cell the two share. A vertex whose segments lie in b and the next block
+ * sweeps only points of that reach, so every segment it may touch is in b's list: where a chain runs clear of
+ * others, three or four blocks. Indexing blocks instead of segments makes the grid FT_SEGMENT_BLOCK times
+ * smaller, and the guard then scans short runs of consecutive segments, in memory order.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -19,7 +22,9 @@
 #include <stdlib.h>
 
 #define MAX_SPAN 1048576.0          /* cells along an axis: at most 2^20 */
-#define MAX_CELLS_PER_SEGMENT 4.0   /* the grid has at most about 4 nseg cells */
+#define MAX_CELLS_PER_BLOCK 4.0     /* the grid has at most about 4 nblock cells */
+#define NEAR_SLOTS 8               /* near blocks kept per block in the first join pass */
+#define WIDEN 1e-9                  /* swept boxes widened by this fraction of their largest coordinate */
 
 static inline double dmin(double a, double b)
 {
@@ -31,184 +36,295 @@ static inline double dmax(double a, double b)
     return a > b ? a : b;
 }
 
-static double orient(double ax, double ay, double bx, double by, double cx, double cy)
+/* ---- the block index ----------------------------------------------------------------------------- */
+
+static void box_add(double box[4], double x, double y)
 {
-    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    box[0] = dmin(box[0], x);
+    box[1] = dmin(box[1], y);
+    box[2] = dmax(box[2], x);
+    box[3] = dmax(box[3], y);
 }
 
-/* c, known collinear with a b, lies within the closed segment a b. */
-static int within(double ax, double ay, double bx, double by, double cx, double cy)
+/* The widened swept box of block b. */
+static void block_box(const ft_segment_blocks *g, const ft_chain *const *base, const ft_chain *const *raw, size_t b,
+                      int mirror, double box[4])
 {
-    return dmin(ax, bx) <= cx && cx <= dmax(ax, bx) && dmin(ay, by) <= cy && cy <= dmax(ay, by);
+    const ft_chain *bc = base[g->chain[b]], *rc = raw[g->chain[b]];
+    size_t n = bc->n, v0 = g->first[b], v1 = v0 + g->count[b];
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (size_t v = v0; v <= v1; v++) {
+        size_t i = v < n ? v : v - n; /* a ring's last segment ends at vertex 0 */
+        double bx = bc->x[i], by = bc->y[i], rx = rc->x[i], ry = rc->y[i];
+        box_add(box, bx, by);
+        box_add(box, rx, ry);
+        if (mirror)
+            box_add(box, bx - (rx - bx), by - (ry - by));
+    }
+    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
+    double w = WIDEN * m + 1e-300;
+    box[0] -= w;
+    box[1] -= w;
+    box[2] += w;
+    box[3] += w;
 }
 
-/* The closed segments a b and c d have a point in common. */
-static int closed_intersect(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy)
+/* The block after b along its chain (a ring's last: its first), or b itself at an open chain's end. */
+static size_t next_block(const ft_segment_blocks *g, const ft_chain *const *base, size_t b)
 {
-    if (dmax(ax, bx) < dmin(cx, dx) || dmax(cx, dx) < dmin(ax, bx) || dmax(ay, by) < dmin(cy, dy) ||
-        dmax(cy, dy) < dmin(ay, by))
+    uint32_t c = g->chain[b];
+    if (b + 1 < g->chain_block[c + 1])
+        return b + 1;
+    return base[c]->closed ? g->chain_block[c] : b;
+}
+
+typedef struct {
+    double x0, y0, inv;
+    size_t nx, ny;
+    uint32_t *start, *ids, *range; /* range: the cell range of every block, 4 per block */
+} block_grid;
+
+static inline size_t clamp_cell(double v, size_t n)
+{
+    if (!(v > 0.0))
         return 0;
-    double d1 = orient(cx, cy, dx, dy, ax, ay), d2 = orient(cx, cy, dx, dy, bx, by);
-    double d3 = orient(ax, ay, bx, by, cx, cy), d4 = orient(ax, ay, bx, by, dx, dy);
-    if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-        return 1;
-    return (d1 == 0 && within(cx, cy, dx, dy, ax, ay)) || (d2 == 0 && within(cx, cy, dx, dy, bx, by)) ||
-           (d3 == 0 && within(ax, ay, bx, by, cx, cy)) || (d4 == 0 && within(ax, ay, bx, by, dx, dy));
+    return v >= (double)(n - 1) ? n - 1 : (size_t)v;
 }
 
-/* Two segments from the shared point s, to a and to c, overlap beyond s: collinear and the same way. */
-static int fold(double sx, double sy, double ax, double ay, double cx, double cy)
+static void cells_of(const block_grid *G, const double *box, size_t c[4])
 {
-    return orient(sx, sy, ax, ay, cx, cy) == 0 && (ax - sx) * (cx - sx) + (ay - sy) * (cy - sy) > 0;
+    c[0] = clamp_cell((box[0] - G->x0) * G->inv, G->nx);
+    c[1] = clamp_cell((box[1] - G->y0) * G->inv, G->ny);
+    c[2] = clamp_cell((box[2] - G->x0) * G->inv, G->nx);
+    c[3] = clamp_cell((box[3] - G->y0) * G->inv, G->ny);
 }
 
-int ft_segment_contact(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy)
-{
-    if (ax == cx && ay == cy)
-        return fold(ax, ay, bx, by, dx, dy) || (bx == dx && by == dy && (ax != bx || ay != by));
-    if (ax == dx && ay == dy)
-        return fold(ax, ay, bx, by, cx, cy) || (bx == cx && by == cy && (ax != bx || ay != by));
-    if (bx == cx && by == cy)
-        return fold(bx, by, ax, ay, dx, dy);
-    if (bx == dx && by == dy)
-        return fold(bx, by, ax, ay, cx, cy);
-    return closed_intersect(ax, ay, bx, by, cx, cy, dx, dy);
-}
-
-/* ---- the grid ----------------------------------------------------------------------------------- */
-
-static void swept_box(const ft_chain *b, const ft_chain *r, size_t i, size_t j, double box[4])
-{
-    box[0] = dmin(dmin(b->x[i], r->x[i]), dmin(b->x[j], r->x[j]));
-    box[1] = dmin(dmin(b->y[i], r->y[i]), dmin(b->y[j], r->y[j]));
-    box[2] = dmax(dmax(b->x[i], r->x[i]), dmax(b->x[j], r->x[j]));
-    box[3] = dmax(dmax(b->y[i], r->y[i]), dmax(b->y[j], r->y[j]));
-}
-
-/* Origin, cell side and size of the grid from the swept boxes. */
-static int grid_frame(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n)
+static void grid_frame(block_grid *G, const double *box, size_t nb)
 {
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, side = 0.0;
-    for (size_t c = 0; c < n; c++)
-        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++) {
-            double b[4];
-            swept_box(base[c], raw[c], i, i + 1 < base[c]->n ? i + 1 : 0, b);
-            x0 = dmin(x0, b[0]);
-            y0 = dmin(y0, b[1]);
-            x1 = dmax(x1, b[2]);
-            y1 = dmax(y1, b[3]);
-            side += dmax(b[2] - b[0], b[3] - b[1]);
-        }
-    double w = x1 - x0, h = y1 - y0, ns = (double)g->nseg;
-    side = dmax(side / ns, sqrt(w * h / (MAX_CELLS_PER_SEGMENT * ns)));
+    for (size_t b = 0; b < nb; b++) {
+        const double *q = box + 4 * b;
+        x0 = dmin(x0, q[0]);
+        y0 = dmin(y0, q[1]);
+        x1 = dmax(x1, q[2]);
+        y1 = dmax(y1, q[3]);
+        side += dmax(q[2] - q[0], q[3] - q[1]);
+    }
+    double w = x1 - x0, h = y1 - y0;
+    side = dmax(side / (double)nb, sqrt(w * h / (MAX_CELLS_PER_BLOCK * (double)nb)));
     side = dmax(side, dmax(w, h) / MAX_SPAN);
     if (!(side > 0.0))
         side = dmax(dmax(w, h), 1.0);
-    g->x0 = x0;
-    g->y0 = y0;
-    g->inv = 1.0 / side;
-    g->nx = (size_t)(w / side) + 1;
-    g->ny = (size_t)(h / side) + 1;
-    g->nbuckets = g->nx * g->ny;
-    return FT_OK;
+    G->x0 = x0;
+    G->y0 = y0;
+    G->inv = 1.0 / side;
+    G->nx = (size_t)(w / side) + 1;
+    G->ny = (size_t)(h / side) + 1;
 }
 
-/* The cell range of every segment's swept box, into k (4 per segment), and the count of every cell into
- * start[cell + 1]. Returns the number of entries (cells met, summed over the segments). */
-static size_t range_and_count(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
-                              uint32_t *k)
+/* Files every block in the cells its box meets; entries of a cell in increasing block order. */
+static int grid_build(block_grid *G, const double *box, size_t nb)
 {
-    size_t id = 0, total = 0;
-    for (size_t c = 0; c < n; c++)
-        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++, id++) {
-            double b[4];
-            size_t r[4];
-            swept_box(base[c], raw[c], i, i + 1 < base[c]->n ? i + 1 : 0, b);
-            ft_segment_grid_cells(g, b, r);
-            for (int q = 0; q < 4; q++)
-                k[4 * id + q] = (uint32_t)r[q];
-            total += (r[2] - r[0] + 1) * (r[3] - r[1] + 1);
-            if (total >= UINT32_MAX)
-                return total; /* the caller refuses it; the counts are not used */
-            for (size_t cy = r[1]; cy <= r[3]; cy++)
-                for (size_t cx = r[0]; cx <= r[2]; cx++)
-                    g->start[cy * g->nx + cx + 1]++;
-        }
-    return total;
-}
-
-static void file_segments(ft_segment_grid *g, const uint32_t *k, uint32_t *next)
-{
-    for (size_t id = 0; id < g->nseg; id++) {
-        const uint32_t *r = k + 4 * id;
+    grid_frame(G, box, nb);
+    size_t ncell = G->nx * G->ny, total = 0;
+    G->start = ft_calloc(ncell + 1, sizeof *G->start);
+    G->range = ft_malloc(4 * nb * sizeof *G->range);
+    if (G->start == NULL || G->range == NULL)
+        return FT_E_NOMEM;
+    for (size_t b = 0; b < nb; b++) {
+        size_t r[4];
+        cells_of(G, box + 4 * b, r);
+        for (int q = 0; q < 4; q++)
+            G->range[4 * b + q] = (uint32_t)r[q];
+        total += (r[2] - r[0] + 1) * (r[3] - r[1] + 1);
+        if (total >= UINT32_MAX)
+            return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 cell entries (%zu blocks)", nb);
         for (size_t cy = r[1]; cy <= r[3]; cy++)
             for (size_t cx = r[0]; cx <= r[2]; cx++)
-                g->ids[next[cy * g->nx + cx]++] = (uint32_t)id;
+                G->start[cy * G->nx + cx + 1]++;
     }
-}
-
-int ft_segment_grid_build(ft_segment_grid *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n)
-{
-    *g = (ft_segment_grid){0};
-    size_t nseg = 0;
-    for (size_t c = 0; c < n; c++)
-        nseg += ft_chain_segments(base[c]);
-    if (nseg >= UINT32_MAX)
-        return ft_error(FT_E_NOMEM, "segment index: %zu segments (at most 2^32 - 2)", nseg);
-    g->nseg = nseg;
-    if (nseg == 0)
-        return FT_OK;
-    int rc = grid_frame(g, base, raw, n);
-    if (rc != FT_OK)
-        return rc;
-    size_t ncells = g->nbuckets;
-    g->start = ft_calloc(ncells + 1, sizeof *g->start);
-    g->seg_chain = ft_malloc(nseg * sizeof *g->seg_chain);
-    g->chain_first = ft_malloc((n + 1) * sizeof *g->chain_first);
-    if (g->start == NULL || g->seg_chain == NULL || g->chain_first == NULL) {
-        ft_segment_grid_free(g);
-        return FT_E_NOMEM;
-    }
-    uint32_t id = 0;
-    for (size_t c = 0; c < n; c++) {
-        g->chain_first[c] = id;
-        for (size_t i = 0, ns = ft_chain_segments(base[c]); i < ns; i++)
-            g->seg_chain[id++] = (uint32_t)c;
-    }
-    g->chain_first[n] = id;
-    uint32_t *ranges = ft_malloc(4 * nseg * sizeof *ranges);
-    if (ranges == NULL) {
-        ft_segment_grid_free(g);
-        return FT_E_NOMEM;
-    }
-    if (range_and_count(g, base, raw, n, ranges) >= UINT32_MAX) {
-        free(ranges);
-        ft_segment_grid_free(g);
-        return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 cell entries (%zu segments)", nseg);
-    }
-    for (size_t k = 0; k < ncells; k++)
-        g->start[k + 1] += g->start[k];
-    uint32_t *next = ft_malloc(ncells * sizeof *next);
-    g->ids = ft_malloc((g->start[ncells] ? g->start[ncells] : 1) * sizeof *g->ids);
-    if (next == NULL || g->ids == NULL) {
+    for (size_t k = 0; k < ncell; k++)
+        G->start[k + 1] += G->start[k];
+    uint32_t *next = ft_malloc(ncell * sizeof *next);
+    G->ids = ft_malloc((total ? total : 1) * sizeof *G->ids);
+    if (next == NULL || G->ids == NULL) {
         free(next);
-        free(ranges);
-        ft_segment_grid_free(g);
         return FT_E_NOMEM;
     }
-    for (size_t k = 0; k < ncells; k++)
-        next[k] = g->start[k];
-    file_segments(g, ranges, next);
+    for (size_t k = 0; k < ncell; k++)
+        next[k] = G->start[k];
+    for (size_t b = 0; b < nb; b++) {
+        const uint32_t *r = G->range + 4 * b;
+        for (size_t cy = r[1]; cy <= r[3]; cy++)
+            for (size_t cx = r[0]; cx <= r[2]; cx++)
+                G->ids[next[cy * G->nx + cx]++] = (uint32_t)b;
+    }
     free(next);
-    free(ranges);
     return FT_OK;
 }
 
-void ft_segment_grid_free(ft_segment_grid *g)
+static void grid_free(block_grid *G)
 {
-    free(g->start);
-    free(g->ids);
-    free(g->seg_chain);
-    free(g->chain_first);
-    *g = (ft_segment_grid){0};
+    free(G->start);
+    free(G->ids);
+    free(G->range);
+}
+
+/* The blocks whose boxes meet reach (cell range rr), each once: in the lowest cell it shares with the reach.
+ * The first cap of them are written to out, in increasing order; returns how many there are. */
+static size_t near_blocks(const block_grid *G, const double *box, const double *reach, const size_t rr[4],
+                          uint32_t *out, size_t cap)
+{
+    size_t k = 0;
+    for (size_t cy = rr[1]; cy <= rr[3]; cy++)
+        for (size_t cx = rr[0]; cx <= rr[2]; cx++) {
+            size_t cell = cy * G->nx + cx;
+            for (uint32_t e = G->start[cell]; e < G->start[cell + 1]; e++) {
+                uint32_t m = G->ids[e];
+                const uint32_t *mr = G->range + 4 * (size_t)m;
+                if (cx != (mr[0] > rr[0] ? mr[0] : rr[0]) || cy != (mr[1] > rr[1] ? mr[1] : rr[1]))
+                    continue;
+                const double *q = box + 4 * (size_t)m;
+                if (q[2] < reach[0] || q[0] > reach[2] || q[3] < reach[1] || q[1] > reach[3])
+                    continue;
+                if (k < cap) {
+                    size_t j = k;
+                    while (j > 0 && out[j - 1] > m) {
+                        out[j] = out[j - 1];
+                        j--;
+                    }
+                    out[j] = m;
+                }
+                k++;
+            }
+        }
+    return k;
+}
+
+static void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, const double *box, size_t b,
+                     double reach[4])
+{
+    const double *p = box + 4 * b, *q = box + 4 * next_block(g, base, b);
+    reach[0] = dmin(p[0], q[0]);
+    reach[1] = dmin(p[1], q[1]);
+    reach[2] = dmax(p[2], q[2]);
+    reach[3] = dmax(p[3], q[3]);
+}
+
+/* The near lists of every block, each block independently (any thread count gives the same lists): into
+ * NEAR_SLOTS slots per block, then packed; the few blocks with more are listed again in their packed place. */
+static int join(ft_segment_blocks *g, const ft_chain *const *base, const double *box)
+{
+    size_t nb = g->nblock;
+    block_grid G = {0};
+    int rc = grid_build(&G, box, nb);
+    uint32_t *slots = rc == FT_OK ? ft_malloc(NEAR_SLOTS * nb * sizeof *slots) : NULL;
+    g->near_start = slots != NULL ? ft_calloc(nb + 1, sizeof *g->near_start) : NULL;
+    if (g->near_start == NULL) {
+        free(slots);
+        grid_free(&G);
+        return rc == FT_OK ? FT_E_NOMEM : rc;
+    }
+    long long nbl = (long long)nb;
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (long long b = 0; b < nbl; b++) {
+        double reach[4];
+        size_t rr[4];
+        reach_of(g, base, box, (size_t)b, reach);
+        cells_of(&G, reach, rr);
+        g->near_start[b + 1] = (uint32_t)near_blocks(&G, box, reach, rr, slots + NEAR_SLOTS * b, NEAR_SLOTS);
+    }
+    size_t total = 0;
+    for (size_t b = 0; b < nb; b++) {
+        total += g->near_start[b + 1];
+        if (total >= UINT32_MAX) {
+            free(slots);
+            grid_free(&G);
+            return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 block pairs (%zu blocks)", nb);
+        }
+        g->near_start[b + 1] = (uint32_t)total;
+    }
+    g->near = ft_malloc((total ? total : 1) * sizeof *g->near);
+    if (g->near == NULL) {
+        free(slots);
+        grid_free(&G);
+        return FT_E_NOMEM;
+    }
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nbl; b++) {
+        size_t k = g->near_start[b + 1] - g->near_start[b];
+        uint32_t *out = g->near + g->near_start[b];
+        if (k <= NEAR_SLOTS) {
+            for (size_t j = 0; j < k; j++)
+                out[j] = slots[NEAR_SLOTS * b + j];
+        } else {
+            double reach[4];
+            size_t rr[4];
+            reach_of(g, base, box, (size_t)b, reach);
+            cells_of(&G, reach, rr);
+            near_blocks(&G, box, reach, rr, out, k);
+        }
+    }
+    free(slots);
+    grid_free(&G);
+    return FT_OK;
+}
+
+int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
+                            int mirror)
+{
+    *g = (ft_segment_blocks){0};
+    size_t nseg = 0, nb = 0;
+    for (size_t c = 0; c < n; c++) {
+        size_t ns = ft_chain_segments(base[c]);
+        nseg += ns;
+        nb += (ns + FT_SEGMENT_BLOCK - 1) / FT_SEGMENT_BLOCK;
+    }
+    if (nseg >= UINT32_MAX || n >= UINT32_MAX)
+        return ft_error(FT_E_NOMEM, "segment index: %zu segments in %zu chains (at most 2^32 - 2)", nseg, n);
+    g->nblock = nb;
+    g->nchain = n;
+    g->chain_block = ft_malloc((n + 1) * sizeof *g->chain_block);
+    g->chain = ft_malloc((nb ? nb : 1) * sizeof *g->chain);
+    g->first = ft_malloc((nb ? nb : 1) * sizeof *g->first);
+    g->count = ft_malloc((nb ? nb : 1) * sizeof *g->count);
+    double *box = g->box = ft_malloc((nb ? 4 * nb : 1) * sizeof *box);
+    if (g->chain_block == NULL || g->chain == NULL || g->first == NULL || g->count == NULL || box == NULL) {
+        ft_segment_blocks_free(g);
+        return FT_E_NOMEM;
+    }
+    size_t b = 0;
+    for (size_t c = 0; c < n; c++) {
+        g->chain_block[c] = (uint32_t)b;
+        for (size_t s = 0, ns = ft_chain_segments(base[c]); s < ns; s += FT_SEGMENT_BLOCK, b++) {
+            g->chain[b] = (uint32_t)c;
+            g->first[b] = (uint32_t)s;
+            g->count[b] = (uint8_t)(ns - s < FT_SEGMENT_BLOCK ? ns - s : FT_SEGMENT_BLOCK);
+        }
+    }
+    g->chain_block[n] = (uint32_t)b;
+    int rc = FT_OK;
+    if (nb > 0) {
+        long long nbl = (long long)nb;
+#pragma omp parallel for schedule(static)
+        for (long long k = 0; k < nbl; k++)
+            block_box(g, base, raw, (size_t)k, mirror, box + 4 * k);
+        rc = join(g, base, box);
+    }
+    if (rc != FT_OK)
+        ft_segment_blocks_free(g);
+    return rc;
+}
+
+void ft_segment_blocks_free(ft_segment_blocks *g)
+{
+    free(g->chain);
+    free(g->first);
+    free(g->chain_block);
+    free(g->near_start);
+    free(g->near);
+    free(g->count);
+    free(g->box);
+    *g = (ft_segment_blocks){0};
 }

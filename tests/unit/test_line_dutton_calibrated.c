@@ -232,7 +232,8 @@ static void test_calibrated_angle_and_wiring(void **state)
 }
 
 /* The length growth per pass of enhanced chains, sqrt(L_8 / L_6), is the canonical cell's: its dimension
- * ln 2 / ln(2 / f) is the target, on every input and every target. */
+ * ln 2 / ln(2 / f) is the target, on every input and every target. (8 passes from the input, not 2 more from
+ * the 6-pass chain: a new call would cut that chain's longest segments again, its input being another.) */
 static void test_growth_of_chains_is_steady_state(void **state)
 {
     (void)state;
@@ -241,7 +242,7 @@ static void test_growth_of_chains_is_steady_state(void **state)
     const double targets[] = {1.1, 1.3, 1.5, 1.7};
     for (size_t t = 0; t < 4; t++)
         for (int i = 0; i < NINPUTS; i++) {
-            ft_chain *six = enhance_to(in[i].chain, targets[t], 6), *eight = enhance_to(six, targets[t], 2);
+            ft_chain *six = enhance_to(in[i].chain, targets[t], 6), *eight = enhance_to(in[i].chain, targets[t], 8);
             double f = sqrt(ft_chain_length(eight) / ft_chain_length(six)), d = log(2.0) / log(2.0 / f);
             print_message("target %.1f, %-16s: growth %.4f per pass, D = %.4f\n", targets[t], in[i].name, f, d);
             assert_near(d, targets[t], 0.01);
@@ -285,7 +286,7 @@ static void test_divider_deep_targets(void **state)
     for (size_t t = 0; t < 4; t++)
         for (int i = 0; i < NINPUTS; i++) {
             double mi = mean_segment(in[i].chain), r2, r2_6;
-            ft_chain *six = enhance_to(in[i].chain, targets[t], 6), *twelve = enhance_to(six, targets[t], 6);
+            ft_chain *six = enhance_to(in[i].chain, targets[t], 6), *twelve = enhance_to(in[i].chain, targets[t], 12);
             double d6 = divider(six, 2.0 * mean_segment(six), 0.5 * mi, &r2_6);
             double d12 = divider(twelve, 8.0 * mean_segment(twelve), 0.25 * mi, &r2);
             print_message("target %.1f, %-16s: divider D = %.4f after 6 passes (fine scales), %.4f after 12 "
@@ -324,6 +325,49 @@ static void test_bad_target(void **state)
     expect_error(INFINITY, "got inf");
 }
 
+/* Calibrated default: a straight run bends, to alternate sides (left of the direction of travel at odd input
+ * indices); --literal-sd leaves it straight. A segment 3 times the input's mean or longer is first cut into
+ * ceil(L / mean) equal pieces; one just under 3 times is not. */
+static void test_straight_runs_and_long_segments(void **state)
+{
+    (void)state;
+    const double xy[] = {0, 0, 10, 0, 20, 0, 30, 0, 40, 0};
+    ft_chain *line = ft_chain_from_arrays(xy, xy + 1, 5, 2, 0);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.allow_crossings = 1;
+    ft_chain *out = NULL;
+    assert_int_equal(ft_line_enhance(line, &o, &out), FT_OK);
+    assert_int_equal(out->n, 9);
+    for (size_t i = 1; i < 4; i++) /* input vertex i is output vertex 2i: left (y > 0) when i is odd */
+        assert_true(i % 2 ? out->y[2 * i] > 1.0 : out->y[2 * i] < -1.0);
+    ft_chain_free(out);
+    o.literal_sd = 1;
+    assert_int_equal(ft_line_enhance(line, &o, &out), FT_OK);
+    for (size_t k = 0; k < out->n; k++)
+        assert_true(out->y[k] == 0.0);
+    ft_chain_free(out);
+    ft_chain_free(line);
+
+    /* segments 10, 10, 10, 10, L: mean (40 + L) / 5; L = 100 gives mean 28 and 4 pieces (100 >= 84) */
+    const double xy2[] = {0, 0, 10, 0, 10, 10, 20, 10, 20, 20, 120, 20};
+    ft_chain *c = ft_chain_from_arrays(xy2, xy2 + 1, 6, 2, 0);
+    o = (ft_dutton_opts)FT_DUTTON_OPTS_DEFAULT;
+    o.allow_crossings = 1;
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * (6 + 3) - 1);
+    ft_chain_free(out);
+    c->x[5] = 70.0; /* L = 50: mean 18, 50 < 54: not cut */
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * 6 - 1);
+    ft_chain_free(out);
+    o.literal_sd = 1; /* nothing is cut in the literal reading */
+    c->x[5] = 120.0;
+    assert_int_equal(ft_line_enhance(c, &o, &out), FT_OK);
+    assert_int_equal(out->n, 2 * 6 - 1);
+    ft_chain_free(out);
+    ft_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -333,6 +377,7 @@ int main(void)
         cmocka_unit_test(test_growth_of_chains_is_steady_state),
         cmocka_unit_test(test_divider_six_passes_target_1_3),
         cmocka_unit_test(test_divider_deep_targets),
+        cmocka_unit_test(test_straight_runs_and_long_segments),
         cmocka_unit_test(test_bad_target),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
