@@ -1,5 +1,5 @@
 /* fracterra — bench/accuracy/synth_calibrate.c: measures the calibration tables of the sra and midpoint
- * synthesizers (src/terrain/synth_calibration.c, docs/terrain-synthesis.md).
+ * synthesizers (src/terrain/synth/synth_calibration.c, docs/terrain-synthesis.md).
  *
  * For every raw D_param on a grid, synthesizes `seeds` surfaces of n x n with the paper's raw method
  * (ft_synth_sra_fill / ft_synth_midpoint_fill with H = 3 - D_param, D_param may leave (2, 3) where the
@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "fracterra/fracterra.h"
-#include "terrain/synth_internal.h"
+#include "terrain/synth/synth_internal.h"
 
 static double lag_D(const float *z, size_t n)
 {

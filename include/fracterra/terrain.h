@@ -56,7 +56,7 @@ FT_API const char *ft_synth_method_name(ft_synth_method m);
 FT_API int ft_synth_method_parse(const char *name, ft_synth_method *m);
 /** The D the raw algorithm runs at (H = 3 - raw D) when sra or midpoint is asked for D on an nx x ny grid
  *  (sra: from its exact expected variogram, which depends on the size; midpoint: its measured table;
- *  src/terrain/synth_calibration.c); D itself for the other methods. */
+ *  src/terrain/synth/synth_calibration.c); D itself for the other methods. */
 FT_API double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
 
 

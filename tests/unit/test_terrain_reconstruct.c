@@ -1,4 +1,4 @@
-/* fracterra — unit tests of terrain/reconstruct.c and recon_*.c: bad options and data named in the error,
+/* fracterra — unit tests of terrain/reconstruct/reconstruct.c and recon_*.c: bad options and data named in the error,
  * method names, reproducibility (same seed, other seed, 1 and 2 threads), the smooth method on a plane
  * (the thin plate's null space: exact) and a paraboloid (close), data fidelity (within sigma with soft
  * data by the discrepancy principle, per-point sigmas, several points per node; exact with sigma = 0, for

@@ -133,7 +133,7 @@ static double lags16_D(const ft_grid *g)
     return 3.0 - (16.0 * sxy - sx * sy) / (16.0 * sxx - sx * sx) / 2.0;
 }
 
-/* sra and midpoint are calibrated (src/terrain/synth_calibration.c): the median of 5 seeds of the lag 1-16
+/* sra and midpoint are calibrated (src/terrain/synth/synth_calibration.c): the median of 5 seeds of the lag 1-16
  * variogram D is the asked D within 0.03 at D = 2.1 ... 2.8, on 256² and on a 384 x 200 grid (another
  * number of levels for sra); the raw variants keep the papers' bias (sra-raw +0.1 at D = 2.2). */
 static void test_calibrated_accuracy(void **state)

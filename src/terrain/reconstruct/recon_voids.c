@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 #define MARGIN 2
 

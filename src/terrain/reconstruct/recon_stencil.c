@@ -21,7 +21,7 @@
 #include <stdlib.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 #define NCOLOURS 5
 

@@ -22,7 +22,7 @@
 #include <string.h>
 
 #include "fracterra/surface.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 /* Calibrated once by eq. 11 (bench/accuracy/recon_calibrate.c): D = 2.4, SRA 256², sparse subset every
  * 4th cell in each direction plus a random 5%, fractal reconstruction with T_0 = k g(H) sigma0², Yokoya's

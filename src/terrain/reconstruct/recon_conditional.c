@@ -16,7 +16,7 @@
 #include <stdlib.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 #define EXACT_MAX 1536
 

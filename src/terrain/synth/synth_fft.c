@@ -21,7 +21,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "terrain/synth_internal.h"
+#include "terrain/synth/synth_internal.h"
 
 #include <limits.h>
 #include <math.h>

@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/fill_internal.h"
+#include "terrain/fill/fill_internal.h"
 
 /* The prediction loop runs on several threads when it has at least this many (cell, datum) terms; each
  * cell's sum is taken in the same order on any thread count. */

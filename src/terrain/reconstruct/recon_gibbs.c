@@ -26,7 +26,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, double H, int sweeps,
                      uint64_t seed, float *u, const ft_recon_progress *prog)

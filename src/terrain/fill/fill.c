@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/fill_internal.h"
+#include "terrain/fill/fill_internal.h"
 
 /* Width (cells) of the conditioning ring, and the most conditioning cells a void's kriging takes: above
  * it the outer ring is thinned to every other cell, then every cell is strided (a 256 x 256 void has

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 ft_recon_problem *ft_recon_problem_create(size_t nx, size_t ny, int nthreads)
 {

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/fill_internal.h"
+#include "terrain/fill/fill_internal.h"
 
 int ft_fill_fit_model(const float *z, const uint8_t *use, size_t nx, size_t ny, double H_fixed,
                       ft_fill_model *m)

@@ -29,7 +29,7 @@
 #include <stddef.h>
 
 #include "fracterra/terrain.h"
-#include "terrain/synth_internal.h"
+#include "terrain/synth/synth_internal.h"
 
 #define LAGS 16
 #define MAX_LEVELS 40

@@ -23,7 +23,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 #define PRE_SWEEPS 2
 

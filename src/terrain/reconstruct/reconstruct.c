@@ -15,7 +15,7 @@
 #endif
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 static const char *const method_names[] = {"fractal", "conditional", "smooth"};
 #define N_METHODS (sizeof method_names / sizeof method_names[0])

@@ -1,4 +1,4 @@
-/* fracterra — terrain/clarke_simulate.c: inverting Clarke's scale-based model, z = T + cF + H.
+/* fracterra — terrain/clarke/clarke_simulate.c: inverting Clarke's scale-based model, z = T + cF + H.
  *
  * Clarke, K. C. (1987). Scale-based simulation of topography. Proceedings of Auto-Carto 8, 680-688.
  * The output grid has K times the cells of the fitted grid along each axis over the same extent (refine),
@@ -21,7 +21,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "terrain/clarke_internal.h"
+#include "terrain/clarke/clarke_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* fracterra — terrain/clarke_fit.c: calibrating Clarke's scale-based model z = T + cF + H on a DEM.
+/* fracterra — terrain/clarke/clarke_fit.c: calibrating Clarke's scale-based model z = T + cF + H on a DEM.
  *
  * Clarke, K. C. (1987). Scale-based simulation of topography. Proceedings of Auto-Carto 8, 680-688.
  *  - T (eq. xii): the least-squares plane beta0 + beta1 x + beta2 y over the valid cells, x and y the map
@@ -27,7 +27,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "terrain/clarke_internal.h"
+#include "terrain/clarke/clarke_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -11,7 +11,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "terrain/synth_internal.h"
+#include "terrain/synth/synth_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

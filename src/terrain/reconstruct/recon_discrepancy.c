@@ -32,7 +32,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "terrain/reconstruct_internal.h"
+#include "terrain/reconstruct/reconstruct_internal.h"
 
 #define MAX_SOLVES 12
 #define LAMBDA_RANGE 1e12

@@ -1,4 +1,4 @@
-/* fracterra — terrain/clarke_peak.c: the wavelength and direction of a Clarke harmonic as a property of the
+/* fracterra — terrain/clarke/clarke_peak.c: the wavelength and direction of a Clarke harmonic as a property of the
  * terrain, not of the grid.
  *
  * A harmonic of Clarke's model (Clarke 1987, eq. vi) is one of the grid's Fourier modes (k, l): its wavelength
@@ -20,7 +20,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
-#include "terrain/clarke_internal.h"
+#include "terrain/clarke/clarke_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
