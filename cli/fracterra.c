@@ -170,7 +170,7 @@ static int take_global_options(int *argc, char **argv)
 /* Under mpiexec only the commands that decompose into stripes run; the others would all write the same file. */
 static int runs_on_ranks(const cli_command *cmd, int argc, char **argv)
 {
-    if (cli_nranks() == 1 || cmd == &cli_cmd_dim_map || cmd == &cli_cmd_dim_surface)
+    if (cli_nranks() == 1 || cmd == &cli_cmd_hillshade)
         return 1;
     if (cmd == &cli_cmd_dim && argc > 1 && (strcmp(argv[1], "map") == 0 || strcmp(argv[1], "surface") == 0))
         return 1;
@@ -206,7 +206,7 @@ static int fracterra_main(int argc, char **argv)
         return unknown_command(arg);
     if (!runs_on_ranks(cmd, argc - 1, argv + 1)) {
         if (cli_rank() == 0)
-            fprintf(stderr, "fracterra: %s: does not run on several MPI ranks; only dim map and dim surface do "
+            fprintf(stderr, "fracterra: %s: does not run on several MPI ranks; only dim map, dim surface and hillshade do "
                     "(docs/tiling.md)\n", cmd->name);
         return CLI_USAGE;
     }

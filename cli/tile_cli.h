@@ -17,6 +17,9 @@ int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell);
 /** The band's size without reading its cells: CLI_CONTINUE, or CLI_FAIL (printed). */
 int tile_band_size(const cli_command *cmd, const char *path, int band, size_t *nx, size_t *ny);
 
+/** This rank's share [*a, *b) of n rows (the r-th of P nearly equal parts). */
+void tile_rank_share(size_t n, size_t *a, size_t *b);
+
 typedef struct {
     size_t window, step;
     ft_surface_method method;
@@ -42,5 +45,10 @@ int tile_dim_map(const cli_command *cmd, const char *in, const char *out, const 
 int tile_dim_surface(const cli_command *cmd, const char *in, int band, ft_surface_method m,
                      const ft_surface_dim_opts *o, long tile_rows, ft_dim_result **out, size_t *nx, size_t *ny,
                      uint64_t *valid, ft_crs_info *crs);
+
+/** The hillshade of the DEM into OUT (a Byte GeoTIFF, 0 = nodata) stripe by stripe (tile_hillshade.c), ranks
+ *  sharing the stripes, rank 0 writing: the cells of ft_io_hillshade's. CLI_OK or CLI_FAIL (printed). */
+int tile_hillshade(const cli_command *cmd, const char *in, const char *out, const ft_io_hillshade_opts *o,
+                   long tile_rows);
 
 #endif /* FRACTERRA_CLI_TILE_H */

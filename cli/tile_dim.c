@@ -69,7 +69,7 @@ static int open_band(const cli_command *cmd, const char *path, int band, ft_grid
 }
 
 /* This rank's share [*a, *b) of n rows. */
-static void rank_share(size_t n, size_t *a, size_t *b)
+void tile_rank_share(size_t n, size_t *a, size_t *b)
 {
     size_t r = (size_t)cli_rank(), p = (size_t)cli_nranks();
     *a = n * r / p;
@@ -219,7 +219,7 @@ static int map_rank(map_run *m, ft_grid_reader *r, const char *out, int *any)
 {
     const tile_map_job *j = m->job;
     size_t a, b;
-    rank_share(m->noy, &a, &b);
+    tile_rank_share(m->noy, &a, &b);
     m->share_row0 = a;
     m->share_rows = b - a;
     if (cli_rank() == 0) {
@@ -365,7 +365,7 @@ int tile_dim_surface(const cli_command *cmd, const char *in, int band, ft_surfac
         rc = ft_surface_lag_stripes_create(h, m, o, &ls) == FT_OK ? CLI_OK : cli_fail(cmd);
     }
     if (rc == CLI_OK) {
-        rank_share(*ny, &a, &b);
+        tile_rank_share(*ny, &a, &b);
         size_t halo = ft_surface_lag_stripes_halo(ls), ns = ft_surface_lag_stripes_nsums(ls);
         size_t rows = stripe_rows(*nx, SURFACE_BYTES_PER_CELL, 1);
         size_t k = tile_rows > 0 ? (size_t)tile_rows : rows > halo ? rows - halo : 1; /* rows computed per stripe */

@@ -254,6 +254,13 @@ typedef struct {
  *  temporary name renamed on success. */
 FT_API int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
 
+/** The hillshade of rows [row0, row0 + nrows) of a DEM file, as ft_io_hillshade gives them on the whole DEM
+ *  (gdaldem, edges computed, 0 = nodata, the automatic scale of the whole DEM's centre), from those rows and
+ *  one row above and below: cells 0 .. 255 as floats (has_nodata, nodata_value 0), georeferenced at row0.
+ *  FT_E_UNSUPPORTED with opts->color (the colour ramp spans the whole DEM). docs/tiling.md. */
+FT_API int ft_io_hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts, size_t row0, size_t nrows,
+                                ft_grid **out);
+
 /** Contour polygons of a DEM (GDALContourGenerateEx with POLYGONIZE=YES, as gdal_contour -p -amin elev):
  *  one polygon feature per band between two levels base + i x interval, with a real field `elev` holding
  *  its lower level; nodata cells are excluded. The layer carries the grid's CRS. */

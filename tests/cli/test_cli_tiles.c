@@ -1,6 +1,6 @@
 /* fracterra — tests/cli/test_cli_tiles.c: `dim map` and `dim surface` stripe by stripe (--tile-rows, and
  * automatically beyond --max-memory) and on two MPI ranks give what the whole-raster run gives: every cell of
- * the map (across the stripe seams, nodata included) and the whole JSON report. Refusals: random pairs,
+ * the map (across the stripe seams, nodata included) and the whole JSON report; so does `hillshade`. Refusals: random pairs,
  * methods that do not decompose, geographic DEMs, formats other than GeoTIFF, commands that do not run on
  * ranks. The mpiexec tests run when the CLI was built with MPI (FT_TEST_MPIEXEC) and not under the
  * sanitizers (Open MPI's own allocations are reported as leaks there); they are skipped otherwise.
@@ -164,6 +164,41 @@ static void test_dim_surface_tiled_equals_whole(void **state)
     }
 }
 
+/* Byte cells of two hillshades, every one, and their georeferencing. */
+static void assert_same_shade(const char *a, const char *b)
+{
+    ft_grid *x = NULL, *y = NULL;
+    assert_int_equal(ft_io_read_grid(a, NULL, &x), FT_OK);
+    assert_int_equal(ft_io_read_grid(b, NULL, &y), FT_OK);
+    assert_int_equal(x->nx, y->nx);
+    assert_int_equal(x->ny, y->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true(x->gt[k] == y->gt[k]);
+    size_t lit = 0;
+    for (size_t i = 0; i < x->nx * x->ny; i++) {
+        float vx = x->mask == NULL || x->mask[i] ? x->z[i] : 0.0f, vy = y->mask == NULL || y->mask[i] ? y->z[i] : 0.0f;
+        assert_true(vx == vy);
+        lit += vx > 0.0f;
+    }
+    assert_true(lit > 0 && lit < x->nx * x->ny); /* shaded cells and the nodata hole both compared */
+    ft_grid_free(x);
+    ft_grid_free(y);
+}
+
+static void test_hillshade_tiled_equals_whole(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem(), *whole = ft_test_tmp("hw.tif"), *t = ft_test_tmp("ht.tif");
+    free(RUN_OUT("hillshade", dem, whole, "--z-factor", "3"));
+    free(RUN_OUT("hillshade", dem, t, "--z-factor", "3", "--tile-rows", "13"));
+    assert_same_shade(whole, t);
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "--color", "hillshade", dem, ft_test_tmp("c.tif"), "--color",
+                           "--tile-rows", "13");
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "must be a GeoTIFF", "hillshade", dem, ft_test_tmp("c.png"),
+                           "--tile-rows", "13");
+    assert_int_equal(ft_test_dir_count(), 3); /* the DEM and the two shades */
+}
+
 static void test_tiled_refusals(void **state)
 {
     (void)state;
@@ -211,7 +246,8 @@ static void test_mpi_two_ranks_equal_whole(void **state)
 {
     (void)state;
 #if defined(FT_TEST_MPIEXEC) && !defined(FT_TEST_SANITIZE)
-    const char *dem = synthetic_dem(), *whole = ft_test_tmp("whole.tif"), *m2 = ft_test_tmp("m2.tif");
+    char *dem = strdup(synthetic_dem()); /* ft_test_tmp's buffers are reused */
+    const char *whole = ft_test_tmp("whole.tif"), *m2 = ft_test_tmp("m2.tif");
     char *a = RUN_OUT("dim", "map", dem, whole, "--window", "32", "--step", "8", "--min-valid", "0.9", "--json");
     char args[2048];
     snprintf(args, sizeof args, "dim map %s %s --window 32 --step 8 --min-valid 0.9 --json --tile-rows 40", dem, m2);
@@ -228,6 +264,11 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_string_equal(a, b); /* one report, from rank 0 only, equal to the whole run's */
     free(a);
     free(b);
+    const char *hw = ft_test_tmp("hw.tif"), *h2 = ft_test_tmp("h2.tif");
+    free(RUN_OUT("hillshade", dem, hw));
+    snprintf(args, sizeof args, "hillshade %s %s --tile-rows 30", dem, h2);
+    assert_int_equal(mpirun2(ft_test_tmp("shade.out"), args), 0);
+    assert_same_shade(hw, h2);
     /* a command that does not decompose is refused on every rank, nothing written */
     snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64", ft_test_tmp("s.tif"));
     assert_int_equal(mpirun2(ft_test_tmp("synth.out"), args), 2);
@@ -235,6 +276,7 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_non_null(strstr(err, "fracterra: synth: does not run on several MPI ranks"));
     free(err);
     assert_int_equal(access(ft_test_tmp("s.tif"), F_OK), -1);
+    free(dem);
 #else
     skip(); /* built without MPI, or under the sanitizers */
 #endif
@@ -245,6 +287,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dim_map_tiled_equals_whole),
         cmocka_unit_test(test_dim_surface_tiled_equals_whole),
+        cmocka_unit_test(test_hillshade_tiled_equals_whole),
         cmocka_unit_test(test_tiled_refusals),
         cmocka_unit_test(test_mpi_two_ranks_equal_whole),
     };

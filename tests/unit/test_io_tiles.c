@@ -174,6 +174,45 @@ static void test_writer_bad_input_leaves_nothing(void **state)
     ft_grid_free(g);
 }
 
+/* Rows of the hillshade shaded from a stripe plus one row of halo are the whole DEM's, at the top and bottom
+ * edges, across the nodata of the Luxembourg DEM, and with the automatic scale of a DEM in degrees. */
+static void test_hillshade_rows_equal_whole(void **state)
+{
+    (void)state;
+    const char *dems[] = {LUXEMBOURG, FT_TEST_DATA "/dem_luxembourg_terra_30s.tif", VOLCANO};
+    for (int d = 0; d < 3; d++) {
+        const char *path = ft_test_tmp("shade.tif");
+        assert_int_equal(ft_io_hillshade(dems[d], path, NULL), FT_OK);
+        ft_grid *whole = read_whole(path);
+        size_t cuts[][2] = {{0, 1}, {0, 9}, {9, 13}, {22, 1}, {whole->ny - 5, 5}};
+        size_t nonzero = 0;
+        for (int k = 0; k < 5; k++) {
+            ft_grid *rows = NULL;
+            assert_int_equal(ft_io_hillshade_rows(dems[d], NULL, cuts[k][0], cuts[k][1], &rows), FT_OK);
+            assert_int_equal(rows->nx, whole->nx);
+            assert_int_equal(rows->ny, cuts[k][1]);
+            assert_true(rows->gt[3] == whole->gt[3] + (double)cuts[k][0] * whole->gt[5]);
+            for (size_t i = 0; i < rows->nx * rows->ny; i++) {
+                size_t at = cuts[k][0] * whole->nx + i;
+                float w = ft_grid_is_valid(whole, at % whole->nx, at / whole->nx) ? whole->z[at] : 0.0f;
+                assert_true(rows->z[i] == w);
+                nonzero += rows->z[i] != 0.0f;
+            }
+            ft_grid_free(rows);
+        }
+        assert_true(nonzero > 0);
+        ft_grid_free(whole);
+        unlink(path);
+    }
+    ft_grid *g = NULL;
+    ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT;
+    o.color = 1;
+    assert_int_equal(ft_io_hillshade_rows(VOLCANO, &o, 0, 5, &g), FT_E_UNSUPPORTED);
+    assert_int_equal(ft_io_hillshade_rows(VOLCANO, NULL, 85, 5, &g), FT_E_INVALID);
+    assert_non_null(strstr(ft_last_error(), "leave the 87 rows"));
+    assert_null(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -181,6 +220,7 @@ int main(void)
         cmocka_unit_test(test_reader_bad_input),
         cmocka_unit_test(test_writer_pieces_any_order),
         cmocka_unit_test(test_writer_bad_input_leaves_nothing),
+        cmocka_unit_test(test_hillshade_rows_equal_whole),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }
