@@ -94,6 +94,8 @@ static int command(char **dst, int ranks, const char *const *args, size_t n)
             all[k++] = "--allow-run-as-root";
     }
     all[k++] = prog;
+    all[k++] = "--max-work"; /* an N x N grid beyond the default work bound is what this suite measures */
+    all[k++] = "1e13";
     for (size_t i = 0; i < n && k + 1 < FT_BENCH_MAX_ARGV; i++)
         all[k++] = args[i];
     return put_argv(dst, all, k);

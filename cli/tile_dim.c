@@ -61,7 +61,10 @@ static int open_band(const cli_command *cmd, const char *path, int band, ft_grid
     ro.band = band;
     if (ft_io_grid_reader_open(path, &ro, r) != FT_OK)
         return cli_fail(cmd);
-    int rc = cli_geo_crs(cmd, path, ft_io_grid_reader_header(*r)->crs_wkt, crs);
+    /* the whole run's work bound (--max-work), on the band's size */
+    int rc = cli_check_grid_work(cmd, path, ft_io_grid_reader_header(*r));
+    if (rc == CLI_CONTINUE)
+        rc = cli_geo_crs(cmd, path, ft_io_grid_reader_header(*r)->crs_wkt, crs);
     if (rc == CLI_CONTINUE && crs->geographic)
         rc = cli_geo_refuse(cmd, path, crs, "it cannot be measured stripe by stripe or on MPI ranks",
                             "gdalwarp -t_srs EPSG:<UTM zone>");
