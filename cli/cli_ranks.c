@@ -42,6 +42,11 @@ void cli_ranks_finalize(void)
     joined = 0;
 }
 
+int cli_ranks_joined(void)
+{
+    return joined;
+}
+
 int cli_rank(void)
 {
     return rank;
@@ -109,6 +114,11 @@ int cli_ranks_init(int *argc, char ***argv)
 
 void cli_ranks_finalize(void)
 {
+}
+
+int cli_ranks_joined(void)
+{
+    return 0;
 }
 
 int cli_rank(void)

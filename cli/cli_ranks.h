@@ -16,6 +16,8 @@
 int cli_ranks_init(int *argc, char ***argv);
 /** Leaves MPI (when joined). */
 void cli_ranks_finalize(void);
+/** 1 if this process joined MPI (started by mpiexec, even with one rank). */
+int cli_ranks_joined(void);
 /** This process's rank and the number of ranks (0 and 1 without MPI). */
 int cli_rank(void);
 int cli_nranks(void);

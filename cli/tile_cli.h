@@ -11,8 +11,9 @@
 
 /** Parses --tile-rows N (rows of input cells per stripe, 1 .. 10^8). */
 int tile_parse_rows(const cli_command *cmd, const char *arg, long *rows);
-/** 1 if a command must run stripe by stripe: --tile-rows given, several MPI ranks, or the band (nx x ny cells
- *  of bytes_per_cell bytes while measured) larger than half of --max-memory. */
+/** 1 if a command must run stripe by stripe: --tile-rows given, started by mpiexec (any number of ranks, so
+ *  that the result does not depend on it), or the band (nx x ny cells of bytes_per_cell bytes while
+ *  measured) larger than half of --max-memory. */
 int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell);
 /** The band's size without reading its cells: CLI_CONTINUE, or CLI_FAIL (printed). */
 int tile_band_size(const cli_command *cmd, const char *path, int band, size_t *nx, size_t *ny);

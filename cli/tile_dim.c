@@ -36,7 +36,7 @@ int tile_parse_rows(const cli_command *cmd, const char *arg, long *rows)
 
 int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell)
 {
-    return tile_rows > 0 || cli_nranks() > 1 ||
+    return tile_rows > 0 || cli_ranks_joined() ||
            (double)nx * (double)ny * bytes_per_cell > 0.5 * (double)ft_memory_limit();
 }
 
