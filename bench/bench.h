@@ -77,6 +77,7 @@ extern const ft_bench_suite ft_bench_suite_points;
 extern const ft_bench_suite ft_bench_suite_reconstruct;
 extern const ft_bench_suite ft_bench_suite_fill;
 extern const ft_bench_suite ft_bench_suite_contour;
+extern const ft_bench_suite ft_bench_suite_tiles;
 
 /* ------------------------------------------------------------------------------------------------
  * Helpers the harness offers to workloads

@@ -44,6 +44,7 @@ static const ft_bench_suite *const bench_suites[] = {
     &ft_bench_suite_reconstruct,
     &ft_bench_suite_fill,
     &ft_bench_suite_contour,
+    &ft_bench_suite_tiles,
 };
 #define N_SUITES (sizeof bench_suites / sizeof bench_suites[0])
 

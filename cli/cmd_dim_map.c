@@ -7,6 +7,8 @@
  */
 #include "surface_cli.h"
 #include "terrain_cli.h"
+#include "tile_cli.h"
+#include "cli_ranks.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +17,7 @@ typedef struct {
     const char *method, *driver;
     int band, window, step, json;
     long pairs; /* -1: automatic */
+    long tile_rows; /* 0: automatic */
     uint64_t seed;
     double min_scale, max_scale, min_valid;
     int nscales;
@@ -35,40 +38,63 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 1: return cli_parse_double(cmd, "--min-scale", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->min_scale);
     case 2: return cli_parse_double(cmd, "--max-scale", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->max_scale);
     case 3: return cli_parse_int(cmd, "--scales", arg, 3, 1000, &a->nscales);
+    case 4: return tile_parse_rows(cmd, arg, &a->tile_rows);
     case 'j': a->json = 1; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
 
-static int report(const cli_command *cmd, const map_args *a, const char *in, const char *out, const ft_grid *D,
-                  ft_surface_method m)
+/* The figures of the measured windows, summed in row order (tile_cli.h's tile_map_stats). */
+static tile_map_stats map_stats(const ft_grid *D)
 {
-    size_t measured = ft_grid_count_valid(D);
-    double lo = NAN, hi = NAN, sum = 0.0;
-    if (measured)
-        ft_grid_minmax(D, &lo, &hi);
+    tile_map_stats st = {D->nx, D->ny, ft_grid_count_valid(D), NAN, NAN, 0.0};
+    if (st.measured)
+        ft_grid_minmax(D, &st.lo, &st.hi);
     for (size_t i = 0; i < D->nx * D->ny; i++)
         if (D->mask == NULL || D->mask[i])
-            sum += D->z[i];
+            st.sum += D->z[i];
+    return st;
+}
+
+static int report(const cli_command *cmd, const map_args *a, const char *in, const char *out,
+                  const tile_map_stats *st, ft_surface_method m)
+{
+    double lo = st->measured ? st->lo : NAN, hi = st->measured ? st->hi : NAN;
     json_object *o = terrain_report_start(a->json, in, out);
     if (o == NULL) {
-        printf("%zu of %zu windows measured, D %.3f .. %.3f\n", measured, D->nx * D->ny, lo, hi);
+        printf("%zu of %zu windows measured, D %.3f .. %.3f\n", st->measured, st->nox * st->noy, lo, hi);
         return CLI_OK;
     }
     json_object *size = json_object_new_array();
-    json_object_array_add(size, json_object_new_int64((int64_t)D->nx));
-    json_object_array_add(size, json_object_new_int64((int64_t)D->ny));
+    json_object_array_add(size, json_object_new_int64((int64_t)st->nox));
+    json_object_array_add(size, json_object_new_int64((int64_t)st->noy));
     json_object_object_add(o, "method", json_object_new_string(ft_surface_method_name(m)));
     json_object_object_add(o, "window", json_object_new_int(a->window));
     json_object_object_add(o, "step", json_object_new_int(a->step));
     json_object_object_add(o, "size", size);
     json_object_object_add(o, "bands", json_object_new_string("1: D, 2: r2"));
-    json_object_object_add(o, "windows", json_object_new_int64((int64_t)(D->nx * D->ny)));
-    json_object_object_add(o, "windows_measured", json_object_new_int64((int64_t)measured));
+    json_object_object_add(o, "windows", json_object_new_int64((int64_t)(st->nox * st->noy)));
+    json_object_object_add(o, "windows_measured", json_object_new_int64((int64_t)st->measured));
     json_object_object_add(o, "D_min", cli_json_double(lo));
     json_object_object_add(o, "D_max", cli_json_double(hi));
-    json_object_object_add(o, "D_mean", cli_json_double(measured ? sum / (double)measured : NAN));
+    json_object_object_add(o, "D_mean", cli_json_double(st->measured ? st->sum / (double)st->measured : NAN));
     return cli_print_json(cmd, o);
+}
+
+/* The map stripe by stripe (--tile-rows, a DEM beyond half of --max-memory, or MPI ranks). */
+static int run_tiled(const cli_command *cmd, map_args *a, const ft_surface_dim_opts *o, ft_surface_method m,
+                     size_t step, const char *in, const char *out)
+{
+    if (o->pairs != 0) {
+        cli_error(cmd, "--pairs %zu: random pairs are not available stripe by stripe (--tile-rows, large DEMs, "
+                  "MPI); use --pairs 0", o->pairs);
+        return CLI_USAGE;
+    }
+    tile_map_job job = {(size_t)a->window, step, m, *o, a->band, a->driver, a->tile_rows};
+    job.opts.progress = NULL;
+    tile_map_stats st;
+    int rc = tile_dim_map(cmd, in, out, &job, &st);
+    return rc == CLI_OK && cli_rank() == 0 ? report(cmd, a, in, out, &st, m) : rc;
 }
 
 static int run_dim_map(const cli_command *cmd, int argc, char **argv)
@@ -80,10 +106,11 @@ static int run_dim_map(const cli_command *cmd, int argc, char **argv)
         {"min-valid", required_argument, NULL, 'v'}, {"min-scale", required_argument, NULL, 1},
         {"max-scale", required_argument, NULL, 2}, {"scales", required_argument, NULL, 3},
         {"format", required_argument, NULL, 'f'},  {"json", no_argument, NULL, 'j'},
-        CLI_OPT_HELP,                              CLI_OPT_END,
+        {"tile-rows", required_argument, NULL, 4}, CLI_OPT_HELP,
+        CLI_OPT_END,
     };
     static const char *const names[] = {"DEM", "OUT"};
-    map_args a = {"variogram", NULL, 1, 0, 0, 0, -1, 1, 0.0, 0.0, 0.5, 0};
+    map_args a = {"variogram", NULL, 1, 0, 0, 0, -1, 0, 1, 0.0, 0.0, 0.5, 0};
     ft_surface_method m;
     int first = 0, nm = 0;
     int rc = cli_parse_options(cmd, argc, argv, longopts, "w:S:m:b:p:s:v:f:j", on_option, &a, &first);
@@ -102,12 +129,9 @@ static int run_dim_map(const cli_command *cmd, int argc, char **argv)
     const char *in = argv[first], *out = argv[first + 1];
     if (ft_io_check_writable(out) != FT_OK)
         return cli_fail(cmd);
-    ft_grid *g = NULL, *D = NULL, *r2 = NULL;
-    ft_crs_info crs;
-    if ((rc = surface_read_dem(cmd, in, a.band, &g, &crs)) != CLI_CONTINUE) {
-        ft_grid_free(g);
+    size_t nx = 0, ny = 0;
+    if ((rc = tile_band_size(cmd, in, a.band, &nx, &ny)) != CLI_CONTINUE)
         return rc;
-    }
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.min_scale = a.min_scale;
     o.max_scale = a.max_scale;
@@ -119,12 +143,21 @@ static int run_dim_map(const cli_command *cmd, int argc, char **argv)
     o.progress = cli_progress();
     size_t step = a.step > 0 ? (size_t)a.step : ((size_t)a.window / 4 > 0 ? (size_t)a.window / 4 : 1);
     a.step = (int)step;
+    if (tile_wanted(a.tile_rows, nx, ny, 18.0))
+        return run_tiled(cmd, &a, &o, m, step, in, out);
+    ft_grid *g = NULL, *D = NULL, *r2 = NULL;
+    ft_crs_info crs;
+    if ((rc = surface_read_dem(cmd, in, a.band, &g, &crs)) != CLI_CONTINUE) {
+        ft_grid_free(g);
+        return rc;
+    }
     rc = ft_surface_dim_map(g, (size_t)a.window, step, m, &o, &D, &r2) == FT_OK ? CLI_OK : cli_fail(cmd);
     if (rc == CLI_OK) {
         ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
         wo.driver = a.driver;
         const ft_grid *bands[2] = {D, r2};
-        rc = ft_io_write_grids(out, bands, 2, &wo) == FT_OK ? report(cmd, &a, in, out, D, m) : cli_fail(cmd);
+        tile_map_stats st = map_stats(D);
+        rc = ft_io_write_grids(out, bands, 2, &wo) == FT_OK ? report(cmd, &a, in, out, &st, m) : cli_fail(cmd);
     }
     ft_grid_free(D);
     ft_grid_free(r2);
@@ -137,13 +170,18 @@ const cli_command cli_cmd_dim_map = {
     "local fractal-dimension (roughness) map of an elevation grid",
     "fracterra dim map DEM OUT --window W [--step S] [--method M] [--pairs N] [--seed N] [--band N]\n"
     "                          [--min-scale S] [--max-scale S] [--scales N] [--min-valid F] [-f DRIVER]\n"
-    "                          [--json]",
+    "                          [--tile-rows N] [--json]\n"
+    "       mpiexec -n N fracterra dim map DEM OUT.tif --window W [...]",
     "Measures D in every window of W x W cells whose corner moves by S cells, and writes a raster aligned\n"
     "with the DEM (same CRS; one cell of S x S DEM cells centred on each window's centre): band 1 holds D,\n"
     "band 2 the r\xc2\xb2 of the window's log-log fit. A window with fewer valid cells than --min-valid of its\n"
     "area, or that the method cannot measure (flat), is nodata. Every window is fitted over the same scale\n"
     "range (the method's default for W, or --min-scale/--max-scale), so the map compares like with like.\n"
-    "Windows run in parallel (OMP_NUM_THREADS); the map is the same on any thread count.\n\n"
+    "Windows run in parallel (OMP_NUM_THREADS); the map is the same on any thread count.\n"
+    "A DEM larger than half of --max-memory, or any DEM with --tile-rows, is read in stripes of rows with\n"
+    "a halo of W - S rows and the map written stripe by stripe into a tiled GeoTIFF: peak memory follows\n"
+    "the stripe, every cell is the whole-DEM run's. Under mpiexec the ranks share the stripes and rank 0\n"
+    "writes the map (docs/tiling.md). Stripes need every pair (--pairs 0) and a projected DEM.\n\n"
     "Options:\n"
     "  -w, --window W       window side, cells (>= 4; required)\n"
     "  -S, --step S         distance between windows, cells (default W / 4)\n"
@@ -156,7 +194,8 @@ const cli_command cli_cmd_dim_map = {
     "      --max-scale S    largest (default: the method's for a W x W grid)\n"
     "      --scales N       lags or frequency bins (3..1000)\n"
     "  -v, --min-valid F    fewest valid cells of a window, as a fraction in (0, 1] (default 0.5)\n"
-    "  -f, --format DRIVER  GDAL driver of OUT (default: from the extension, GeoTIFF)\n"
+    "  -f, --format DRIVER  GDAL driver of OUT (default: from the extension, GeoTIFF)\n"    "      --tile-rows N    compute N rows of the DEM per stripe (default: whole DEM when it fits half\n"
+    "                       of --max-memory, else stripes filling a quarter of it)\n"
     "  -j, --json           print {\"input\", \"output\", \"method\", \"window\", \"step\", \"size\", \"windows\",\n"
     "                       \"windows_measured\", \"D_min\", \"D_max\", \"D_mean\"}\n"
     "  -h, --help           print this help\n\n"

@@ -9,6 +9,8 @@
 #include "dim_output.h"
 #include "surface_cli.h"
 #include "terrain_cli.h"
+#include "tile_cli.h"
+#include "cli_ranks.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -20,6 +22,7 @@ typedef struct {
     long pairs; /* -1: automatic */
     uint64_t seed;
     ft_noise_opts noise;
+    long tile_rows; /* 0: automatic */
 } surface_args;
 
 /* ---- shared with dim map (surface_cli.h) ---- */
@@ -105,22 +108,24 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         return cli_parse_noise_sigma(cmd, arg, 0, &xy, &a->noise.sigma_z);
     }
     case 'M': return cli_parse_noise_model(cmd, arg, &a->noise.mode);
+    case 'T': return tile_parse_rows(cmd, arg, &a->tile_rows);
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
 
-static json_object *extra_members(const char *path, const surface_args *a, const ft_grid *g, size_t pairs,
-                                  const ft_crs_info *crs)
+/* g: the grid measured (NULL when it was read stripe by stripe, then not geographic). */
+static json_object *extra_members(const char *path, const surface_args *a, const ft_grid *g, size_t nx, size_t ny,
+                                  uint64_t valid, size_t pairs, const ft_crs_info *crs)
 {
     json_object *o = json_object_new_object(), *size = json_object_new_array();
     json_object_object_add(o, "file", json_object_new_string(path));
-    if (crs->geographic) /* measured on its warp to a local transverse Mercator */
+    if (crs->geographic && g != NULL) /* measured on its warp to a local transverse Mercator */
         json_object_object_add(o, "geographic", cli_geo_json(crs, g->crs_wkt));
     json_object_object_add(o, "band", json_object_new_int(a->band));
-    json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
-    json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
+    json_object_array_add(size, json_object_new_int64((int64_t)nx));
+    json_object_array_add(size, json_object_new_int64((int64_t)ny));
     json_object_object_add(o, "size", size);
-    json_object_object_add(o, "cells_valid", json_object_new_int64((int64_t)ft_grid_count_valid(g)));
+    json_object_object_add(o, "cells_valid", json_object_new_int64((int64_t)valid));
     json_object_object_add(o, "pairs",
                            pairs ? json_object_new_int64((int64_t)pairs) : json_object_new_string("exhaustive"));
     if (pairs)
@@ -153,17 +158,57 @@ static int measure(const cli_command *cmd, const ft_grid *g, const ft_crs_info *
     return CLI_OK;
 }
 
+/* One exhaustive lag method stripe by stripe (--tile-rows, a DEM beyond half of --max-memory, MPI ranks). */
+static int run_tiled(const cli_command *cmd, const surface_args *a, const ft_surface_method *ms, int nm,
+                     ft_surface_dim_opts *o, const char *path)
+{
+    if (nm != 1 || (ms[0] != FT_SURFACE_VARIOGRAM && ms[0] != FT_SURFACE_YOKOYA && ms[0] != FT_SURFACE_PENTLAND)) {
+        cli_error(cmd, "stripe by stripe (--tile-rows, a DEM beyond half of --max-memory, MPI) only one of "
+                  "variogram, yokoya or pentland can be measured; got --method %s", a->method);
+        return CLI_USAGE;
+    }
+    if (a->pairs > 0) {
+        cli_error(cmd, "--pairs %ld: random pairs are not available stripe by stripe; every pair is used",
+                  a->pairs);
+        return CLI_USAGE;
+    }
+    o->pairs = 0;
+    o->progress = NULL;
+    ft_dim_result *r = NULL;
+    size_t nx = 0, ny = 0;
+    uint64_t valid = 0;
+    ft_crs_info crs;
+    int rc = tile_dim_surface(cmd, path, a->band, ms[0], o, a->tile_rows, &r, &nx, &ny, &valid, &crs);
+    if (rc != CLI_OK || cli_rank() != 0)
+        return rc;
+    const char *xl, *yl;
+    axis_labels(ms[0], &xl, &yl);
+    cli_geo_units(r, &crs);
+    cli_dim_report *rep = cli_dim_report_create(path);
+    int ok = rep != NULL && cli_dim_report_group(rep, 0, NULL, path, NULL) == FT_OK;
+    if (!ok)
+        ft_dim_result_free(r);
+    if (!ok || cli_dim_report_add(rep, r, xl, yl) != FT_OK) { /* add frees r when it fails */
+        rc = cli_fail(cmd);
+    } else {
+        rc = cli_dim_report_print(cmd, rep, &a->dim, extra_members(path, a, NULL, nx, ny, valid, 0, &crs));
+    }
+    cli_dim_report_free(rep);
+    return rc;
+}
+
 static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
 {
     static const struct option longopts[] = {
         {"method", required_argument, NULL, 'm'}, {"band", required_argument, NULL, 'b'},
         {"pairs", required_argument, NULL, 'p'},  {"seed", required_argument, NULL, 's'},
         {"noise-sigma", required_argument, NULL, 'N'}, {"noise-model", required_argument, NULL, 'M'},
+        {"tile-rows", required_argument, NULL, 'T'},
         CLI_DIM_LONGOPTS,                          CLI_OPT_HELP,
         CLI_OPT_END,
     };
     static const char *const names[] = {"DEM"};
-    surface_args a = {CLI_DIM_OPTS_DEFAULT, "variogram", 1, -1, 1, FT_NOISE_OPTS_DEFAULT};
+    surface_args a = {CLI_DIM_OPTS_DEFAULT, "variogram", 1, -1, 1, FT_NOISE_OPTS_DEFAULT, 0};
     ft_surface_method ms[FT_SURFACE_NMETHODS];
     int first = 0, nm = 0;
     int rc = cli_parse_options(cmd, argc, argv, longopts, "m:b:p:s:N:M:" CLI_DIM_SHORTOPTS, on_option, &a, &first);
@@ -178,28 +223,33 @@ static int run_dim_surface(const cli_command *cmd, int argc, char **argv)
     const char *path = argv[first];
     if (a.dim.plot && ft_io_check_writable(a.dim.plot) != FT_OK)
         return cli_fail(cmd);
-    ft_grid *g = NULL;
-    ft_crs_info crs;
-    if ((rc = surface_read_dem(cmd, path, a.band, &g, &crs)) != CLI_CONTINUE) {
-        ft_grid_free(g);
-        return rc;
-    }
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     o.min_scale = a.dim.min_scale;
     o.max_scale = a.dim.max_scale;
     o.nscales = a.dim.nscales;
     o.fit_whole_range = a.dim.min_scale > 0.0 && a.dim.max_scale > 0.0;
     o.fit.regime = a.dim.regime;
-    o.pairs = surface_pairs(a.pairs, g);
     o.seed = a.seed;
     o.noise = a.noise;
     o.progress = cli_progress();
+    size_t nx = 0, ny = 0;
+    if ((rc = tile_band_size(cmd, path, a.band, &nx, &ny)) != CLI_CONTINUE)
+        return rc;
+    if (tile_wanted(a.tile_rows, nx, ny, 13.0))
+        return run_tiled(cmd, &a, ms, nm, &o, path);
+    ft_grid *g = NULL;
+    ft_crs_info crs;
+    if ((rc = surface_read_dem(cmd, path, a.band, &g, &crs)) != CLI_CONTINUE) {
+        ft_grid_free(g);
+        return rc;
+    }
+    o.pairs = surface_pairs(a.pairs, g);
     cli_dim_report *rep = cli_dim_report_create(path);
     rc = rep && cli_dim_report_group(rep, 0, NULL, path, NULL) == FT_OK
              ? measure(cmd, g, &crs, ms, nm, &o, rep)
              : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK)
-        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, &a, g, o.pairs, &crs));
+        rc = cli_dim_report_print(cmd, rep, &a.dim, extra_members(path, &a, g, g->nx, g->ny, ft_grid_count_valid(g), o.pairs, &crs));
     cli_dim_report_free(rep);
     ft_grid_free(g);
     return rc;
@@ -211,7 +261,8 @@ const cli_command cli_cmd_dim_surface = {
     "fracterra dim surface DEM [--method variogram|yokoya|pentland|spectrum|prism|cubes|all] [--pairs N]\n"
     "                            [--seed N] [--band N] [--noise-sigma Z] [--noise-model auto|off]\n"
     "                            [--min-scale S] [--max-scale S] [--scales N]\n"
-    "                            [--segments] [--plot FILE] [--json]",
+    "                            [--tile-rows N] [--segments] [--plot FILE] [--json]\n"
+    "       mpiexec -n N fracterra dim surface DEM --pairs 0 [...]",
     "Measures the fractal dimension D (2..3) of a DEM (any raster GDAL reads). The quantity is measured at\n"
     "scales in a geometric series (powers of two for prism and cubes) and D is read from the widest\n"
     "regime (straight run) of the log-log plot (docs/loglog.md); regimes, breaks and the whole table are\n"
@@ -238,6 +289,11 @@ const cli_command cli_cmd_dim_surface = {
     "                       noise on z; its nugget (spectrum: its flat floor Z^2) is removed\n"
     "      --noise-model M  auto (default): detect white noise (the plot flattening toward small lags or\n"
     "                       high frequencies), remove it and fit past it, said in \"warnings\"; off: none\n"
+    "      --tile-rows N    read the DEM in stripes of N rows (plus a halo of the largest lag): peak\n"
+    "                       memory follows the stripe, D is the whole-DEM run's with --pairs 0, bit for\n"
+    "                       bit. Automatic for a DEM beyond half of --max-memory and under mpiexec, where\n"
+    "                       the ranks share the stripes (docs/tiling.md); variogram, yokoya or pentland\n"
+    "                       with every pair, projected DEMs only\n"
     CLI_DIM_OPTIONS_HELP
     "  -h, --help           print this help\n"
     "Scales are lags, square or cube sides, or wavelengths, in map units. With both --min-scale and\n"

@@ -5,6 +5,8 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "terrain_cli.h"
+#include "tile_cli.h"
+#include "cli_ranks.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +14,7 @@
 typedef struct {
     ft_io_hillshade_opts ho;
     int json;
+    long tile_rows; /* 0: automatic */
 } hillshade_args;
 
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
@@ -25,6 +28,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case 'b': return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->ho.band);
     case 'c': a->ho.color = 1; return CLI_CONTINUE;
     case 'j': a->json = 1; return CLI_CONTINUE;
+    case 'T': return tile_parse_rows(cmd, arg, &a->tile_rows);
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
@@ -49,6 +53,7 @@ static int run_hillshade(const cli_command *cmd, int argc, char **argv)
         {"z-factor", required_argument, NULL, 'z'}, {"scale", required_argument, NULL, 's'},
         {"band", required_argument, NULL, 'b'},     {"color", no_argument, NULL, 'c'},
         {"colour", no_argument, NULL, 'c'},         {"json", no_argument, NULL, 'j'},
+        {"tile-rows", required_argument, NULL, 'T'},
         CLI_OPT_HELP,                               CLI_OPT_END};
     static const char *const names[] = {"DEM", "OUT"};
     hillshade_args a = {.ho = FT_IO_HILLSHADE_OPTS_DEFAULT};
@@ -60,6 +65,13 @@ static int run_hillshade(const cli_command *cmd, int argc, char **argv)
         rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
+    size_t nx = 0, ny = 0;
+    if ((rc = tile_band_size(cmd, argv[first], a.ho.band, &nx, &ny)) != CLI_CONTINUE)
+        return rc;
+    if (tile_wanted(a.tile_rows, nx, ny, 14.0)) { /* stripe by stripe, or on MPI ranks */
+        rc = tile_hillshade(cmd, argv[first], argv[first + 1], &a.ho, a.tile_rows);
+        return rc == CLI_OK && cli_rank() == 0 ? report(cmd, &a, argv[first], argv[first + 1]) : rc;
+    }
     if (ft_io_hillshade(argv[first], argv[first + 1], &a.ho) != FT_OK)
         return cli_fail(cmd);
     return report(cmd, &a, argv[first], argv[first + 1]);
@@ -69,12 +81,16 @@ const cli_command cli_cmd_hillshade = {
     "hillshade",
     "shaded relief of a DEM through GDAL's DEM processing, optionally with colour relief",
     "fracterra hillshade DEM OUT.png|OUT.tif [--azimuth A] [--altitude H] [--z-factor Z] [--scale S]\n"
-    "       [--color] [--band N] [--json]",
+    "       [--color] [--band N] [--tile-rows N] [--json]\n"
+    "       mpiexec -n N fracterra hillshade DEM OUT.tif [...]",
     "Shades a DEM with GDAL's own DEM processing (gdaldem hillshade: Horn's slope, edges computed,\n"
     "0 = nodata). With --color, a hypsometric colour relief (gdaldem color-relief, built-in ramp from\n"
     "green lowlands to white summits, nodata transparent) is multiplied by the shade. The output format\n"
     "follows the extension (PNG, GeoTIFF with the DEM's georeferencing, ...); it is written under a\n"
-    "temporary name and renamed when complete.\n\n"
+    "temporary name and renamed when complete.\n"
+    "A DEM larger than half of --max-memory, or any DEM with --tile-rows, is shaded in stripes of rows\n"
+    "(each with one row above and below) into a Byte GeoTIFF (.tif), cell for cell the whole-DEM run's;\n"
+    "under mpiexec the ranks share the stripes and rank 0 writes (docs/tiling.md). Not with --color.\n\n"
     "Options:\n"
     "  --azimuth A    light direction, degrees clockwise from north, in [0,360] (default 315)\n"
     "  --altitude H   light elevation, degrees, in (0,90] (default 45)\n"
@@ -82,7 +98,7 @@ const cli_command cli_cmd_hillshade = {
     "  --scale S      ground units per elevation unit (default: metres per degree of\n"
     "                 latitude on the ellipsoid at the centre for a DEM in degrees, else 1)\n"
     "  --color        multiply a hypsometric colour relief by the shade (RGBA output)\n"
-    "  --band N       band of the DEM (default 1)\n"
+    "  --band N       band of the DEM (default 1)\n"    "  --tile-rows N  shade N rows per stripe (default: whole DEM when it fits half of --max-memory)\n"
     "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\", \"color\"}\n"
     "  -h, --help     print this help\n\n"
     "Example:\n"

@@ -9,6 +9,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli.h"
+#include "cli_ranks.h"
 
 #include <cairo.h>
 #include <errno.h>
@@ -169,7 +170,17 @@ static int take_global_options(int *argc, char **argv)
     return CLI_CONTINUE;
 }
 
-int main(int argc, char **argv)
+/* Under mpiexec only the commands that decompose into stripes run; the others would all write the same file. */
+static int runs_on_ranks(const cli_command *cmd, int argc, char **argv)
+{
+    if (cli_nranks() == 1 || cmd == &cli_cmd_hillshade)
+        return 1;
+    if (cmd == &cli_cmd_dim && argc > 1 && (strcmp(argv[1], "map") == 0 || strcmp(argv[1], "surface") == 0))
+        return 1;
+    return 0;
+}
+
+static int fracterra_main(int argc, char **argv)
 {
     cli_init();
     if (take_global_options(&argc, argv) != CLI_CONTINUE)
@@ -196,5 +207,22 @@ int main(int argc, char **argv)
     const cli_command *cmd = find_command(arg);
     if (cmd == NULL)
         return unknown_command(arg);
+    if (!runs_on_ranks(cmd, argc - 1, argv + 1)) {
+        if (cli_rank() == 0)
+            fprintf(stderr, "fracterra: %s: does not run on several MPI ranks; only dim map, dim surface and hillshade do "
+                    "(docs/tiling.md)\n", cmd->name);
+        return CLI_USAGE;
+    }
     return run_command(cmd, argc - 1, argv + 1);
+}
+
+int main(int argc, char **argv)
+{
+    if (cli_ranks_init(&argc, &argv) != 0) {
+        fprintf(stderr, "fracterra: MPI could not start\n");
+        return CLI_FAIL;
+    }
+    int rc = fracterra_main(argc, argv);
+    cli_ranks_finalize();
+    return rc;
 }

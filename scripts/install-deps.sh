@@ -28,6 +28,7 @@ packages=(
   python3-pytest python3-dask # its tests (make test), and the dask example
   libproj-dev                 # PROJ geodesic.h: reference ellipsoidal lengths in the tests (pulled in by GDAL too)
   clang libclang-rt-dev libomp-dev  # make fuzz: libFuzzer harnesses (clang's runtime, OpenMP for clang)
+  libopenmpi-dev openmpi-bin  # MPI: mpiexec -n N fracterra dim map|dim surface (docs/tiling.md), its tests
 )
 if [ "$peers" -eq 1 ]; then
   packages+=(

@@ -143,6 +143,47 @@ FT_API int ft_io_write_grid(const char *path, const ft_grid *g, const ft_write_g
 FT_API int ft_io_write_grids(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
 
 /* ------------------------------------------------------------------------------------------------
+ * Grids piece by piece (raster_read.c, raster_tile_write.c): a raster larger than memory is read as windows
+ * (a stripe or block of cells plus the halo its operator needs) and written as pieces, with the memory of
+ * one window. docs/tiling.md.
+ * --------------------------------------------------------------------------------------------- */
+
+/** A raster band open for windowed reading. */
+typedef struct ft_grid_reader ft_grid_reader;
+
+/** Opens band opts->band (opts may be NULL) of a raster file; same errors as ft_io_read_grid. */
+FT_API int ft_io_grid_reader_open(const char *path, const ft_read_grid_opts *opts, ft_grid_reader **out);
+/** The band's size (nx, ny), geotransform, CRS and nodata; z and mask are NULL. Owned by the reader. */
+FT_API const ft_grid *ft_io_grid_reader_header(const ft_grid_reader *r);
+/** The band's block size in cells (a window whose rows start and end on block rows reads each block once). */
+FT_API void ft_io_grid_reader_block(const ft_grid_reader *r, size_t *bx, size_t *by);
+/** Cells [col0, col0 + ncols) x [row0, row0 + nrows) of the band as a grid whose geotransform puts its cell
+ *  (0, 0) at the band's cell (col0, row0), masked and scaled as ft_io_read_grid does: the cells are those
+ *  ft_io_read_grid gives there. FT_E_INVALID naming the window when it leaves the band; FT_E_NOMEM when it
+ *  does not fit ft_memory_limit(). GDAL's block cache is flushed after each window. */
+FT_API int ft_io_grid_reader_read(ft_grid_reader *r, size_t col0, size_t row0, size_t ncols, size_t nrows,
+                                  ft_grid **out);
+/** Closes the file; NULL is a no-op. */
+FT_API void ft_io_grid_reader_close(ft_grid_reader *r);
+
+/** A raster being written piece by piece. */
+typedef struct ft_grid_writer ft_grid_writer;
+
+/** Creates an nbands-band tiled GeoTIFF of header's size, geotransform and CRS under a temporary name beside
+ *  path (nothing appears at path before ft_io_grid_writer_commit). Cells are opts->type (default Float32);
+ *  every band's nodata is header's nodata_value when has_nodata, else the type's (NaN for float types).
+ *  FT_E_UNSUPPORTED for another format than GeoTIFF. */
+FT_API int ft_io_grid_writer_create(const char *path, const ft_grid *header, size_t nbands,
+                                    const ft_write_grid_opts *opts, ft_grid_writer **out);
+/** Writes the cells of piece into band (1-based) with its cell (0, 0) at the raster's (col0, row0); masked
+ *  and non-finite cells become nodata. Pieces may come in any order. */
+FT_API int ft_io_grid_writer_write(ft_grid_writer *w, size_t band, const ft_grid *piece, size_t col0, size_t row0);
+/** Closes the file and renames it onto path; frees w whatever the outcome (on failure nothing is at path). */
+FT_API int ft_io_grid_writer_commit(ft_grid_writer *w);
+/** Removes the temporary file and frees w; NULL is a no-op. */
+FT_API void ft_io_grid_writer_abort(ft_grid_writer *w);
+
+/* ------------------------------------------------------------------------------------------------
  * Points
  * --------------------------------------------------------------------------------------------- */
 
@@ -276,6 +317,13 @@ typedef struct {
  *  nodata transparent), written through the driver of the output's extension (PNG, GeoTIFF, ...) under a
  *  temporary name renamed on success. */
 FT_API int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
+
+/** The hillshade of rows [row0, row0 + nrows) of a DEM file, as ft_io_hillshade gives them on the whole DEM
+ *  (gdaldem, edges computed, 0 = nodata, the automatic scale of the whole DEM's centre), from those rows and
+ *  one row above and below: cells 0 .. 255 as floats (has_nodata, nodata_value 0), georeferenced at row0.
+ *  FT_E_UNSUPPORTED with opts->color (the colour ramp spans the whole DEM). docs/tiling.md. */
+FT_API int ft_io_hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts, size_t row0, size_t nrows,
+                                ft_grid **out);
 
 /** Contour polygons of a DEM (GDALContourGenerateEx with POLYGONIZE=YES, as gdal_contour -p -amin elev):
  *  one polygon feature per band between two levels base + i x interval, with a real field `elev` holding

@@ -220,6 +220,37 @@ FT_API int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surfac
 FT_API int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
                        const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out);
 
+/** The exhaustive lag estimate (variogram, yokoya or pentland with pairs = 0) of a grid too large for memory,
+ *  accumulated stripe by stripe (lag_stripes.c; docs/tiling.md): the per-row counters of a stripe of rows
+ *  [r0, r1) are formed from the stripe plus the halo rows below it, and added in global row order, so D, the
+ *  table and every figure of the result are bit for bit those of ft_surface_dim on the whole grid, for any
+ *  stripe height and any number of processes. */
+typedef struct ft_lag_stripes ft_lag_stripes;
+
+/** A stripe accumulator for the grid described by header (nx, ny, geotransform; its cells are not read).
+ *  FT_E_UNSUPPORTED for another method or random pairs; the options' errors as ft_surface_dim. */
+FT_API int ft_surface_lag_stripes_create(const ft_grid *header, ft_surface_method m, const ft_surface_dim_opts *opts,
+                                         ft_lag_stripes **out);
+/** Rows a stripe must hold below its last row (the largest lag in cells; fewer at the grid's bottom). */
+FT_API size_t ft_surface_lag_stripes_halo(const ft_lag_stripes *s);
+/** Doubles of one row's counters (4 per lag). */
+FT_API size_t ft_surface_lag_stripes_nsums(const ft_lag_stripes *s);
+/** The counters of rows [r0, r1) into sums ((r1 - r0) x nsums doubles) from stripe, a grid of the whole
+ *  width whose row 0 is global row stripe_row0 and which holds rows r0 .. min(r1 + halo, ny) - 1. OpenMP
+ *  over rows; the same on any thread count. s is not changed. */
+FT_API int ft_surface_lag_stripes_rows(const ft_lag_stripes *s, const ft_grid *stripe, size_t stripe_row0, size_t r0,
+                                       size_t r1, double *sums);
+/** Adds the counters of rows [r0, r1) to the running totals; r0 must be the first row not yet added. */
+FT_API int ft_surface_lag_stripes_add(ft_lag_stripes *s, size_t r0, size_t r1, const double *sums);
+/** The running totals (nsums doubles into sums, which may be NULL); returns the first row not yet added. For
+ *  handing the accumulation from one process to the next (MPI ranks in row order). */
+FT_API size_t ft_surface_lag_stripes_state(const ft_lag_stripes *s, double *sums);
+/** Sets the running totals and the next row from ft_surface_lag_stripes_state of another accumulator. */
+FT_API int ft_surface_lag_stripes_resume(ft_lag_stripes *s, const double *sums, size_t next_row);
+/** The estimate once every row has been added (FT_E_INVALID naming the missing rows otherwise). */
+FT_API int ft_surface_lag_stripes_fit(const ft_lag_stripes *s, ft_dim_result **out);
+FT_API void ft_surface_lag_stripes_free(ft_lag_stripes *s);
+
 /* ------------------------------------------------------------------------------------------------
  * Scattered elevations: Yokoya's and Pentland's estimators on irregularly sampled points
  * (Arakawa & Krotkov §2.3-2.4; docs/surface-points.md).

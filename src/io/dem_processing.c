@@ -342,3 +342,117 @@ int ft_io_crs_to_wkt(const char *user_input, char **wkt)
     ft_io_enter();
     return ft_io_leave(crs_to_wkt(user_input, wkt));
 }
+
+/* ---- rows of the hillshade: a stripe plus one row of halo above and below (docs/tiling.md) ---- */
+
+/* Rows [y0, y1) of band `band` of src as an in-memory VRT (GDALTranslate -srcwin): GDAL's DEM processing
+ * then sees the window as a raster of its own. */
+static int window_vrt(GDALDatasetH src, size_t y0, size_t y1, GDALDatasetH *out)
+{
+    char yo[32], w[32], h[32];
+    snprintf(yo, sizeof yo, "%zu", y0);
+    snprintf(w, sizeof w, "%d", GDALGetRasterXSize(src));
+    snprintf(h, sizeof h, "%zu", y1 - y0);
+    char *argv[] = {"-q", "-of", "VRT", "-srcwin", "0", yo, w, h, NULL};
+    ft_io_gdal_reset();
+    GDALTranslateOptions *to = GDALTranslateOptionsNew(argv, NULL);
+    if (to == NULL)
+        return ft_io_fail(FT_E_INVALID, "hillshade: GDAL rejected the window options");
+    *out = GDALTranslate("", src, to, NULL);
+    GDALTranslateOptionsFree(to);
+    return *out != NULL ? FT_OK : ft_io_fail(FT_E_IO, "hillshade: cannot make a window of rows %zu-%zu", y0, y1 - 1);
+}
+
+/* The shade of rows [row0, row0 + nrows) of src (rows y0 .. y1 - 1 shaded as a raster of their own). */
+static int shade_rows(GDALDatasetH src, const ft_io_hillshade_opts *o, size_t row0, size_t nrows, ft_grid **out)
+{
+    size_t nx = (size_t)GDALGetRasterXSize(src), ny = (size_t)GDALGetRasterYSize(src);
+    size_t y0 = row0 > 0 ? row0 - 1 : 0, y1 = row0 + nrows + 1 < ny ? row0 + nrows + 1 : ny;
+    ft_io_hillshade_opts wo = *o;
+    wo.scale = effective_scale(src, o->scale); /* the whole DEM's centre, not the window's */
+    GDALDatasetH win = NULL, hs = NULL;
+    vsimem_names n;
+    names_init(&n);
+    int rc = window_vrt(src, y0, y1, &win);
+    if (rc == FT_OK)
+        rc = run_hillshade(win, &wo, n.hs, &hs);
+    ft_grid *g = rc == FT_OK ? ft_grid_create(nx, nrows) : NULL;
+    if (rc == FT_OK && g == NULL)
+        rc = FT_E_NOMEM;
+    ft_io_gdal_reset();
+    if (rc == FT_OK && GDALRasterIO(GDALGetRasterBand(hs, 1), GF_Read, 0, (int)(row0 - y0), (int)nx, (int)nrows, g->z,
+                                    (int)nx, (int)nrows, GDT_Float32, 0, 0) != CE_None)
+        rc = ft_io_fail(FT_E_IO, "hillshade: cannot read the shade of rows %zu-%zu", row0, row0 + nrows - 1);
+    if (rc == FT_OK) {
+        double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+        GDALGetGeoTransform(src, gt);
+        memcpy(g->gt, gt, sizeof gt);
+        g->gt[0] = gt[0] + (double)row0 * gt[2];
+        g->gt[3] = gt[3] + (double)row0 * gt[5];
+        g->has_nodata = 1;
+        g->nodata_value = 0.0; /* gdaldem's */
+        char *wkt = ft_io_srs_to_wkt(GDALGetSpatialRef(src));
+        rc = wkt ? ft_grid_set_crs(g, wkt) : FT_OK;
+        free(wkt);
+    }
+    if (hs)
+        GDALClose(hs);
+    if (win)
+        GDALClose(win);
+    names_release(&n);
+    if (rc != FT_OK) {
+        ft_grid_free(g);
+        return rc;
+    }
+    *out = g;
+    return FT_OK;
+}
+
+static int hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts, size_t row0, size_t nrows,
+                          ft_grid **out)
+{
+    ft_io_hillshade_opts o_taken = FT_IO_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (FT_OPTS_TAKE(o_taken, opts, ft_io_hillshade_opts) != FT_OK)
+        return FT_E_INVALID;
+    const ft_io_hillshade_opts *o = &o_taken;
+    if (out == NULL)
+        return ft_error(FT_E_INVALID, "hillshade: output pointer is NULL");
+    *out = NULL;
+    if (dem_path == NULL)
+        return ft_error(FT_E_INVALID, "hillshade: no input path given");
+    int rc = check_opts(o);
+    if (rc != FT_OK)
+        return rc;
+    if (o->color)
+        return ft_error(FT_E_UNSUPPORTED, "hillshade: a colour relief spans the whole DEM's elevation range and is "
+                        "not made row by row; shade without colour");
+    GDALDatasetH src = NULL;
+    if ((rc = ft_io_open(dem_path, GDAL_OF_RASTER, &src)) != FT_OK)
+        return rc;
+    size_t nx = (size_t)GDALGetRasterXSize(src), ny = (size_t)GDALGetRasterYSize(src);
+    if (o->band > GDALGetRasterCount(src))
+        rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
+                      o->band);
+    else if (nx < 2 || ny < 2)
+        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", dem_path, nx, ny);
+    else if (nrows == 0 || row0 >= ny || nrows > ny - row0)
+        rc = ft_error(FT_E_INVALID, "hillshade: rows %zu-%zu leave the %zu rows of %s", row0, row0 + nrows - 1, ny,
+                      dem_path);
+    if (rc == FT_OK) {
+        const char *pam = CPLGetThreadLocalConfigOption("GDAL_PAM_ENABLED", NULL);
+        char *saved = pam ? CPLStrdup(pam) : NULL;
+        CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO");
+        rc = shade_rows(src, o, row0, nrows, out);
+        CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", saved);
+        CPLFree(saved);
+    }
+    GDALClose(src);
+    return rc;
+}
+
+int ft_io_hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts, size_t row0, size_t nrows,
+                         ft_grid **out)
+{
+    ft_io_enter();
+    return ft_io_leave(hillshade_rows(dem_path, opts, row0, nrows, out));
+}

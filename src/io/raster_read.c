@@ -102,17 +102,18 @@ static int set_invalid(ft_grid *g, size_t i)
     return FT_OK;
 }
 
-/* Reads rows [row0, row0 + rows) of cells and mask, then masks and scales them. */
-static int read_rows(grid_reader *r, int row0, int rows)
+/* Reads rows [row0, row0 + rows) of columns [col0, col0 + g->nx) of cells and mask, then masks and scales
+ * them. */
+static int read_window_rows(grid_reader *r, int col0, int row0, int rows)
 {
     ft_grid *g = r->g;
     size_t nx = g->nx, base = (size_t)(row0 - r->row_base) * nx, n = (size_t)rows * nx;
     int inx = (int)nx;
     ft_io_gdal_reset();
-    if (GDALRasterIO(r->band, GF_Read, 0, row0, inx, rows, g->z + base, inx, rows, GDT_Float32, 0, 0) != CE_None)
+    if (GDALRasterIO(r->band, GF_Read, col0, row0, inx, rows, g->z + base, inx, rows, GDT_Float32, 0, 0) != CE_None)
         return ft_io_fail(FT_E_IO, "cannot read rows %d-%d of '%s'", row0, row0 + rows - 1, r->path);
     if (r->mask != NULL &&
-        GDALRasterIO(r->mask, GF_Read, 0, row0, inx, rows, r->mbuf, inx, rows, GDT_Byte, 0, 0) != CE_None)
+        GDALRasterIO(r->mask, GF_Read, col0, row0, inx, rows, r->mbuf, inx, rows, GDT_Byte, 0, 0) != CE_None)
         return ft_io_fail(FT_E_IO, "cannot read the mask of rows %d-%d of '%s'", row0, row0 + rows - 1, r->path);
     int scaled = r->scale != 1.0 || r->offset != 0.0;
     for (size_t k = 0; k < n; k++) {
@@ -125,6 +126,11 @@ static int read_rows(grid_reader *r, int row0, int rows)
         }
     }
     return FT_OK;
+}
+
+static int read_rows(grid_reader *r, int row0, int rows)
+{
+    return read_window_rows(r, 0, row0, rows);
 }
 
 /* Rows per read: whole blocks, about `cells` cells at a time. */
@@ -277,7 +283,7 @@ int ft_io_summarize_grid_ds(GDALDatasetH ds, const char *path, const ft_read_gri
     grid_reader r = {.path = path};
     int rc = check_band(ds, path, opts->band);
     if (rc == FT_OK)
-        rc = grid_from_dataset(ds, path, 0, &header);
+        rc = grid_from_dataset(ds, path, 1, &header);
     if (rc == FT_OK) {
         out->header = *header;
         out->header.z = NULL;
@@ -321,4 +327,145 @@ void ft_grid_summary_clear(ft_grid_summary *s)
         return;
     free(s->header.crs_wkt);
     memset(s, 0, sizeof *s);
+}
+
+/* ---- windows: a band read piece by piece (a stripe or block plus its halo) in bounded memory ---- */
+
+struct ft_grid_reader {
+    char *path;
+    GDALDatasetH ds;
+    grid_reader r;  /* band, mask, scale and offset; r.g is the window being read */
+    ft_grid *header; /* size, georeferencing, CRS and nodata of the band; one cell */
+};
+
+static void grid_reader_close(ft_grid_reader *gr)
+{
+    if (gr == NULL)
+        return;
+    if (gr->ds != NULL)
+        GDALClose(gr->ds);
+    ft_grid_free(gr->header);
+    free(gr->path);
+    free(gr);
+}
+
+static int grid_reader_open(const char *path, const ft_read_grid_opts *opts, ft_grid_reader **out)
+{
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    if (FT_OPTS_TAKE(o, opts, ft_read_grid_opts) != FT_OK)
+        return FT_E_INVALID;
+    if (out == NULL)
+        return ft_error(FT_E_INVALID, "grid reader: output pointer is NULL");
+    *out = NULL;
+    ft_grid_reader *gr = ft_calloc(1, sizeof *gr);
+    if (gr == NULL || (gr->path = ft_strdup(path ? path : "")) == NULL) {
+        free(gr);
+        return FT_E_NOMEM;
+    }
+    int rc = ft_io_open(path, GDAL_OF_RASTER, &gr->ds);
+    if (rc == FT_OK)
+        rc = check_band(gr->ds, path, o.band);
+    if (rc == FT_OK)
+        rc = grid_from_dataset(gr->ds, path, 1, &gr->header);
+    if (rc == FT_OK) {
+        gr->r.path = gr->path;
+        gr->r.band = GDALGetRasterBand(gr->ds, o.band);
+        rc = check_block(gr->ds, gr->r.band, path);
+    }
+    if (rc == FT_OK) {
+        gr->r.g = gr->header;
+        band_header(&gr->r);
+        gr->r.g = NULL;
+        free(gr->header->z);
+        gr->header->z = NULL;
+    }
+    if (rc != FT_OK) {
+        grid_reader_close(gr);
+        return rc;
+    }
+    *out = gr;
+    return FT_OK;
+}
+
+const ft_grid *ft_io_grid_reader_header(const ft_grid_reader *gr)
+{
+    return gr ? gr->header : NULL;
+}
+
+void ft_io_grid_reader_block(const ft_grid_reader *gr, size_t *bx, size_t *by)
+{
+    int x = 1, y = 1;
+    if (gr != NULL)
+        GDALGetBlockSize(gr->r.band, &x, &y);
+    if (bx != NULL)
+        *bx = x > 0 ? (size_t)x : 1;
+    if (by != NULL)
+        *by = y > 0 ? (size_t)y : 1;
+}
+
+static int grid_reader_read(ft_grid_reader *gr, size_t col0, size_t row0, size_t ncols, size_t nrows, ft_grid **out)
+{
+    if (out == NULL)
+        return ft_error(FT_E_INVALID, "grid reader: output pointer is NULL");
+    *out = NULL;
+    if (gr == NULL)
+        return ft_error(FT_E_INVALID, "grid reader is NULL");
+    const ft_grid *h = gr->header;
+    if (ncols == 0 || nrows == 0 || col0 >= h->nx || row0 >= h->ny || ncols > h->nx - col0 || nrows > h->ny - row0)
+        return ft_error(FT_E_INVALID, "window of %zu x %zu cells at column %zu, row %zu leaves the %zu x %zu band of "
+                        "'%s'", ncols, nrows, col0, row0, h->nx, h->ny, gr->path);
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "reading a %zu x %zu window of '%s'", ncols, nrows, gr->path);
+    if (ft_check_memory((double)ncols * (double)nrows * (sizeof(float) + 2.0), what) != FT_OK)
+        return FT_E_NOMEM;
+    ft_grid *g = ft_grid_create(ncols, nrows);
+    if (g == NULL)
+        return FT_E_NOMEM;
+    memcpy(g->gt, h->gt, sizeof g->gt);
+    g->gt[0] = h->gt[0] + (double)col0 * h->gt[1] + (double)row0 * h->gt[2];
+    g->gt[3] = h->gt[3] + (double)col0 * h->gt[4] + (double)row0 * h->gt[5];
+    g->has_nodata = h->has_nodata;
+    g->nodata_value = h->nodata_value;
+    int rc = ft_grid_set_crs(g, h->crs_wkt);
+    grid_reader *r = &gr->r;
+    r->g = g;
+    r->row_base = (int)row0;
+    if (rc == FT_OK && r->mask != NULL && (r->mbuf = ft_malloc(ncols * nrows)) == NULL)
+        rc = FT_E_NOMEM;
+    if (rc == FT_OK)
+        rc = read_window_rows(r, (int)col0, (int)row0, (int)nrows);
+    /* the window's blocks are not kept: GDAL's cache holds no more than the window being read */
+    GDALFlushRasterCache(r->band);
+    if (r->mask != NULL)
+        GDALFlushRasterCache(r->mask);
+    free(r->mbuf);
+    r->mbuf = NULL;
+    r->g = NULL;
+    if (rc != FT_OK) {
+        ft_grid_free(g);
+        return rc;
+    }
+    *out = g;
+    return FT_OK;
+}
+
+/* ---- public entry points: GDAL's messages kept by the module's handler (ft_io_enter) ---- */
+
+int ft_io_grid_reader_open(const char *path, const ft_read_grid_opts *opts, ft_grid_reader **out)
+{
+    ft_io_enter();
+    return ft_io_leave(grid_reader_open(path, opts, out));
+}
+
+int ft_io_grid_reader_read(ft_grid_reader *gr, size_t col0, size_t row0, size_t ncols, size_t nrows, ft_grid **out)
+{
+    ft_io_enter();
+    return ft_io_leave(grid_reader_read(gr, col0, row0, ncols, nrows, out));
+}
+
+void ft_io_grid_reader_close(ft_grid_reader *gr)
+{
+    ft_io_enter();
+    grid_reader_close(gr);
+    ft_io_leave(FT_OK);
 }

@@ -39,7 +39,7 @@ static int is_float(GDALDataType t)
     return t == GDT_Float32 || t == GDT_Float64;
 }
 
-static double default_nodata(GDALDataType t)
+double ft_io_default_nodata(GDALDataType t)
 {
     switch (t) {
     case GDT_Float32:
@@ -65,7 +65,7 @@ static int any_invalid(const ft_grid *g)
     return 0;
 }
 
-static int output_type(int requested, GDALDataType *t)
+int ft_io_output_type(int requested, GDALDataType *t)
 {
     *t = requested == 0 ? GDT_Float32 : (GDALDataType)requested;
     if (requested < 0 || requested >= GDT_TypeCount || *t == GDT_Unknown)
@@ -80,7 +80,7 @@ static int output_type(int requested, GDALDataType *t)
  * open it (ZSTD, 0.7x its CPU time on 4096² Float32 surfaces, cannot be read by libtiff builds without
  * ZSTD; library callers can ask for it in the creation options), and level 1 costs half the CPU time of level 6 for files
  * 1 % larger. A level is set only for the default codec. */
-static char **creation_options(GDALDriverH drv, const char *const *co, GDALDataType t)
+char **ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t)
 {
     char **o = NULL;
     int gtiff = EQUAL(GDALGetDriverShortName(drv), "GTiff");
@@ -108,7 +108,7 @@ static char **creation_options(GDALDriverH drv, const char *const *co, GDALDataT
     return o;
 }
 
-static void set_nodata(GDALRasterBandH b, GDALDataType t, double v)
+void ft_io_set_nodata(GDALRasterBandH b, GDALDataType t, double v)
 {
     if (t == GDT_Int64)
         GDALSetRasterNoDataValueAsInt64(b, (int64_t)v);
@@ -200,7 +200,7 @@ static int fill_dataset(grid_writer *w, GDALDatasetH ds)
     for (size_t k = 0; k < w->nbands && rc == FT_OK; k++) {
         GDALRasterBandH b = GDALGetRasterBand(ds, (int)k + 1);
         if (w->use_nodata[k])
-            set_nodata(b, w->type, w->nodata[k]);
+            ft_io_set_nodata(b, w->type, w->nodata[k]);
         rc = write_cells(w, k, b);
     }
     return rc;
@@ -246,7 +246,7 @@ static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **c
 
 /* A driver that cannot store the band type would convert it on the way (PNG turns Float32 elevations
  * into a Byte image of their integer parts): refused instead of a silently different file. */
-static int check_type(const char *path, GDALDriverH drv, GDALDataType type)
+int ft_io_check_type(const char *path, GDALDriverH drv, GDALDataType type)
 {
     const char *types = GDALGetMetadataItem(drv, GDAL_DMD_CREATIONDATATYPES, NULL);
     const char *name = GDALGetDataTypeName(type);
@@ -282,11 +282,11 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     if (rc == FT_OK)
         rc = ft_io_check_writable(path);
     if (rc == FT_OK)
-        rc = output_type(o.type, &w.type);
+        rc = ft_io_output_type(o.type, &w.type);
     if (rc == FT_OK)
         rc = ft_io_find_driver(path, o.driver, GDAL_DCAP_RASTER, &drv);
     if (rc == FT_OK)
-        rc = check_type(path, drv, w.type);
+        rc = ft_io_check_type(path, drv, w.type);
     if (rc != FT_OK)
         return rc;
     w.use_nodata = ft_malloc(n * sizeof *w.use_nodata);
@@ -300,9 +300,9 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     }
     for (size_t k = 0; k < n; k++) {
         w.use_nodata[k] = bands[k]->has_nodata || any_invalid(bands[k]);
-        w.nodata[k] = bands[k]->has_nodata ? bands[k]->nodata_value : default_nodata(w.type);
+        w.nodata[k] = bands[k]->has_nodata ? bands[k]->nodata_value : ft_io_default_nodata(w.type);
     }
-    char **co = creation_options(drv, o.co, w.type);
+    char **co = ft_io_creation_options(drv, o.co, w.type);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
     rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
     CSLDestroy(co);

@@ -1,0 +1,55 @@
+/* fracterra — cli/tile_cli.h: `dim map` and `dim surface` on a raster read stripe by stripe (bounded memory)
+ * and, under mpiexec, on several ranks (tile_dim.c). The cells of a D map and the D of a surface are those of
+ * the whole-raster run, bit for bit. docs/tiling.md.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#ifndef FRACTERRA_CLI_TILE_H
+#define FRACTERRA_CLI_TILE_H
+
+#include "cli.h"
+
+/** Parses --tile-rows N (rows of input cells per stripe, 1 .. 10^8). */
+int tile_parse_rows(const cli_command *cmd, const char *arg, long *rows);
+/** 1 if a command must run stripe by stripe: --tile-rows given, started by mpiexec (any number of ranks, so
+ *  that the result does not depend on it), or the band (nx x ny cells of bytes_per_cell bytes while
+ *  measured) larger than half of --max-memory. */
+int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell);
+/** The band's size without reading its cells: CLI_CONTINUE, or CLI_FAIL (printed). */
+int tile_band_size(const cli_command *cmd, const char *path, int band, size_t *nx, size_t *ny);
+
+/** This rank's share [*a, *b) of n rows (the r-th of P nearly equal parts). */
+void tile_rank_share(size_t n, size_t *a, size_t *b);
+
+typedef struct {
+    size_t window, step;
+    ft_surface_method method;
+    ft_surface_dim_opts opts;
+    int band;
+    const char *driver;
+    long tile_rows;     /* 0: automatic */
+} tile_map_job;
+
+/** What `dim map` reports: the lattice size and the D of the measured windows, summed in row order. */
+typedef struct {
+    size_t nox, noy, measured;
+    double lo, hi, sum;
+} tile_map_stats;
+
+/** The D map (band 1) and r² (band 2) of the DEM into OUT (GeoTIFF), stripe by stripe, ranks sharing the
+ *  stripes; rank 0 writes. CLI_OK with *st on rank 0, or CLI_FAIL (printed). */
+int tile_dim_map(const cli_command *cmd, const char *in, const char *out, const tile_map_job *job,
+                 tile_map_stats *st);
+
+/** D of the whole DEM by an exhaustive lag method, stripe by stripe, ranks adding their rows in order. On
+ *  rank 0, CLI_OK with *out, the band's size, valid cells and CRS; other ranks CLI_OK with *out NULL. */
+int tile_dim_surface(const cli_command *cmd, const char *in, int band, ft_surface_method m,
+                     const ft_surface_dim_opts *o, long tile_rows, ft_dim_result **out, size_t *nx, size_t *ny,
+                     uint64_t *valid, ft_crs_info *crs);
+
+/** The hillshade of the DEM into OUT (a Byte GeoTIFF, 0 = nodata) stripe by stripe (tile_hillshade.c), ranks
+ *  sharing the stripes, rank 0 writing: the cells of ft_io_hillshade's. CLI_OK or CLI_FAIL (printed). */
+int tile_hillshade(const cli_command *cmd, const char *in, const char *out, const ft_io_hillshade_opts *o,
+                   long tile_rows);
+
+#endif /* FRACTERRA_CLI_TILE_H */

@@ -1,0 +1,296 @@
+/* fracterra — tests/cli/test_cli_tiles.c: `dim map` and `dim surface` stripe by stripe (--tile-rows, and
+ * automatically beyond --max-memory) and on two MPI ranks give what the whole-raster run gives: every cell of
+ * the map (across the stripe seams, nodata included) and the whole JSON report; so does `hillshade`. Refusals: random pairs,
+ * methods that do not decompose, geographic DEMs, formats other than GeoTIFF, commands that do not run on
+ * ranks. The mpiexec tests run when the CLI was built with MPI (FT_TEST_MPIEXEC) and not under the
+ * sanitizers (Open MPI's own allocations are reported as leaks there); they are skipped otherwise.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fracterra/fracterra.h"
+#include "ft_test_util.h"
+
+#define LUX_UTM FT_TEST_DATA "/dem_luxembourg_utm32n.tif" /* 81 x 115, half nodata */
+#define LUX_LONLAT FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
+
+static size_t hole_cells; /* cells of the synthetic DEM's nodata hole */
+
+/* A 230 x 190 D = 2.4 surface in UTM 33N with a nodata hole, as GeoTIFF. */
+static const char *synthetic_dem(void)
+{
+    ft_synth_opts so = FT_SYNTH_OPTS_DEFAULT;
+    so.dim = 2.4;
+    so.cell = 25.0;
+    so.origin_x = 400000.0;
+    so.origin_y = 5000000.0;
+    so.seed = 5;
+    ft_grid *g = NULL;
+    assert_int_equal(ft_terrain_synth(230, 190, &so, &g), FT_OK);
+    char *wkt = NULL;
+    assert_int_equal(ft_io_crs_to_wkt("EPSG:32633", &wkt), FT_OK);
+    assert_int_equal(ft_grid_set_crs(g, wkt), FT_OK);
+    free(wkt);
+    assert_int_equal(ft_grid_ensure_mask(g), FT_OK);
+    hole_cells = 0;
+    for (size_t i = 0; i < g->ny; i++)
+        for (size_t j = 0; j < g->nx; j++)
+            if (hypot((double)j - 150.0, (double)i - 70.0) < 20.0) {
+                g->mask[i * g->nx + j] = 0;
+                hole_cells++;
+            }
+    const char *path = ft_test_tmp("dem.tif");
+    assert_int_equal(ft_io_write_grid(path, g, NULL), FT_OK);
+    ft_grid_free(g);
+    return path;
+}
+
+/* stdout of a successful run (malloc'd). */
+static char *run_out(const char *const *argv)
+{
+    ft_run_result r;
+    assert_int_equal(ft_run_argv(&r, argv), 0);
+    if (r.status != 0)
+        print_error("status %d, stderr: %s\n", r.status, r.err);
+    assert_int_equal(r.status, 0);
+    char *out = strdup(r.out);
+    ft_run_free(&r);
+    return out;
+}
+#define RUN_OUT(...) run_out((const char *const[]){__VA_ARGS__, NULL})
+
+/* Both bands of two maps, cell for cell (nodata where the other has nodata), and their georeferencing. */
+static void assert_same_map(const char *a, const char *b)
+{
+    for (int band = 1; band <= 2; band++) {
+        ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+        o.band = band;
+        ft_grid *x = NULL, *y = NULL;
+        assert_int_equal(ft_io_read_grid(a, &o, &x), FT_OK);
+        assert_int_equal(ft_io_read_grid(b, &o, &y), FT_OK);
+        assert_int_equal(x->nx, y->nx);
+        assert_int_equal(x->ny, y->ny);
+        for (int k = 0; k < 6; k++)
+            assert_true(x->gt[k] == y->gt[k]);
+        ft_test_assert_same_crs(x->crs_wkt, y->crs_wkt);
+        size_t valid = 0;
+        for (size_t i = 0; i < x->nx * x->ny; i++) {
+            int vx = x->mask == NULL || x->mask[i], vy = y->mask == NULL || y->mask[i];
+            assert_int_equal(vx, vy);
+            if (vx) {
+                assert_memory_equal(&x->z[i], &y->z[i], sizeof(float));
+                valid++;
+            }
+        }
+        assert_true(valid > 0 && valid < x->nx * x->ny); /* measured windows and nodata ones both compared */
+        ft_grid_free(x);
+        ft_grid_free(y);
+    }
+}
+
+/* The "output" member differs; everything else of two dim map reports must be equal. */
+static void assert_same_report(const char *a, const char *b, const char *out_a, const char *out_b)
+{
+    const char *pa = strstr(a, out_a), *pb = strstr(b, out_b);
+    assert_non_null(pa);
+    assert_non_null(pb);
+    assert_int_equal(pa - a, pb - b);
+    assert_memory_equal(a, b, (size_t)(pa - a));
+    assert_string_equal(pa + strlen(out_a), pb + strlen(out_b));
+}
+
+static void test_dim_map_tiled_equals_whole(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem();
+    const char *whole = ft_test_tmp("whole.tif"), *t1 = ft_test_tmp("t1.tif"), *t2 = ft_test_tmp("t2.tif");
+    char *a = RUN_OUT("dim", "map", dem, whole, "--window", "32", "--step", "8", "--min-valid", "0.9", "--json");
+    /* stripes of 8 lattice rows, of 1 (every seam), and automatic ones under a 1 MB memory bound */
+    char *b = RUN_OUT("dim", "map", dem, t1, "--window", "32", "--step", "8", "--min-valid", "0.9", "--json",
+                      "--tile-rows", "64");
+    char *c = RUN_OUT("dim", "map", dem, t2, "--window", "32", "--step", "8", "--min-valid", "0.9", "--json",
+                      "--tile-rows", "1");
+    assert_same_map(whole, t1);
+    assert_same_map(whole, t2);
+    assert_same_report(a, b, "whole.tif", "t1.tif");
+    assert_same_report(a, c, "whole.tif", "t2.tif");
+    const char *t3 = ft_test_tmp("t3.tif");
+    char *d = RUN_OUT("--max-memory", "1M", "dim", "map", dem, t3, "--window", "32", "--step", "8", "--min-valid",
+                      "0.9", "--json");
+    assert_same_map(whole, t3);
+    assert_same_report(a, d, "whole.tif", "t3.tif");
+    /* a DEM with nodata over half its cells (Int16), window 16 step 4 */
+    const char *lw = ft_test_tmp("lw.tif"), *lt = ft_test_tmp("lt.tif");
+    free(RUN_OUT("dim", "map", LUX_UTM, lw, "--window", "16", "--step", "4"));
+    free(RUN_OUT("dim", "map", LUX_UTM, lt, "--window", "16", "--step", "4", "--tile-rows", "10"));
+    assert_same_map(lw, lt);
+    free(a);
+    free(b);
+    free(c);
+    free(d);
+}
+
+static void test_dim_surface_tiled_equals_whole(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem();
+    const char *methods[] = {"variogram", "yokoya", "pentland"};
+    for (int k = 0; k < 3; k++) {
+        char *a = RUN_OUT("dim", "surface", dem, "--method", methods[k], "--pairs", "0", "--json");
+        char *b = RUN_OUT("dim", "surface", dem, "--method", methods[k], "--tile-rows", "7", "--json");
+        assert_string_equal(a, b); /* D, table, fit, warnings, cells_valid: the whole report */
+        if (k == 0) { /* automatic stripes under a 1 MB memory bound */
+            char *c = RUN_OUT("--max-memory", "1M", "dim", "surface", dem, "--method", methods[k], "--json");
+            assert_string_equal(a, c);
+            free(c);
+        }
+        json_object *o = json_tokener_parse(a);
+        double D = ft_test_json_num(o, "D");
+        assert_true(D > 2.2 && D < 2.6);
+        assert_int_equal(ft_test_json_int(o, "cells_valid"), 230 * 190 - (int64_t)hole_cells);
+        json_object_put(o);
+        free(a);
+        free(b);
+    }
+}
+
+/* Byte cells of two hillshades, every one, and their georeferencing. */
+static void assert_same_shade(const char *a, const char *b)
+{
+    ft_grid *x = NULL, *y = NULL;
+    assert_int_equal(ft_io_read_grid(a, NULL, &x), FT_OK);
+    assert_int_equal(ft_io_read_grid(b, NULL, &y), FT_OK);
+    assert_int_equal(x->nx, y->nx);
+    assert_int_equal(x->ny, y->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true(x->gt[k] == y->gt[k]);
+    size_t lit = 0;
+    for (size_t i = 0; i < x->nx * x->ny; i++) {
+        float vx = x->mask == NULL || x->mask[i] ? x->z[i] : 0.0f, vy = y->mask == NULL || y->mask[i] ? y->z[i] : 0.0f;
+        assert_true(vx == vy);
+        lit += vx > 0.0f;
+    }
+    assert_true(lit > 0 && lit < x->nx * x->ny); /* shaded cells and the nodata hole both compared */
+    ft_grid_free(x);
+    ft_grid_free(y);
+}
+
+static void test_hillshade_tiled_equals_whole(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem(), *whole = ft_test_tmp("hw.tif"), *t = ft_test_tmp("ht.tif");
+    free(RUN_OUT("hillshade", dem, whole, "--z-factor", "3"));
+    free(RUN_OUT("hillshade", dem, t, "--z-factor", "3", "--tile-rows", "13"));
+    assert_same_shade(whole, t);
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "--color", "hillshade", dem, ft_test_tmp("c.tif"), "--color",
+                           "--tile-rows", "13");
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "must be a GeoTIFF", "hillshade", dem, ft_test_tmp("c.png"),
+                           "--tile-rows", "13");
+    assert_int_equal(ft_test_dir_count(), 3); /* the DEM and the two shades */
+}
+
+static void test_tiled_refusals(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem();
+    FT_TEST_EXPECT_FAILURE(2, "dim map", "random pairs", "dim", "map", dem, ft_test_tmp("m.tif"), "--window", "32",
+                           "--pairs", "100", "--tile-rows", "40");
+    FT_TEST_EXPECT_FAILURE(2, "dim surface", "random pairs", "dim", "surface", dem, "--pairs", "100", "--tile-rows",
+                           "40");
+    FT_TEST_EXPECT_FAILURE(2, "dim surface", "got --method spectrum", "dim", "surface", dem, "--method", "spectrum",
+                           "--tile-rows", "40");
+    FT_TEST_EXPECT_FAILURE(2, "dim surface", "--tile-rows", "dim", "surface", dem, "--tile-rows", "0");
+    FT_TEST_EXPECT_FAILURE(1, "dim surface", "longitude/latitude", "dim", "surface", LUX_LONLAT, "--tile-rows",
+                           "40");
+    FT_TEST_EXPECT_FAILURE(1, "dim map", "longitude/latitude", "dim", "map", LUX_LONLAT, ft_test_tmp("m.tif"),
+                           "--window", "16", "--tile-rows", "40");
+    FT_TEST_EXPECT_FAILURE(1, "dim map", "must be a GeoTIFF", "dim", "map", dem, ft_test_tmp("m.asc"), "--window",
+                           "32", "--tile-rows", "40");
+    FT_TEST_EXPECT_FAILURE(1, "dim map", "larger than the 230x190 grid", "dim", "map", dem, ft_test_tmp("m.tif"),
+                           "--window", "200", "--tile-rows", "40");
+    assert_int_equal(ft_test_dir_count(), 1); /* the DEM: no map, no temporary left behind */
+}
+
+/* ---- MPI ---- */
+
+#if defined(FT_TEST_MPIEXEC) && !defined(FT_TEST_SANITIZE)
+/* Runs `mpiexec -n 2 FT_BIN args` with stdout into out_path; returns the exit status. */
+static int mpirun2(const char *out_path, const char *args)
+{
+    char cmd[4096];
+    snprintf(cmd, sizeof cmd, "%s -n 2 --oversubscribe %s %s %s > %s 2> %s.err", FT_TEST_MPIEXEC,
+             geteuid() == 0 ? "--allow-run-as-root" : "", FT_BIN, args, out_path, out_path);
+    int rc = system(cmd);
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+static char *slurp(const char *path)
+{
+    char *s = ft_test_read_file(path, NULL);
+    assert_non_null(s);
+    return s;
+}
+#endif
+
+static void test_mpi_two_ranks_equal_whole(void **state)
+{
+    (void)state;
+#if defined(FT_TEST_MPIEXEC) && !defined(FT_TEST_SANITIZE)
+    char *dem = strdup(synthetic_dem()); /* ft_test_tmp's buffers are reused */
+    const char *whole = ft_test_tmp("whole.tif"), *m2 = ft_test_tmp("m2.tif");
+    char *a = RUN_OUT("dim", "map", dem, whole, "--window", "32", "--step", "8", "--min-valid", "0.9", "--json");
+    char args[2048];
+    snprintf(args, sizeof args, "dim map %s %s --window 32 --step 8 --min-valid 0.9 --json --tile-rows 40", dem, m2);
+    assert_int_equal(mpirun2(ft_test_tmp("map.out"), args), 0);
+    assert_same_map(whole, m2);
+    char *b = slurp(ft_test_tmp("map.out"));
+    assert_same_report(a, b, "whole.tif", "m2.tif");
+    free(a);
+    free(b);
+    a = RUN_OUT("dim", "surface", dem, "--pairs", "0", "--json");
+    snprintf(args, sizeof args, "dim surface %s --json", dem);
+    assert_int_equal(mpirun2(ft_test_tmp("surface.out"), args), 0);
+    b = slurp(ft_test_tmp("surface.out"));
+    assert_string_equal(a, b); /* one report, from rank 0 only, equal to the whole run's */
+    free(a);
+    free(b);
+    const char *hw = ft_test_tmp("hw.tif"), *h2 = ft_test_tmp("h2.tif");
+    free(RUN_OUT("hillshade", dem, hw));
+    snprintf(args, sizeof args, "hillshade %s %s --tile-rows 30", dem, h2);
+    assert_int_equal(mpirun2(ft_test_tmp("shade.out"), args), 0);
+    assert_same_shade(hw, h2);
+    /* a command that does not decompose is refused on every rank, nothing written */
+    snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64", ft_test_tmp("s.tif"));
+    assert_int_equal(mpirun2(ft_test_tmp("synth.out"), args), 2);
+    char *err = slurp(ft_test_tmp("synth.out.err"));
+    assert_non_null(strstr(err, "fracterra: synth: does not run on several MPI ranks"));
+    free(err);
+    assert_int_equal(access(ft_test_tmp("s.tif"), F_OK), -1);
+    free(dem);
+#else
+    skip(); /* built without MPI, or under the sanitizers */
+#endif
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_dim_map_tiled_equals_whole),
+        cmocka_unit_test(test_dim_surface_tiled_equals_whole),
+        cmocka_unit_test(test_hillshade_tiled_equals_whole),
+        cmocka_unit_test(test_tiled_refusals),
+        cmocka_unit_test(test_mpi_two_ranks_equal_whole),
+    };
+    return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
+}
