@@ -3,7 +3,8 @@
  * changes between levels (checked first: its divider length at the generators' segment lengths is the
  * closed form) reports two, each with the dimension of its generator, and the break where the box-count
  * asymptotes of the two generators meet, between half the segment length where the generator changes and
- * that length; box counting of a circle of radius 50 km with boxes of 5 to
+ * that length; at the generators' own segment lengths the divider plot is two exact lines meeting where
+ * the generator changes, and the break is found there; box counting of a circle of radius 50 km with boxes of 5 to
  * 50 km reads D within 0.02 of 1 (the mean over grid origins; the fewest over them does not).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -128,7 +129,7 @@ static double chain_length(const ft_chain *c)
  * steps from vertex to vertex, so the divider length is L (4 f)^k exactly, i.e. log length against log
  * ruler has slope 1 - D of that generator at every r_k, below the change too (closed form, not the code
  * under test). Between the r_k the walk cuts the generator's spikes (lacunarity): the plot is a staircase. */
-static void check_divider_exact(const ft_chain *c, const double *deg, int first, int last)
+static void check_divider_exact(const ft_chain *c, const double *deg, int first, int last, ft_loglog *t)
 {
     double L = c->x[c->n - 1], fk[10], len[10];
     fk[0] = 1.0;
@@ -153,6 +154,10 @@ static void check_divider_exact(const ft_chain *c, const double *deg, int first,
         assert_true(fabs(w->scale / (L * fk[k]) - 1.0) < 1e-6);
         assert_true(fabs(w->value / len[k] - 1.0) < 1e-6);
     }
+    for (size_t i = 0; t && i < r->table->n; i++) /* ascending scale; the caller's rows end at r_first */
+        if (t->n == 0 || r->table->rows[i].scale > t->rows[t->n - 1].scale * (1.0 + 1e-6))
+            assert_int_equal(ft_loglog_push(t, r->table->rows[i].scale, r->table->rows[i].value,
+                                            r->table->rows[i].count), FT_OK);
     assert_true(fabs(r->D - koch_dim(deg[first])) < 1e-6);
     ft_dim_result_free(r);
 }
@@ -199,7 +204,7 @@ static void check_two_regimes(const double *deg, int up, double C_a, double C_b)
     double s_star = l * pow(C_a / C_b, 1.0 / (Da - Db));
     assert_true(fabs(chain_length(c) / (1e5 * pow(4.0 / (2.0 * (1.0 + cos(deg[0] * M_PI / 180.0))), up) *
                                         pow(4.0 / (2.0 * (1.0 + cos(deg[8] * M_PI / 180.0))), 9 - up)) - 1.0) < 1e-9);
-    check_divider_exact(c, deg, 1, up);
+    check_divider_exact(c, deg, 1, up, NULL);
     print_message("  %d levels at %.0f (D = %.4f) above l = %.0f m, %d at %.0f (D = %.4f) below; C %.3f / %.3f, "
                   "asymptotes meet at %.0f m\n", up, deg[0], Da, l, 9 - up, deg[8], Db, C_a, C_b, s_star);
     ft_dim_result *r = measure(c, FT_LINE_BOX, 0.0, 1e4, 30, 0);
@@ -215,6 +220,38 @@ static void check_two_regimes(const double *deg, int up, double C_a, double C_b)
     ft_chain_free(c);
 }
 
+/* The divider plot of the two-regime curve at the generators' own segment lengths r_k (a hair under, so
+ * the walk steps vertex to vertex): exactly straight at D_a for r_k >= l and at D_b for r_k <= l, both
+ * lines through the row at l (the length there is L (4 f_a)^up from either side: no prefactor differs,
+ * unlike box counts). The regime code finds the two regimes with their D and the break where the
+ * generator changes, l. Between the r_k the walk cuts the generator's spikes (the staircase), which is why
+ * geometric rulers put the break elsewhere (docs/loglog.md). */
+static void check_divider_break(const double *deg, int up)
+{
+    ft_chain *c = koch_type(9, deg, 1e5);
+    double Da = koch_dim(deg[0]), Db = koch_dim(deg[8]);
+    double l = 1e5 * pow(2.0 * (1.0 + cos(deg[0] * M_PI / 180.0)), -up);
+    ft_loglog *t = ft_loglog_create(0);
+    check_divider_exact(c, deg, up, 9, t); /* below l, checked against the closed form */
+    check_divider_exact(c, deg, 1, up, t); /* above l, from the row at l on */
+    assert_int_equal(t->n, 9);
+    const ft_dim_map div = FT_DIM_MAP_DIVIDER;
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
+    print_message("  divider at the segment lengths, %d x %.0f above l = %.1f m, %d x %.0f below: %zu regime(s)\n",
+                  up, deg[0], l, 9 - up, deg[8], r->nregimes);
+    for (size_t k = 0; k < r->nregimes; k++)
+        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
+                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
+    assert_int_equal(r->nregimes, 2);
+    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
+    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
+    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+    ft_chain_free(c);
+}
+
 static void test_two_regimes(void **state)
 {
     (void)state;
@@ -223,6 +260,8 @@ static void test_two_regimes(void **state)
     check_two_regimes(down, 5, C75, C30);
     const double upw[9] = {30, 30, 30, 30, 75, 75, 75, 75, 75};
     check_two_regimes(upw, 4, C30, C75);
+    check_divider_break(down, 5);
+    check_divider_break(upw, 4);
 
     /* the headline is the widest regime, and says so; --regime picks the other */
     ft_chain *c = koch_type(9, down, 1e5);
