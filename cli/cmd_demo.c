@@ -73,8 +73,9 @@ static const demo_item items[] = {
      {{"volcano_perspective.png", 1}},
      {"fracterra", "render", "@/" DEMO_VOLCANO, "volcano_perspective.png", "--width", "900"}},
     {"Maunga Whau, Clarke model",
-     "Clarke's model z = T + cF + H (1987) fitted to the volcano: trend, significant harmonics, spectral "
-     "slope and D (docs/terrain-model.md).",
+     "Clarke's model z = T + cF + H (1987) fitted to the volcano: trend, significant harmonics and "
+     "spectral slope. A cone's spectrum is steeper than any fractional Brownian surface's, so the command "
+     "warns that its D falls outside (2,3).",
      {{"volcano_clarke_model.json", 0}},
      {"fracterra", "model", "fit", "@/" DEMO_VOLCANO, "-o", "volcano_clarke_model.json"}},
     {"Newfoundland, Douglas-Peucker outline",
@@ -90,7 +91,8 @@ static const demo_item items[] = {
      {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_enhanced.geojson", "--sd", "1.3", "--uc",
       "0.7", "--sm", "5100", "--weed", "--smooth", "1"}},
     {"Newfoundland, Douglas-Peucker outline: divider",
-     "Walking-divider log-log plot of the generalized outline, over its automatic ruler range.",
+     "Walking-divider log-log plot of the generalized outline, over its automatic ruler range (the command "
+     "warns that at 158 points no straight run of a decade exists).",
      {{"newfoundland_loglog_before.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_158.geojson", "--plot", "newfoundland_loglog_before.svg"}},
     {"Newfoundland, enhanced outline: divider",
