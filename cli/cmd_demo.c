@@ -1,22 +1,26 @@
-/* fracterra — cli/cmd_demo.c: `fracterra demo OUTDIR`: a small gallery made from the bundled data.
+/* fracterra — cli/cmd_demo.c: `fracterra demo OUTDIR`: a small gallery made by running fracterra's own
+ * commands on the bundled data.
  *
  * The data folder is $FRACTERRA_DATA, else the source tree's tests/data (FT_SOURCE_DATADIR), else the
- * installed share/fracterra (FT_INSTALL_DATADIR). The demo is a list of steps (the static `steps` array):
- * each reads its input, writes its outputs into OUTDIR and registers them with a title, a caption and the
- * data's source; the last step writes index.html, a self-contained page showing them all with the
- * `fracterra info` figures of each input. A later capability adds its piece as one more step. If a step
- * fails, the files already written are removed (and OUTDIR, if the demo created it).
+ * installed share/fracterra (FT_INSTALL_DATADIR). The gallery is the static `items` array: each item is one
+ * real command line (an argv array) that the demo runs by exec'ing this very binary (/proc/self/exe) in
+ * OUTDIR, its stdout discarded, and the files that command writes. The caption of each item in index.html
+ * and the manifest gallery.json ({"items": [{"title", "argv", "outputs"}]}) are made from that same argv, so
+ * a caption is the command that produced the file (tests/cli/test_cli_demo.c re-runs every recorded argv
+ * and compares the files). In an argv, a word starting with "@/" names a file of the data folder. If a
+ * command fails, the files already written are removed (and OUTDIR, if the demo created it).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli.h"
-#include "demo.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #ifndef FT_SOURCE_DATADIR
@@ -26,15 +30,136 @@
 #define FT_INSTALL_DATADIR ""
 #endif
 
+#define DEMO_MAX_ARGS 32
+#define DEMO_MAX_OUTPUTS 64
 #define DEMO_VOLCANO "dem_volcano_maunga_whau_10m.tif"
-#define DEMO_NEWFOUNDLAND "gshhg_newfoundland_utm21n.geojson"
-#define SOURCE_VOLCANO                                                                                     \
-    "R <code>datasets::volcano</code>: Maunga Whau (Mt Eden), Auckland, digitized by Ross Ihaka; "          \
-    "GPL-2 | GPL-3"
+
+/* ---- the gallery ---- */
+
+typedef struct {
+    const char *file; /* written in OUTDIR by the command */
+    int image;        /* 1 if index.html shows it with <img> */
+} demo_file;
+
+typedef struct {
+    const char *title;
+    const char *caption;   /* what it shows (HTML); the command line follows, made from argv */
+    demo_file outputs[5];  /* ends at a NULL file */
+    const char *argv[DEMO_MAX_ARGS]; /* "fracterra", COMMAND, ...; ends at NULL; "@/name": data folder */
+} demo_item;
+
+static const demo_item items[] = {
+    {"Synthetic terrain (GeoTIFF)",
+     "A fractional Brownian surface of D = 2.3 (spectral synthesis on a padded grid), 512 &times; 512 cells of "
+     "10 m, standard deviation 60 m, seeded.",
+     {{"terrain_synth.tif", 0}},
+     {"fracterra", "synth", "terrain_synth.tif", "--dim", "2.3", "--size", "512x512", "--cell", "10", "--sigma",
+      "60", "--seed", "2024"}},
+    {"Synthetic terrain, shaded relief",
+     "GDAL's hillshade (light from the north-west at 45&deg;, z-factor 2) times its colour relief with "
+     "fracterra's hypsometric ramp.",
+     {{"terrain_synth_hillshade.png", 1}},
+     {"fracterra", "hillshade", "terrain_synth.tif", "terrain_synth_hillshade.png", "--z-factor", "2", "--color"}},
+    {"Synthetic terrain, perspective view",
+     "The same surface seen from the south-south-west, 35&deg; down, z-buffered and lit.",
+     {{"terrain_synth_perspective.png", 1}},
+     {"fracterra", "render", "terrain_synth.tif", "terrain_synth_perspective.png", "--width", "900"}},
+    {"Maunga Whau, shaded relief",
+     "The 10 m DEM of Maunga Whau (61 &times; 87 cells): GDAL's hillshade, z-factor 2, times its colour relief.",
+     {{"volcano_hillshade.png", 1}},
+     {"fracterra", "hillshade", "@/" DEMO_VOLCANO, "volcano_hillshade.png", "--z-factor", "2", "--color"}},
+    {"Maunga Whau, perspective view",
+     "The 10 m DEM seen from the south-south-west, 35&deg; down, vertical exaggeration chosen automatically.",
+     {{"volcano_perspective.png", 1}},
+     {"fracterra", "render", "@/" DEMO_VOLCANO, "volcano_perspective.png", "--width", "900"}},
+    {"Maunga Whau, Clarke model",
+     "Clarke's model z = T + cF + H (1987) fitted to the volcano: trend, significant harmonics and "
+     "spectral slope. A cone's spectrum is steeper than any fractional Brownian surface's, so the command "
+     "warns that its D falls outside (2,3).",
+     {{"volcano_clarke_model.json", 0}},
+     {"fracterra", "model", "fit", "@/" DEMO_VOLCANO, "-o", "volcano_clarke_model.json"}},
+    {"Newfoundland, Douglas-Peucker outline",
+     "Dutton's Newfoundland sequence (1981, Fig. 6), first step: the GSHHG full-resolution shoreline "
+     "(64,193 vertices) generalized with Douglas-Peucker to at most 158 vertices.",
+     {{"newfoundland_158.geojson", 0}},
+     {"fracterra", "simplify", "@/gshhg_newfoundland_utm21n.geojson", "newfoundland_158.geojson", "--vertices",
+      "158"}},
+    {"Newfoundland, enhanced outline",
+     "The generalized outline enhanced with SD = 1.3, UC = 0.7, SM = 5100 m (1% of the map width) and no "
+     "straightness limit, weeded at SM and smoothed once.",
+     {{"newfoundland_enhanced.geojson", 0}},
+     {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_enhanced.geojson", "--sd", "1.3", "--uc",
+      "0.7", "--sm", "5100", "--weed", "--smooth", "1"}},
+    {"Newfoundland, Douglas-Peucker outline: divider",
+     "Walking-divider log-log plot of the generalized outline, over its automatic ruler range (the command "
+     "warns that at 158 points no straight run of a decade exists).",
+     {{"newfoundland_loglog_before.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_158.geojson", "--plot", "newfoundland_loglog_before.svg"}},
+    {"Newfoundland, enhanced outline: divider",
+     "The same for the enhanced outline (its own automatic range).",
+     {{"newfoundland_loglog_after.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_enhanced.geojson", "--plot", "newfoundland_loglog_after.svg"}},
+    {"Rhode Island, simplified boundary",
+     "Rhode Island's boundary from the DCW states, simplified with Douglas-Peucker at 600 m: the input of "
+     "the boundary simulation.",
+     {{"urban_ri.geojson", 0}},
+     {"fracterra", "simplify", "@/dcw_us_states_small_albers5070.geojson", "urban_ri.geojson", "--where",
+      "code = 'US.RI'", "--tolerance", "600"}},
+    {"Rhode Island: a boundary simulated with D = 1.2325",
+     "Detail of dimension 1.2325 added to the simplified boundary by the midpoint-subdivision generator "
+     "(Zhang, Yu &amp; Fan 2008) down to 100 m segments, seeded.",
+     {{"urban_ri_simulated.geojson", 0}},
+     {"fracterra", "boundary", "urban_ri.geojson", "urban_ri_simulated.geojson", "--dim", "1.2325", "--min",
+      "100", "--seed", "1997"}},
+    {"Rhode Island, simulated boundary: box counting",
+     "Box-counting log-log plot of the simulated boundary.",
+     {{"urban_ri_simulated_loglog.svg", 1}},
+     {"fracterra", "dim", "line", "urban_ri_simulated.geojson", "--method", "box", "--plot",
+      "urban_ri_simulated_loglog.svg"}},
+    {"Contours grown from one seed contour",
+     "Every contour of a mountain grown from the 130 m contour of Maunga Whau by the improved contour "
+     "generation method of Misawa, Chiba &amp; Saito, every 5 m, 3 levels grown outward below the seed, the "
+     "paper's fixed 20-40&deg; displacement angles; the contour map (seed in red), the DEM interpolated "
+     "between the contours and its perspective view.",
+     {{"mountain_contours.svg", 1}, {"mountain_perspective.png", 1}, {"mountain_contours.geojson", 0},
+      {"mountain.tif", 0}},
+     {"fracterra", "mountain", "@/seed_contour_volcano.geojson", "mountain_contours.geojson", "--interval", "5",
+      "--levels-down", "3", "--theta", "20,40", "--seed", "8", "--dem", "mountain.tif", "--cell", "2", "--view",
+      "mountain_perspective.png", "--map", "mountain_contours.svg"}},
+};
+#define NITEMS (sizeof items / sizeof items[0])
+
+/* The inputs of the gallery, for the table of index.html. */
+static const struct {
+    const char *file;
+    const char *source; /* HTML */
+} inputs[] = {
+    {DEMO_VOLCANO, "R <code>datasets::volcano</code>: Maunga Whau (Mt Eden), Auckland, digitized by Ross Ihaka; "
+                   "GPL-2 | GPL-3"},
+    {"gshhg_newfoundland_utm21n.geojson",
+     "GSHHG 2.3.7 full resolution shoreline, Wessel &amp; Smith (1996); LGPL-3+"},
+    {"dcw_us_states_small_albers5070.geojson",
+     "DCW-GMT 2.1.1 (Digital Chart of the World for GMT), P. Wessel; LGPL-3+"},
+    {"seed_contour_volcano.geojson",
+     "the 130 m contour of Maunga Whau, made from <code>" DEMO_VOLCANO "</code> with <code>gdal_contour "
+     "-p</code>; GPL-2 | GPL-3"},
+};
+#define NINPUTS (sizeof inputs / sizeof inputs[0])
+
+typedef struct {
+    const cli_command *cmd;
+    const char *data;   /* the data folder */
+    const char *outdir;
+    char *path[DEMO_MAX_OUTPUTS]; /* OUTDIR/file of each output written or being written */
+    const char *file[DEMO_MAX_OUTPUTS];
+    size_t nout;
+    char *argv[NITEMS][DEMO_MAX_ARGS]; /* the argv run, data paths resolved */
+    json_object *inputs; /* array: `fracterra info` of each input, plus "name" and "source" */
+} demo_ctx;
 
 /* ---- helpers ---- */
 
-char *demo_join_path(const char *dir, const char *file)
+static char *join_path(const char *dir, const char *file)
 {
     size_t n = strlen(dir);
     int slash = n > 0 && dir[n - 1] == '/';
@@ -53,7 +178,7 @@ static int is_dir(const char *path)
 
 static int has_demo_data(const char *dir)
 {
-    char *p = demo_join_path(dir, DEMO_VOLCANO);
+    char *p = join_path(dir, DEMO_VOLCANO);
     int ok = p && access(p, R_OK) == 0;
     free(p);
     return ok;
@@ -97,111 +222,82 @@ static int make_outdir(const cli_command *cmd, const char *dir, int *created)
     return CLI_FAIL;
 }
 
-/* Registers an output that a step is about to write; returns its path (owned by ctx) or NULL. */
-const char *demo_add_output(demo_ctx *ctx, const char *file, const char *title, const char *caption, int image)
+/* Registers an output about to be written, so that a failed demo removes it. FT_OK or FT_E_*. */
+static int add_output(demo_ctx *ctx, const char *file)
 {
-    if (ctx->nout == DEMO_MAX_OUTPUTS) {
-        ft_error(FT_E_INVALID, "demo: too many outputs (at most %d)", DEMO_MAX_OUTPUTS);
-        return NULL;
-    }
-    char *path = demo_join_path(ctx->outdir, file);
-    if (path == NULL) {
-        ft_error(FT_E_NOMEM, "demo: out of memory");
-        return NULL;
-    }
-    demo_output *o = &ctx->out[ctx->nout++];
-    o->path = path;
-    o->file = file;
-    o->title = title;
-    o->caption = caption;
-    o->image = image;
-    return path;
-}
-
-/* Records the `fracterra info` figures of an input for index.html and the JSON output. */
-int demo_add_input(demo_ctx *ctx, const char *file, const char *source)
-{
-    char *path = demo_join_path(ctx->data, file);
-    json_object *info = NULL;
-    int rc = path ? cli_info_describe(path, NULL, 0, &info) : ft_error(FT_E_NOMEM, "demo: out of memory");
-    free(path);
-    if (rc != FT_OK)
-        return rc;
-    json_object_object_add(info, "name", json_object_new_string(file));
-    json_object_object_add(info, "source", json_object_new_string(source));
-    json_object_array_add(ctx->inputs, info);
+    if (ctx->nout == DEMO_MAX_OUTPUTS)
+        return ft_error(FT_E_INVALID, "demo: too many outputs (at most %d)", DEMO_MAX_OUTPUTS);
+    char *path = join_path(ctx->outdir, file);
+    if (path == NULL)
+        return ft_error(FT_E_NOMEM, "demo: out of memory");
+    ctx->path[ctx->nout] = path;
+    ctx->file[ctx->nout++] = file;
     return FT_OK;
 }
 
-/* ---- steps ---- */
-
-static int step_volcano_tif(demo_ctx *ctx)
+/* Records the `fracterra info` figures of every input for index.html and the JSON output. */
+static int describe_inputs(demo_ctx *ctx)
 {
-    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
-    ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
-    char *in = demo_join_path(ctx->data, DEMO_VOLCANO);
-    if (in == NULL)
-        return ft_error(FT_E_NOMEM, "demo: out of memory");
-    int rc = ft_io_read_grid(in, &ro, &ctx->volcano);
-    free(in);
-    if (rc == FT_OK)
-        rc = demo_add_input(ctx, DEMO_VOLCANO, SOURCE_VOLCANO);
-    if (rc != FT_OK)
-        return rc;
-    const char *out = demo_add_output(ctx, "volcano.tif", "Maunga Whau DEM (GeoTIFF)",
-                                 "The 10 m DEM of Maunga Whau read and written back through fracterra's GeoTIFF "
-                                 "writer: same cells, geotransform and CRS.",
-                                 0);
-    return out ? ft_io_write_grid(out, ctx->volcano, &wo) : ft_last_error_code();
-}
-
-static int step_volcano_hillshade(demo_ctx *ctx)
-{
-    ft_hillshade_opts ho = FT_HILLSHADE_OPTS_DEFAULT;
-    ft_grid_image_opts io = FT_GRID_IMAGE_OPTS_DEFAULT;
-    ft_grid *shade = NULL;
-    ho.z_factor = 2.0; /* the volcano's gentle slopes read better with some exaggeration */
-    int rc = ft_render_hillshade(ctx->volcano, &ho, &shade);
-    if (rc != FT_OK)
-        return rc;
-    io.width = 600;
-    io.colormap = 1;
-    io.shade = shade;
-    const char *out = demo_add_output(ctx, "volcano_hillshade.png", "Maunga Whau, shaded relief",
-                                 "Hypsometric tints multiplied by a hillshade (Horn's method, light from the "
-                                 "north-west at 45&deg;, "
-                                 "vertical exaggeration 2), enlarged from 61 &times; 87 cells to 600 pixels wide.",
-                                 1);
-    rc = out ? ft_render_grid_png(ctx->volcano, out, &io) : ft_last_error_code();
-    ft_grid_free(shade);
-    return rc;
-}
-
-static int step_newfoundland_map(demo_ctx *ctx)
-{
-    ft_read_layer_opts ro = FT_READ_LAYER_OPTS_DEFAULT;
-    ft_map_opts mo = FT_MAP_OPTS_DEFAULT;
-    ft_layer *l = NULL;
-    char *in = demo_join_path(ctx->data, DEMO_NEWFOUNDLAND);
-    if (in == NULL)
-        return ft_error(FT_E_NOMEM, "demo: out of memory");
-    int rc = ft_io_read_layer(in, &ro, &l);
-    free(in);
-    if (rc == FT_OK)
-        rc = demo_add_input(ctx, DEMO_NEWFOUNDLAND, SOURCE_GSHHG);
-    if (rc == FT_OK) {
-        const char *out = demo_add_output(ctx, "newfoundland.svg", "Newfoundland shoreline",
-                                     "The island's full-resolution GSHHG shoreline, one ring, drawn as an SVG "
-                                     "map with a scale bar.",
-                                     1);
-        mo.title = "Newfoundland: GSHHG full-resolution shoreline (UTM 21N)";
-        mo.width = 800;
-        mo.height = 800;
-        rc = out ? ft_render_map(l, out, &mo) : ft_last_error_code();
+    for (size_t i = 0; i < NINPUTS; i++) {
+        char *path = join_path(ctx->data, inputs[i].file);
+        json_object *info = NULL;
+        int rc = path ? cli_info_describe(path, NULL, 0, &info) : ft_error(FT_E_NOMEM, "demo: out of memory");
+        free(path);
+        if (rc != FT_OK)
+            return rc;
+        json_object_object_add(info, "name", json_object_new_string(inputs[i].file));
+        json_object_object_add(info, "source", json_object_new_string(inputs[i].source));
+        json_object_array_add(ctx->inputs, info);
     }
-    ft_layer_free(l);
-    return rc;
+    return FT_OK;
 }
+
+/* ctx->argv[k]: the item's argv with "@/name" resolved in the data folder. */
+static int resolve_argv(demo_ctx *ctx, size_t k)
+{
+    for (size_t i = 0; items[k].argv[i]; i++) {
+        const char *a = items[k].argv[i];
+        ctx->argv[k][i] = strncmp(a, "@/", 2) == 0 ? join_path(ctx->data, a + 2) : strdup(a);
+        if (ctx->argv[k][i] == NULL)
+            return ft_error(FT_E_NOMEM, "demo: out of memory");
+    }
+    return FT_OK;
+}
+
+/* Runs argv (argv[0] "fracterra") as this binary in dir, stdout discarded, stderr kept. FT_OK if it exits 0. */
+static int run_in(const char *dir, char *const *argv)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return ft_error(FT_E_IO, "demo: cannot start a command: %s", strerror(errno));
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (chdir(dir) != 0 || fd < 0 || dup2(fd, STDOUT_FILENO) < 0)
+            _exit(127);
+        execv("/proc/self/exe", argv);
+        _exit(127);
+    }
+    int st = 0;
+    while (waitpid(pid, &st, 0) < 0)
+        if (errno != EINTR)
+            return ft_error(FT_E_IO, "demo: lost a command: %s", strerror(errno));
+    if (WIFEXITED(st) && WEXITSTATUS(st) == 0)
+        return FT_OK;
+    if (WIFSIGNALED(st))
+        return ft_error(FT_E_IO, "`%s %s` died from signal %d", argv[0], argv[1], WTERMSIG(st));
+    return ft_error(FT_E_IO, "`%s %s` exited with status %d", argv[0], argv[1], WEXITSTATUS(st));
+}
+
+static int run_item(demo_ctx *ctx, size_t k)
+{
+    int rc = resolve_argv(ctx, k);
+    for (size_t i = 0; rc == FT_OK && items[k].outputs[i].file; i++)
+        rc = add_output(ctx, items[k].outputs[i].file);
+    return rc == FT_OK ? run_in(ctx->outdir, ctx->argv[k]) : rc;
+}
+
+/* ---- index.html and gallery.json ---- */
 
 /* HTML-escapes s into f. */
 static void html_text(FILE *f, const char *s)
@@ -218,6 +314,26 @@ static void html_text(FILE *f, const char *s)
         else
             fputc(*s, f);
     }
+}
+
+/* A word as a POSIX shell reads it back: bare if it is plain, else in double quotes. */
+static void html_shell_word(FILE *f, const char *w)
+{
+    int plain = *w != '\0';
+    for (const char *c = w; *c; c++)
+        plain &= strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./,:=@+-", *c) != NULL;
+    if (plain) {
+        html_text(f, w);
+        return;
+    }
+    fputs("&quot;", f);
+    for (const char *c = w; *c; c++) {
+        char one[2] = {*c, '\0'};
+        if (strchr("\"\\$`", *c))
+            fputc('\\', f);
+        html_text(f, one);
+    }
+    fputs("&quot;", f);
 }
 
 static long long jint(json_object *o, const char *key)
@@ -257,29 +373,36 @@ static void html_input_figures(FILE *f, json_object *in)
     }
 }
 
-static void html_outputs(FILE *f, const demo_ctx *ctx)
+static void html_item(FILE *f, const demo_ctx *ctx, size_t k)
 {
-    fputs("<h2>What the demo made</h2>\n", f);
-    for (size_t i = 0; i < ctx->nout; i++) {
-        const demo_output *o = &ctx->out[i];
-        if (strcmp(o->file, "index.html") == 0)
+    const demo_item *it = &items[k];
+    fputs("<figure>\n", f);
+    for (size_t i = 0; it->outputs[i].file; i++) {
+        if (!it->outputs[i].image)
             continue;
-        fputs("<figure>\n", f);
-        if (o->image) {
-            fputs("<img src=\"", f);
-            html_text(f, o->file);
-            fputs("\" alt=\"", f);
-            html_text(f, o->title);
-            fputs("\">\n", f);
-        }
-        fputs("<figcaption><a href=\"", f);
-        html_text(f, o->file);
-        fputs("\">", f);
-        html_text(f, o->file);
-        fputs("</a>: <b>", f);
-        html_text(f, o->title);
-        fprintf(f, "</b>. %s</figcaption>\n</figure>\n", o->caption);
+        fputs("<img src=\"", f);
+        html_text(f, it->outputs[i].file);
+        fputs("\" alt=\"", f);
+        html_text(f, it->title);
+        fputs("\">\n", f);
     }
+    fputs("<figcaption><b>", f);
+    html_text(f, it->title);
+    fprintf(f, "</b>. %s Made by:<br>\n<code class=\"cmd\">", it->caption);
+    for (size_t i = 0; ctx->argv[k][i]; i++) {
+        if (i)
+            fputc(' ', f);
+        html_shell_word(f, ctx->argv[k][i]);
+    }
+    fputs("</code><br>\nwhich wrote", f);
+    for (size_t i = 0; it->outputs[i].file; i++) {
+        fputs(i ? ", <a href=\"" : " <a href=\"", f);
+        html_text(f, it->outputs[i].file);
+        fputs("\">", f);
+        html_text(f, it->outputs[i].file);
+        fputs("</a>", f);
+    }
+    fputs(".</figcaption>\n</figure>\n", f);
 }
 
 static void html_inputs(FILE *f, const demo_ctx *ctx)
@@ -300,8 +423,9 @@ static void html_inputs(FILE *f, const demo_ctx *ctx)
           f);
 }
 
-static void html_page(FILE *f, const demo_ctx *ctx)
+static int write_page(FILE *f, const void *arg)
 {
+    const demo_ctx *ctx = arg;
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>fracterra demo</title>\n"
           "<style>\nbody{font-family:sans-serif;max-width:58em;margin:2em auto;padding:0 1em;color:#222}\n"
           "figure{margin:1.5em 0}img{max-width:100%;border:1px solid #ccc}figcaption{margin-top:.4em}\n"
@@ -309,46 +433,51 @@ static void html_page(FILE *f, const demo_ctx *ctx)
           "</style>\n</head>\n<body>\n<h1>fracterra demo</h1>\n",
           f);
     fprintf(f, "<p>Made by <code>fracterra demo</code> (fracterra %s) from the data bundled with fracterra, "
-               "a library and command-line tool for the fractal geometry of maps.</p>\n",
+               "a library and command-line tool for the fractal geometry of maps. Each file below was written "
+               "by the command shown under it, run in this folder; <code>gallery.json</code> lists them.</p>\n"
+               "<h2>What the demo made</h2>\n",
             ft_version());
-    html_outputs(f, ctx);
+    for (size_t k = 0; k < NITEMS; k++)
+        html_item(f, ctx, k);
     html_inputs(f, ctx);
     fputs("</body>\n</html>\n", f);
-}
-
-static int write_page(FILE *f, const void *ctx)
-{
-    html_page(f, ctx);
     return FT_OK;
 }
 
-static int step_index_html(demo_ctx *ctx)
+static json_object *gallery_json(const demo_ctx *ctx)
 {
-    const char *out = demo_add_output(ctx, "index.html", "the gallery page", "This page.", 0);
-    if (out == NULL)
-        return ft_last_error_code();
-    return cli_write_file(out, write_page, ctx);
+    json_object *o = json_object_new_object(), *arr = json_object_new_array();
+    for (size_t k = 0; k < NITEMS; k++) {
+        json_object *it = json_object_new_object(), *argv = json_object_new_array(),
+                    *outs = json_object_new_array();
+        for (size_t i = 0; ctx->argv[k][i]; i++)
+            json_object_array_add(argv, json_object_new_string(ctx->argv[k][i]));
+        for (size_t i = 0; items[k].outputs[i].file; i++)
+            json_object_array_add(outs, json_object_new_string(items[k].outputs[i].file));
+        json_object_object_add(it, "title", json_object_new_string(items[k].title));
+        json_object_object_add(it, "argv", argv);
+        json_object_object_add(it, "outputs", outs);
+        json_object_array_add(arr, it);
+    }
+    json_object_object_add(o, "data_dir", json_object_new_string(ctx->data));
+    json_object_object_add(o, "items", arr);
+    return o;
 }
 
-/* The demo, in order; index.html comes last so that it shows everything before it. */
-static const struct {
-    const char *name;
-    demo_step_fn run;
-} steps[] = {
-    {"volcano GeoTIFF", step_volcano_tif},
-    {"volcano hillshade", step_volcano_hillshade},
-    {"Newfoundland map", step_newfoundland_map},
-    {"Newfoundland enhancement", demo_step_lines},
-    {"terrain", demo_step_terrain},
-    {"urban boundary", demo_step_urban},
-    {"mountain", demo_step_mountain},
-    {"index.html", step_index_html},
-};
+static int write_manifest(FILE *f, const void *arg)
+{
+    json_object *o = gallery_json(arg);
+    fputs(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE), f);
+    fputc('\n', f);
+    json_object_put(o);
+    return FT_OK;
+}
 
 /* ---- the command ---- */
 
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
 {
+    (void)arg;
     if (opt == 'j') {
         *(int *)ctx = 1;
         return CLI_CONTINUE;
@@ -360,13 +489,15 @@ static void cleanup(demo_ctx *ctx, int failed, int created)
 {
     for (size_t i = 0; i < ctx->nout; i++) {
         if (failed)
-            unlink(ctx->out[i].path);
-        free(ctx->out[i].path);
+            unlink(ctx->path[i]);
+        free(ctx->path[i]);
     }
     if (failed && created)
         rmdir(ctx->outdir);
+    for (size_t k = 0; k < NITEMS; k++)
+        for (size_t i = 0; ctx->argv[k][i]; i++)
+            free(ctx->argv[k][i]);
     json_object_put(ctx->inputs);
-    ft_grid_free(ctx->volcano);
 }
 
 static int report(demo_ctx *ctx, int json)
@@ -374,18 +505,35 @@ static int report(demo_ctx *ctx, int json)
     if (!json) {
         printf("fracterra demo: data from %s\n", ctx->data);
         for (size_t i = 0; i < ctx->nout; i++)
-            printf("  wrote %-40s %s\n", ctx->out[i].path, ctx->out[i].title);
-        printf("open %s in a browser\n", ctx->out[ctx->nout - 1].path);
+            printf("  wrote %s\n", ctx->path[i]);
+        printf("open %s in a browser\n", ctx->path[ctx->nout - 1]);
         return CLI_OK;
     }
     json_object *o = json_object_new_object(), *outs = json_object_new_array();
     for (size_t i = 0; i < ctx->nout; i++)
-        json_object_array_add(outs, json_object_new_string(ctx->out[i].path));
+        json_object_array_add(outs, json_object_new_string(ctx->path[i]));
     json_object_object_add(o, "outdir", json_object_new_string(ctx->outdir));
     json_object_object_add(o, "data_dir", json_object_new_string(ctx->data));
     json_object_object_add(o, "outputs", outs);
     json_object_object_add(o, "inputs", json_object_get(ctx->inputs));
+    json_object *g = gallery_json(ctx), *gi = NULL;
+    json_object_object_get_ex(g, "items", &gi);
+    json_object_object_add(o, "items", json_object_get(gi));
+    json_object_put(g);
     return cli_print_json(ctx->cmd, o);
+}
+
+/* Runs every item, then writes gallery.json and index.html (last, so that it shows everything). */
+static int make_gallery(demo_ctx *ctx)
+{
+    int rc = describe_inputs(ctx);
+    for (size_t k = 0; rc == FT_OK && k < NITEMS; k++)
+        rc = run_item(ctx, k);
+    if (rc == FT_OK && (rc = add_output(ctx, "gallery.json")) == FT_OK)
+        rc = cli_write_file(ctx->path[ctx->nout - 1], write_manifest, ctx);
+    if (rc == FT_OK && (rc = add_output(ctx, "index.html")) == FT_OK)
+        rc = cli_write_file(ctx->path[ctx->nout - 1], write_page, ctx);
+    return rc;
 }
 
 static int run_demo(const cli_command *cmd, int argc, char **argv)
@@ -399,16 +547,17 @@ static int run_demo(const cli_command *cmd, int argc, char **argv)
     if (rc != CLI_CONTINUE)
         return rc;
 
-    demo_ctx ctx = {.cmd = cmd, .outdir = argv[first]};
+    static demo_ctx ctx; /* the demo runs once per process; its argv table is large */
+    memset(&ctx, 0, sizeof ctx);
+    ctx.cmd = cmd;
+    ctx.outdir = argv[first];
     if ((ctx.data = find_data(cmd)) == NULL || make_outdir(cmd, ctx.outdir, &created) != CLI_CONTINUE)
         return CLI_FAIL;
     ctx.inputs = json_object_new_array();
-    for (size_t i = 0; i < sizeof steps / sizeof steps[0]; i++) {
-        if (steps[i].run(&ctx) != FT_OK) {
-            cli_error(cmd, "%s: %s", steps[i].name, ft_last_error());
-            cleanup(&ctx, 1, created);
-            return CLI_FAIL;
-        }
+    if (make_gallery(&ctx) != FT_OK) {
+        cli_error(cmd, "%s", ft_last_error());
+        cleanup(&ctx, 1, created);
+        return CLI_FAIL;
     }
     rc = report(&ctx, json);
     cleanup(&ctx, 0, created);
@@ -417,30 +566,25 @@ static int run_demo(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cli_cmd_demo = {
     "demo",
-    "make a small gallery (GeoTIFF, shaded relief, maps, log-log plots, index.html) from the bundled data",
+    "make a small gallery by running fracterra's commands on the bundled data (index.html)",
     "fracterra demo OUTDIR [--json]",
-    "Writes into OUTDIR (created if missing; its parent must exist):\n"
-    "  volcano.tif                     the Maunga Whau DEM written back through fracterra's GeoTIFF writer\n"
-    "  volcano_hillshade.png           hypsometric tints times a hillshade, 600 pixels wide\n"
-    "  newfoundland.svg                a map of the GSHHG shoreline of Newfoundland with a scale bar\n"
-    "  newfoundland_enhanced.svg       Dutton's sequence: the shoreline generalized to 158 points, enhanced,\n"
-    "                                  weeded and smoothed, drawn over the original\n"
-    "  newfoundland_loglog_before.svg  divider log-log plot of the 158-point outline\n"
-    "  newfoundland_loglog_after.svg   the same for the enhanced outline\n"
-    "  terrain_synth.tif               a synthetic fBm terrain, D = 2.3, 512 x 512 cells, seeded\n"
-    "  terrain_synth_hillshade.png     its GDAL hillshade times a colour relief\n"
-    "  terrain_synth_perspective.png   its perspective view\n"
-    "  volcano_gdal_hillshade.png      the volcano's GDAL hillshade times a colour relief\n"
-    "  volcano_perspective.png         the volcano's perspective view\n"
-    "  volcano_clarke_model.json       Clarke's model fitted to the volcano (figures in index.html)\n"
-    "  urban_boundary.png              Rhode Island's boundary with detail of D = 1.2325 added by the\n"
-    "                                  midpoint-subdivision generator, drawn over the input\n"
-    "  urban_boundary_zoom.png         the same on a window a fifth of the state's width\n"
-    "  index.html                      a page showing them, with the inputs' figures and data sources\n"
+    "Runs fracterra's own commands on the bundled data, in OUTDIR (created if missing; its parent must\n"
+    "exist), each as a separate process of this binary:\n"
+    "  synth, hillshade, render        a synthetic fBm terrain (D = 2.3, 512 x 512, seeded), its shaded\n"
+    "                                  relief and perspective view\n"
+    "  hillshade, render, model fit    the same for the Maunga Whau DEM, and Clarke's model fitted to it\n"
+    "  simplify, enhance, dim line     Dutton's Newfoundland sequence: the GSHHG shoreline generalized to\n"
+    "                                  158 points and enhanced; divider log-log plots of both\n"
+    "  simplify, boundary, dim line    Rhode Island's boundary with detail of D = 1.2325 added by the\n"
+    "                                  midpoint-subdivision generator; its box-counting plot\n"
+    "  mountain                        contours grown from one seed contour: map, DEM, perspective view\n"
+    "then writes gallery.json ({\"data_dir\", \"items\": [{\"title\", \"argv\", \"outputs\"}]}: every command line\n"
+    "run and the files it wrote) and index.html, which shows each file with the command that made it. Run\n"
+    "in OUTDIR, any recorded argv writes the same file again.\n"
     "The data folder is $FRACTERRA_DATA, else the source tree's tests/data, else the installed\n"
-    "share/fracterra. If a step fails, nothing is left behind.\n\n"
+    "share/fracterra. If a command fails, nothing is left behind.\n\n"
     "Options:\n"
-    "  -j, --json   print {\"outdir\", \"data_dir\", \"outputs\": [paths], \"inputs\": [info...]} on stdout\n"
+    "  -j, --json   print {\"outdir\", \"data_dir\", \"outputs\": [paths], \"inputs\": [info...], \"items\"}\n"
     "  -h, --help   print this help\n\n"
     "Example:\n"
     "  fracterra demo out/ && xdg-open out/index.html\n",
