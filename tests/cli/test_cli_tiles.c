@@ -304,6 +304,18 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_same_report(a, b, "whole.tif", "m2.tif");
     free(a);
     free(b);
+    /* the noise count is summed over the ranks: the noisy DEM's report equals the whole run's */
+    char *noisy = strdup(synthetic_dem_noise(NOISE_SD, "noisy.tif"));
+    const char *nw = ft_test_tmp("nw.tif"), *n2 = ft_test_tmp("n2.tif");
+    a = RUN_OUT("dim", "map", noisy, nw, "--window", "32", "--step", "16", "--json");
+    snprintf(args, sizeof args, "dim map %s %s --window 32 --step 16 --json --tile-rows 40", noisy, n2);
+    assert_int_equal(mpirun2(ft_test_tmp("nmap.out"), args), 0);
+    b = slurp(ft_test_tmp("nmap.out"));
+    assert_non_null(strstr(a, "noise detected in"));
+    assert_same_report(a, b, "nw.tif", "n2.tif");
+    free(a);
+    free(b);
+    free(noisy);
     a = RUN_OUT("dim", "surface", dem, "--pairs", "0", "--json");
     snprintf(args, sizeof args, "dim surface %s --json", dem);
     assert_int_equal(mpirun2(ft_test_tmp("surface.out"), args), 0);
