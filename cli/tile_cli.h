@@ -30,10 +30,12 @@ typedef struct {
     long tile_rows;     /* 0: automatic */
 } tile_map_job;
 
-/** What `dim map` reports: the lattice size and the D of the measured windows, summed in row order. */
+/** What `dim map` reports: the lattice size, the D of the measured windows, summed in row order, and how many
+ *  of them had white noise removed (ft_surface_dim_map_noise's flag). */
 typedef struct {
     size_t nox, noy, measured;
     double lo, hi, sum;
+    size_t nugget;
 } tile_map_stats;
 
 /** The D map (band 1) and r² (band 2) of the DEM into OUT (GeoTIFF), stripe by stripe, ranks sharing the

@@ -102,6 +102,7 @@ typedef struct {
     tile_map_stats *st; /* rank 0 */
     float *share;       /* other ranks: D then r2 of their share's lattice rows, NaN = nodata */
     size_t share_row0, share_rows;
+    uint64_t nugget;    /* this rank's measured windows with white noise removed */
 } map_run;
 
 /* Rank 0: a piece of D and r2 (nox x rows, row0 of the lattice) to the file and the report's figures. */
@@ -138,13 +139,13 @@ static int map_stripe(map_run *m, ft_grid_reader *r, size_t a, size_t b, int *an
 {
     const tile_map_job *j = m->job;
     size_t lo = a * j->step, hi = b == m->noy ? m->ny : (b - 1) * j->step + j->window;
-    ft_grid *s = NULL, *D = NULL, *r2 = NULL;
+    ft_grid *s = NULL, *D = NULL, *r2 = NULL, *N = NULL;
     if (ft_io_grid_reader_read(r, 0, lo, m->nx, hi - lo, &s) != FT_OK)
         return cli_fail(m->cmd);
     int rc = CLI_OK;
     if (ft_grid_count_valid(s) > 0) {
         *any = 1;
-        if (ft_surface_dim_map(s, j->window, j->step, j->method, &j->opts, &D, &r2) != FT_OK)
+        if (ft_surface_dim_map_noise(s, j->window, j->step, j->method, &j->opts, &D, &r2, &N) != FT_OK)
             rc = cli_fail(m->cmd);
     } else { /* the whole run measures no window here: nodata */
         D = ft_grid_create(m->nox, b - a);
@@ -161,6 +162,8 @@ static int map_stripe(map_run *m, ft_grid_reader *r, size_t a, size_t b, int *an
     }
     if (rc == CLI_OK) {
         D->ny = r2->ny = b - a; /* the last stripe may hold windows past the lattice: none (checked above) */
+        for (size_t i = 0; N != NULL && i < m->nox * (b - a); i++) /* N is nodata where D is */
+            m->nugget += N->mask[i] && N->z[i] > 0.5f;
         if (cli_rank() == 0)
             rc = map_put(m, D, r2, a);
         else
@@ -168,6 +171,7 @@ static int map_stripe(map_run *m, ft_grid_reader *r, size_t a, size_t b, int *an
     }
     ft_grid_free(D);
     ft_grid_free(r2);
+    ft_grid_free(N);
     return rc;
 }
 
@@ -251,7 +255,7 @@ int tile_dim_map(const cli_command *cmd, const char *in, const char *out, const 
                  tile_map_stats *st)
 {
     map_run m = {.cmd = cmd, .job = job, .st = st};
-    *st = (tile_map_stats){0, 0, 0, INFINITY, -INFINITY, 0.0};
+    *st = (tile_map_stats){0, 0, 0, INFINITY, -INFINITY, 0.0, 0};
     ft_grid_reader *r = NULL;
     ft_crs_info crs;
     int any = 0, rc = open_band(cmd, in, job->band, &r, &crs);
@@ -274,6 +278,8 @@ int tile_dim_map(const cli_command *cmd, const char *in, const char *out, const 
         cli_error(cmd, "dim map: the %zux%zu grid has no valid cell (all nodata)", m.nx, m.ny);
         ok = 0;
     }
+    uint64_t nugget = ok ? cli_ranks_sum(m.nugget) : 0; /* every rank's windows with noise removed */
+    st->nugget = (size_t)nugget;
     rc = ok ? CLI_OK : CLI_FAIL;
     if (ok && cli_rank() == 0) {
         rc = map_gather(&m);

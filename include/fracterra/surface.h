@@ -219,6 +219,13 @@ FT_API int ft_surface_dim(const ft_grid *g, ft_surface_method m, const ft_surfac
  *  nodata. OpenMP over windows; the same on every thread count. Progress from 0 to 1. */
 FT_API int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
                        const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out);
+/** ft_surface_dim_map with, in *nugget_out (may be NULL, as D_out and r2_out), the noise flag of every
+ *  window on the same lattice: 1 where the window's noise model removed white noise (variogram, yokoya,
+ *  pentland: a nugget, nugget_fit.c; spectrum: a floor, spectrum_floor.c), 0 where the window was measured
+ *  without, nodata where D is. The D and r2 cells are those of ft_surface_dim_map. docs/surface-noise.md. */
+FT_API int ft_surface_dim_map_noise(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+                                    const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out,
+                                    ft_grid **nugget_out);
 
 /** The exhaustive lag estimate (variogram, yokoya or pentland with pairs = 0) of a grid too large for memory,
  *  accumulated stripe by stripe (lag_stripes.c; docs/tiling.md): the per-row counters of a stripe of rows

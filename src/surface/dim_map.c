@@ -13,7 +13,10 @@
  * same seed in every window), so the maps are the same on every thread count. The exhaustive lag methods
  * (variogram, yokoya, pentland with pairs = 0) do not run per window: src/surface/dim_map_lags.c sums
  * their pair counters over blocks of step x step cells shared by the overlapping windows and fits each
- * window's table as the estimator does (the same D within rounding, tested). docs/surface-grid.md.
+ * window's table as the estimator does (the same D within rounding, tested). ft_surface_dim_map_noise
+ * also returns every window's noise flag (its estimator removed a nugget or a spectral floor), a third
+ * lattice grid read from the same per-window result: the D cells do not depend on it. docs/surface-grid.md,
+ * docs/surface-noise.md.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -35,11 +38,8 @@ typedef struct {
     volatile int stop;
 } map_failure;
 
-static int check_args(const ft_grid *g, size_t w, size_t s, ft_surface_method m, const ft_surface_dim_opts *o,
-                      ft_grid **D_out, ft_grid **r2_out)
+static int check_args(const ft_grid *g, size_t w, size_t s, ft_surface_method m, const ft_surface_dim_opts *o)
 {
-    if (D_out == NULL && r2_out == NULL)
-        return ft_error(FT_E_INVALID, NAME ": both output pointers are NULL");
     if (g == NULL || g->z == NULL || g->nx == 0 || g->ny == 0)
         return ft_error(FT_E_INVALID, NAME ": the grid is NULL or empty");
     if ((unsigned)m >= FT_SURFACE_NMETHODS)
@@ -103,9 +103,9 @@ static int is_fatal(int rc)
     return rc == FT_E_INVALID || rc == FT_E_NOMEM || rc == FT_E_UNSUPPORTED || rc == FT_E_CANCELLED;
 }
 
-/* One window into D and r2 (cell k), or a recorded failure. */
+/* One window into D, r2 and its noise flag nug (cell k), or a recorded failure. */
 static void one_window(const ft_grid *g, size_t x0, size_t y0, size_t w, ft_surface_method m,
-                       const ft_surface_dim_opts *wo, ft_grid *win, float *D, float *r2, uint8_t *ok,
+                       const ft_surface_dim_opts *wo, ft_grid *win, float *D, float *r2, float *nug, uint8_t *ok,
                        map_failure *fail)
 {
     size_t valid = copy_window(g, x0, y0, w, win);
@@ -116,6 +116,7 @@ static void one_window(const ft_grid *g, size_t x0, size_t y0, size_t w, ft_surf
     if (rc == FT_OK) {
         *D = (float)r->D;
         *r2 = (float)r->r2;
+        *nug = (float)(r->nugget.applied != 0);
         *ok = 1;
     } else if (is_fatal(rc)) {
 #pragma omp critical(ft_dim_map_failure)
@@ -129,7 +130,7 @@ static void one_window(const ft_grid *g, size_t x0, size_t y0, size_t w, ft_surf
 }
 
 static int run_windows(const ft_grid *g, size_t w, size_t s, ft_surface_method m, const ft_surface_dim_opts *o,
-                       size_t nox, size_t noy, ft_grid *D, ft_grid *r2)
+                       size_t nox, size_t noy, ft_grid *D, ft_grid *r2, ft_grid *N)
 {
     ft_surface_dim_opts wo = *o;
     wo.progress = NULL;
@@ -154,8 +155,8 @@ static int run_windows(const ft_grid *g, size_t w, size_t s, ft_surface_method m
             if (fail.stop)
                 continue;
             size_t i = k / nox, j = k % nox;
-            one_window(g, j * s, i * s, w, m, &wo, win, &D->z[k], &r2->z[k], &D->mask[k], &fail);
-            r2->mask[k] = D->mask[k];
+            one_window(g, j * s, i * s, w, m, &wo, win, &D->z[k], &r2->z[k], &N->z[k], &D->mask[k], &fail);
+            r2->mask[k] = N->mask[k] = D->mask[k];
             if (omp_get_thread_num() == 0 && (k % 64) == 0 &&
                 ft_progress(o->progress, o->progress_arg, (double)k / (double)total, NAME) != FT_OK) {
 #pragma omp critical(ft_dim_map_failure)
@@ -175,42 +176,47 @@ static int run_windows(const ft_grid *g, size_t w, size_t s, ft_surface_method m
     return ft_progress(o->progress, o->progress_arg, 1.0, NAME);
 }
 
-int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
-                       const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out)
+int ft_surface_dim_map_noise(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+                             const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out, ft_grid **nugget_out)
 {
-    if (D_out != NULL)
-        *D_out = NULL;
-    if (r2_out != NULL)
-        *r2_out = NULL;
+    ft_grid **outs[3] = {D_out, r2_out, nugget_out};
+    for (int k = 0; k < 3; k++)
+        if (outs[k] != NULL)
+            *outs[k] = NULL;
+    if (D_out == NULL && r2_out == NULL && nugget_out == NULL)
+        return ft_error(FT_E_INVALID, NAME ": all output pointers are NULL");
     ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_surface_dim_opts) != FT_OK)
         return FT_E_INVALID;
-    int rc = check_args(g, window, step, m, &o, D_out, r2_out);
+    int rc = check_args(g, window, step, m, &o);
     if (rc != FT_OK)
         return rc;
     size_t nox = (g->nx - window) / step + 1, noy = (g->ny - window) / step + 1;
-    ft_grid *D = lattice_grid(g, window, step, nox, noy), *r2 = lattice_grid(g, window, step, nox, noy);
-    rc = D && r2 ? ft_progress(o.progress, o.progress_arg, 0.0, NAME) : FT_E_NOMEM;
+    ft_grid *grids[3];
+    for (int k = 0; k < 3; k++)
+        grids[k] = lattice_grid(g, window, step, nox, noy);
+    rc = grids[0] && grids[1] && grids[2] ? ft_progress(o.progress, o.progress_arg, 0.0, NAME) : FT_E_NOMEM;
     int lag_method = m == FT_SURFACE_VARIOGRAM || m == FT_SURFACE_YOKOYA || m == FT_SURFACE_PENTLAND;
     if (rc == FT_OK && lag_method && o.pairs == 0) {
-        rc = ft_surface_dim_map_lags(g, window, step, m, &o, D, r2);
+        rc = ft_surface_dim_map_lags(g, window, step, m, &o, grids[0], grids[1], grids[2]);
         if (rc == FT_OK)
             rc = ft_progress(o.progress, o.progress_arg, 1.0, NAME);
     } else if (rc == FT_OK) {
-        rc = run_windows(g, window, step, m, &o, nox, noy, D, r2);
+        rc = run_windows(g, window, step, m, &o, nox, noy, grids[0], grids[1], grids[2]);
     }
-    if (rc != FT_OK) {
-        ft_grid_free(D);
-        ft_grid_free(r2);
-        return rc;
+    for (int k = 0; k < 3; k++) {
+        if (rc == FT_OK && outs[k] != NULL)
+            *outs[k] = grids[k];
+        else
+            ft_grid_free(grids[k]);
     }
-    if (D_out != NULL)
-        *D_out = D;
-    else
-        ft_grid_free(D);
-    if (r2_out != NULL)
-        *r2_out = r2;
-    else
-        ft_grid_free(r2);
-    return FT_OK;
+    return rc;
+}
+
+int ft_surface_dim_map(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
+                       const ft_surface_dim_opts *opts, ft_grid **D_out, ft_grid **r2_out)
+{
+    if (D_out == NULL && r2_out == NULL)
+        return ft_error(FT_E_INVALID, NAME ": both output pointers are NULL");
+    return ft_surface_dim_map_noise(g, window, step, m, opts, D_out, r2_out, NULL);
 }

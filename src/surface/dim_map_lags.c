@@ -224,8 +224,8 @@ static int is_fatal(int rc)
     return rc == FT_E_INVALID || rc == FT_E_NOMEM || rc == FT_E_UNSUPPORTED || rc == FT_E_CANCELLED;
 }
 
-/* The estimate of every measured window of the band into D and r2. */
-static void band_fits(map_ctx *c, size_t t0, size_t nt, ft_grid *D, ft_grid *r2, map_failure *fail)
+/* The estimate of every measured window of the band into D and r2, and its noise flag into N (if any). */
+static void band_fits(map_ctx *c, size_t t0, size_t nt, ft_grid *D, ft_grid *r2, ft_grid *N, map_failure *fail)
 {
 #pragma omp parallel
     {
@@ -253,6 +253,10 @@ static void band_fits(map_ctx *c, size_t t0, size_t nt, ft_grid *D, ft_grid *r2,
                 D->z[cell] = (float)r->D;
                 r2->z[cell] = (float)r->r2;
                 D->mask[cell] = r2->mask[cell] = 1;
+                if (N != NULL) {
+                    N->z[cell] = (float)(r->nugget.applied != 0);
+                    N->mask[cell] = 1;
+                }
             } else if (is_fatal(rc)) {
 #pragma omp critical(ft_dim_map_lags_failure)
                 if (fail->code == FT_OK) {
@@ -296,7 +300,7 @@ static size_t band_rows(const map_ctx *c)
 }
 
 int ft_surface_dim_map_lags(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
-                            const ft_surface_dim_opts *o, ft_grid *D, ft_grid *r2)
+                            const ft_surface_dim_opts *o, ft_grid *D, ft_grid *r2, ft_grid *N)
 {
     map_ctx c;
     memset(&c, 0, sizeof c);
@@ -352,7 +356,7 @@ int ft_surface_dim_map_lags(const ft_grid *g, size_t window, size_t step, ft_sur
     for (size_t t0 = 0; rc == FT_OK && nmeasured > 0 && t0 < c.noy; t0 += c.band) {
         size_t nt = c.noy - t0 < c.band ? c.noy - t0 : c.band;
         band_counters(&c, t0, nt);
-        band_fits(&c, t0, nt, D, r2, &fail);
+        band_fits(&c, t0, nt, D, r2, N, &fail);
         if (fail.code != FT_OK)
             rc = ft_error(fail.code, NAME ": window of %zu cells: %s", window, fail.msg);
         else if (ft_progress(o->progress, o->progress_arg, (double)(t0 + nt) / (double)c.noy, NAME) != FT_OK)

@@ -59,11 +59,11 @@ int ft_surface_lag_fit(const size_t *lags, const ft_lag_acc *tot, size_t nl, con
 /* The options ft_surface_dim gives the lag methods for a grid of cells cx x cy (scales converted from
  * ground units to cells); FT_E_INVALID naming the value if o is out of range. */
 int ft_surface_lag_opts(const ft_surface_dim_opts *o, double cx, double cy, ft_variogram_opts *v);
-/* A local D map of the exhaustive lag methods by block sums (dim_map_lags.c): D and r2 (the output
- * lattice, all nodata on entry) filled as ft_surface_dim_map does, within rounding of its per-window
- * estimates. */
+/* A local D map of the exhaustive lag methods by block sums (dim_map_lags.c): D, r2 and the noise flags N
+ * (the output lattice, all nodata on entry; N may be NULL) filled as ft_surface_dim_map_noise does, within
+ * rounding of its per-window estimates. */
 int ft_surface_dim_map_lags(const ft_grid *g, size_t window, size_t step, ft_surface_method m,
-                            const ft_surface_dim_opts *o, ft_grid *D, ft_grid *r2);
+                            const ft_surface_dim_opts *o, ft_grid *D, ft_grid *r2, ft_grid *N);
 
 /* 1 if cell i is valid: not masked and finite. */
 static inline int ft_surface_cell_ok(const ft_grid *g, size_t i)

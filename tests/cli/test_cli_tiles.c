@@ -26,9 +26,18 @@
 #define LUX_LONLAT FT_TEST_DATA "/dem_luxembourg_terra_30s.tif"
 
 static size_t hole_cells; /* cells of the synthetic DEM's nodata hole */
+#define NOISE_SD 0.05  /* m: white noise on the noisy DEM's z (its relief has sd 1 m: 26 dB) */
 
 /* A 230 x 190 D = 2.4 surface in UTM 33N with a nodata hole, as GeoTIFF. */
+static const char *synthetic_dem_noise(double noise_sd, const char *name);
+
 static const char *synthetic_dem(void)
+{
+    return synthetic_dem_noise(0.0, "dem.tif");
+}
+
+/* The synthetic DEM with white N(0, noise_sd²) noise on z (metres) when noise_sd > 0, written to name. */
+static const char *synthetic_dem_noise(double noise_sd, const char *name)
 {
     ft_synth_opts so = FT_SYNTH_OPTS_DEFAULT;
     so.dim = 2.4;
@@ -50,7 +59,11 @@ static const char *synthetic_dem(void)
                 g->mask[i * g->nx + j] = 0;
                 hole_cells++;
             }
-    const char *path = ft_test_tmp("dem.tif");
+    ft_rng *r = ft_rng_create(7, 0);
+    for (size_t i = 0; noise_sd > 0.0 && i < g->nx * g->ny; i++)
+        g->z[i] += (float)ft_rng_gaussian(r, noise_sd);
+    ft_rng_free(r);
+    const char *path = ft_test_tmp(name);
     assert_int_equal(ft_io_write_grid(path, g, NULL), FT_OK);
     ft_grid_free(g);
     return path;
@@ -165,6 +178,39 @@ static void test_dim_surface_tiled_equals_whole(void **state)
     }
 }
 
+/* dim map's noise count: white noise on z is found in windows of the noisy DEM, the same count stripe by
+ * stripe (the whole report compared) and none with --noise-model off. */
+static void test_dim_map_noise_count(void **state)
+{
+    (void)state;
+    const char *dem = synthetic_dem_noise(NOISE_SD, "noisy.tif");
+    const char *whole = ft_test_tmp("nw.tif"), *t1 = ft_test_tmp("nt.tif"), *off = ft_test_tmp("noff.tif");
+    char *a = RUN_OUT("dim", "map", dem, whole, "--window", "32", "--step", "16", "--json");
+    char *b = RUN_OUT("dim", "map", dem, t1, "--window", "32", "--step", "16", "--json", "--tile-rows", "1");
+    assert_same_map(whole, t1);
+    assert_same_report(a, b, "nw.tif", "nt.tif");
+    json_object *o = json_tokener_parse(a), *noise = NULL, *w = NULL;
+    assert_true(json_object_object_get_ex(o, "noise", &noise));
+    int64_t n = ft_test_json_int(noise, "windows_with_nugget"), m = ft_test_json_int(noise, "windows");
+    print_message("  noisy DEM: %lld of %lld windows with a nugget\n", (long long)n, (long long)m);
+    assert_int_equal(m, ft_test_json_int(o, "windows_measured"));
+    assert_true(n >= m / 10); /* measured 26 of 126; the 5 % F test alone would flag about 6 */
+    assert_true(json_object_object_get_ex(o, "warnings", &w));
+    assert_int_equal(json_object_array_length(w), 1);
+    assert_non_null(strstr(json_object_get_string(json_object_array_get_idx(w, 0)), "noise detected in"));
+    json_object_put(o);
+    char *c = RUN_OUT("dim", "map", dem, off, "--window", "32", "--step", "16", "--json", "--noise-model", "off");
+    o = json_tokener_parse(c);
+    assert_true(json_object_object_get_ex(o, "noise", &noise));
+    assert_int_equal(ft_test_json_int(noise, "windows_with_nugget"), 0);
+    assert_true(json_object_object_get_ex(o, "warnings", &w));
+    assert_int_equal(json_object_array_length(w), 0);
+    json_object_put(o);
+    free(a);
+    free(b);
+    free(c);
+}
+
 /* Byte cells of two hillshades, every one, and their georeferencing. */
 static void assert_same_shade(const char *a, const char *b)
 {
@@ -258,6 +304,18 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_same_report(a, b, "whole.tif", "m2.tif");
     free(a);
     free(b);
+    /* the noise count is summed over the ranks: the noisy DEM's report equals the whole run's */
+    char *noisy = strdup(synthetic_dem_noise(NOISE_SD, "noisy.tif"));
+    const char *nw = ft_test_tmp("nw.tif"), *n2 = ft_test_tmp("n2.tif");
+    a = RUN_OUT("dim", "map", noisy, nw, "--window", "32", "--step", "16", "--json");
+    snprintf(args, sizeof args, "dim map %s %s --window 32 --step 16 --json --tile-rows 40", noisy, n2);
+    assert_int_equal(mpirun2(ft_test_tmp("nmap.out"), args), 0);
+    b = slurp(ft_test_tmp("nmap.out"));
+    assert_non_null(strstr(a, "noise detected in"));
+    assert_same_report(a, b, "nw.tif", "n2.tif");
+    free(a);
+    free(b);
+    free(noisy);
     a = RUN_OUT("dim", "surface", dem, "--pairs", "0", "--json");
     snprintf(args, sizeof args, "dim surface %s --json", dem);
     assert_int_equal(mpirun2(ft_test_tmp("surface.out"), args), 0);
@@ -287,6 +345,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dim_map_tiled_equals_whole),
+        cmocka_unit_test(test_dim_map_noise_count),
         cmocka_unit_test(test_dim_surface_tiled_equals_whole),
         cmocka_unit_test(test_hillshade_tiled_equals_whole),
         cmocka_unit_test(test_tiled_refusals),

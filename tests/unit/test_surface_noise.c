@@ -207,6 +207,70 @@ static void test_grid_spectrum_floor(void **state)
     }
 }
 
+/* Measured windows of a dim map and how many carry the noise flag (ft_surface_dim_map_noise). */
+static void map_flags(const ft_grid *g, ft_surface_method m, const ft_surface_dim_opts *o, size_t *measured,
+                      size_t *flagged)
+{
+    ft_grid *D = NULL, *r2 = NULL, *N = NULL, *D0 = NULL, *r20 = NULL;
+    assert_int_equal(ft_surface_dim_map_noise(g, 64, 64, m, o, &D, &r2, &N), FT_OK);
+    /* the D and r2 cells are ft_surface_dim_map's, bit for bit */
+    assert_int_equal(ft_surface_dim_map(g, 64, 64, m, o, &D0, &r20), FT_OK);
+    assert_memory_equal(D->z, D0->z, D->nx * D->ny * sizeof *D->z);
+    assert_memory_equal(r2->z, r20->z, D->nx * D->ny * sizeof *D->z);
+    assert_memory_equal(D->mask, D0->mask, D->nx * D->ny);
+    *measured = *flagged = 0;
+    for (size_t i = 0; i < N->nx * N->ny; i++) {
+        assert_int_equal(N->mask[i], D->mask[i]); /* nodata where D is */
+        if (!N->mask[i])
+            continue;
+        assert_true(N->z[i] == 0.0f || N->z[i] == 1.0f);
+        *measured += 1;
+        *flagged += N->z[i] == 1.0f;
+    }
+    ft_grid_free(D);
+    ft_grid_free(r2);
+    ft_grid_free(N);
+    ft_grid_free(D0);
+    ft_grid_free(r20);
+}
+
+/* dim map's noise flags: 64 windows of 64² (lags 1-8) on exact fBm 512², 30 dB white z noise. Noise-free,
+ * the F test at 5 % (plus the 5 % share) may flag a few windows by chance: at most 6 of 64 (about 2 sds
+ * above the 5 % rate's 3.2). Noisy: at D = 2.2 the nugget shows in at least half the windows (measured
+ * 41); at D = 2.5 the same noise is a smaller share of the rougher small-lag variance and is found in
+ * fewer (measured 13; at least 8, 2.5 x the chance rate). The random-pair path (400 points per window)
+ * gives flags on the same lattice, but its noisy tables hide the nugget (measured 1-4 of 64): only the
+ * flags' consistency is checked. The model off flags none. */
+static void test_dim_map_noise_flags(void **state)
+{
+    (void)state;
+    const double dims[2] = {2.2, 2.5};
+    for (int k = 0; k < 2; k++) {
+        double sigma, none;
+        ft_grid *g = fbm(dims[k], 1, 30.0, &sigma), *c = fbm(dims[k], 1, 0.0, &none);
+        ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+        o.fit_whole_range = 1; /* as dim map's CLI */
+        size_t mn, fn, mc, fc, mp, fp, mo, fo;
+        map_flags(g, FT_SURFACE_VARIOGRAM, &o, &mn, &fn);
+        map_flags(c, FT_SURFACE_VARIOGRAM, &o, &mc, &fc);
+        ft_surface_dim_opts po = o;
+        po.pairs = 400;
+        map_flags(g, FT_SURFACE_YOKOYA, &po, &mp, &fp);
+        ft_surface_dim_opts off = o;
+        off.noise.mode = -1;
+        map_flags(g, FT_SURFACE_VARIOGRAM, &off, &mo, &fo);
+        print_message("  D %.1f: noisy %zu of %zu windows flagged, noise-free %zu of %zu, random pairs (yokoya) "
+                      "%zu of %zu, model off %zu of %zu\n", dims[k], fn, mn, fc, mc, fp, mp, fo, mo);
+        assert_int_equal(mn, 64);
+        assert_int_equal(mc, 64);
+        assert_true(fn >= (k == 0 ? 32u : 8u));
+        assert_true(fc <= 6);
+        assert_int_equal(fo, 0);
+        ft_grid_free(g);
+        ft_grid_free(c);
+    }
+}
+
 /* A known noise sd is used as given: the nugget is held at 2 sigma² and said so. */
 static void test_grid_known_sigma(void **state)
 {
@@ -313,6 +377,7 @@ int main(void)
         cmocka_unit_test(test_nugget_recovered), cmocka_unit_test(test_eiv_moment),
         cmocka_unit_test(test_positions_recovered), cmocka_unit_test(test_grid_white_noise),
         cmocka_unit_test(test_grid_known_sigma), cmocka_unit_test(test_grid_spectrum_floor), cmocka_unit_test(test_real_dem_noise),
+        cmocka_unit_test(test_dim_map_noise_flags),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
