@@ -1,5 +1,6 @@
-/* fracterra — bench/accuracy/accuracy_util.h: what the accuracy programs (accuracy.c, reconstruct.c) share:
- * comma-separated option lists and the row of a paper's table for a dimension.
+/* fracterra — bench/accuracy/accuracy_util.h: what the accuracy programs share: comma-separated option lists,
+ * the row of a paper's table for a dimension, the sample of a grid the reconstruction programs start from,
+ * and the independent lag 1-16 variogram D the synthesis programs measure with.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -10,6 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "fracterra/fracterra.h"
 
 /** Parses "a,b,c" into at most max doubles; returns how many were read. */
 static inline int accuracy_parse_list(const char *s, double *v, int max)
@@ -27,6 +30,72 @@ static inline int accuracy_paper_row(double D, double first, int nrows)
 {
     long k = lround((D - first) * 10.0);
     return k >= 0 && k < nrows && fabs(D - (first + 0.1 * (double)k)) < 1e-9 ? (int)k : -1;
+}
+
+/** qsort order of doubles, increasing. */
+static inline int accuracy_cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/** Arakawa & Krotkov's sample of a grid (§3.3): every `every`-th cell in each direction (0 = none) plus a
+ *  random fraction frac of the cells, valid cells only, at their centres with their exact values. */
+static inline ft_points *accuracy_subsample(const ft_grid *g, uint64_t seed, double frac, int every)
+{
+    ft_points *p = ft_points_create(g->nx * g->ny / 8);
+    ft_rng *r = ft_rng_create(seed, 77);
+    for (size_t y = 0; y < g->ny; y++)
+        for (size_t x = 0; x < g->nx; x++) {
+            int take = (every > 0 && x % (size_t)every == 0 && y % (size_t)every == 0);
+            take |= ft_rng_uniform(r) < frac;
+            if (take && ft_grid_is_valid(g, x, y)) {
+                double cx, cy;
+                ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
+                ft_points_push(p, cx, cy, g->z[y * g->nx + x]);
+            }
+        }
+    ft_rng_free(r);
+    return p;
+}
+
+#define ACCURACY_LAGS 16
+
+/** The variogram of an n x n grid at lags 1 .. ACCURACY_LAGS cells along rows and columns into v[1 ..]:
+ *  an estimator written here, independent of the library's. */
+static inline void accuracy_variogram16(const float *z, size_t n, double *v)
+{
+    for (size_t h = 1; h <= ACCURACY_LAGS; h++) {
+        double s = 0.0, c = 0.0;
+        for (size_t y = 0; y < n; y++)
+            for (size_t x = 0; x < n; x++) {
+                if (x + h < n) {
+                    double d = (double)z[y * n + x + h] - z[y * n + x];
+                    s += d * d;
+                    c++;
+                }
+                if (y + h < n) {
+                    double d = (double)z[(y + h) * n + x] - z[y * n + x];
+                    s += d * d;
+                    c++;
+                }
+            }
+        v[h] = s / c;
+    }
+}
+
+/** D = 3 - slope / 2 of the least-squares line of log v[h] on log h, h = 1 .. ACCURACY_LAGS. */
+static inline double accuracy_fit_variogram16(const double *v)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int h = 1; h <= ACCURACY_LAGS; h++) {
+        double x = log((double)h), y = log(v[h]);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    return 3.0 - (ACCURACY_LAGS * sxy - sx * sy) / (ACCURACY_LAGS * sxx - sx * sx) / 2.0;
 }
 
 #endif /* FRACTERRA_BENCH_ACCURACY_UTIL_H */

@@ -12,10 +12,8 @@
  * With --scan K0,K1,... it repeats the fractal rows for each k (the calibration: the k that minimizes the
  * mean |D* - D^| at D = 2.4).
  *
- * Not wired into CMake. Build and run from the source tree after building build-recon:
- *   gcc -O2 -fopenmp -Iinclude -Isrc bench/accuracy/recon_calibrate.c build-recon/libfracterra.a \
- *       $(pkg-config --libs gdal gsl fftw3 fftw3f cairo json-c) $(geos-config --clibs) -lm -o /tmp/recon_calibrate
- *   /tmp/recon_calibrate --size 256 --seeds 8 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8
+ * Built by CMake (not run by make accuracy: it takes long); run from the source tree:
+ *   build/fracterra_accuracy_recon_calibrate --size 256 --seeds 8 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -26,6 +24,7 @@
 #include <time.h>
 
 #include "fracterra/fracterra.h"
+#include "accuracy_util.h"
 
 static double now(void)
 {
@@ -52,34 +51,6 @@ static double yokoya(const ft_grid *g)
     return D;
 }
 
-static ft_points *subsample(const ft_grid *g, uint64_t seed, double frac, int every)
-{
-    ft_points *p = ft_points_create(g->nx * g->ny / 8);
-    ft_rng *r = ft_rng_create(seed, 77);
-    for (size_t y = 0; y < g->ny; y++)
-        for (size_t x = 0; x < g->nx; x++) {
-            int take = (every > 0 && x % (size_t)every == 0 && y % (size_t)every == 0);
-            take |= ft_rng_uniform(r) < frac;
-            if (take) {
-                double cx, cy;
-                ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
-                ft_points_push(p, cx, cy, g->z[y * g->nx + x]);
-            }
-        }
-    ft_rng_free(r);
-    return p;
-}
-
-static int parse_list(const char *s, double *v, int max)
-{
-    int n = 0;
-    char *buf = strdup(s), *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save))
-        v[n++] = atof(t);
-    free(buf);
-    return n;
-}
-
 int main(int argc, char **argv)
 {
     size_t size = 256;
@@ -94,9 +65,9 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--seeds") && i + 1 < argc)
             seeds = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--dims") && i + 1 < argc)
-            nd = parse_list(argv[++i], dims, 16);
+            nd = accuracy_parse_list(argv[++i], dims, 16);
         else if (!strcmp(argv[i], "--scan") && i + 1 < argc)
-            nk = parse_list(argv[++i], ks, 32);
+            nk = accuracy_parse_list(argv[++i], ks, 32);
         else if (!strcmp(argv[i], "--methods") && i + 1 < argc)
             methods = argv[++i];
         else if (!strcmp(argv[i], "--sweeps") && i + 1 < argc)
@@ -141,7 +112,7 @@ int main(int argc, char **argv)
                     ft_grid *g = NULL;
                     if (ft_terrain_synth(size, size, &so, &g) != FT_OK)
                         return 1;
-                    ft_points *p = subsample(g, (uint64_t)(2000 + s), frac, every);
+                    ft_points *p = accuracy_subsample(g, (uint64_t)(2000 + s), frac, every);
                     ft_recon_opts ro = FT_RECON_OPTS_DEFAULT;
                     ro.method = m;
                     ro.dim = D;

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "fracterra/fracterra.h"
+#include "accuracy_util.h"
 
 #define MAXLAG 32
 
@@ -49,34 +50,6 @@ static void structure(const ft_grid *g, const ft_grid *valid, double *s)
     }
 }
 
-static ft_points *subsample(const ft_grid *g, uint64_t seed, double frac, int every)
-{
-    ft_points *p = ft_points_create(g->nx * g->ny / 8);
-    ft_rng *r = ft_rng_create(seed, 77);
-    for (size_t y = 0; y < g->ny; y++)
-        for (size_t x = 0; x < g->nx; x++) {
-            int take = (every > 0 && x % (size_t)every == 0 && y % (size_t)every == 0);
-            take |= ft_rng_uniform(r) < frac;
-            if (take && ft_grid_is_valid(g, x, y)) {
-                double cx, cy;
-                ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
-                ft_points_push(p, cx, cy, g->z[y * g->nx + x]);
-            }
-        }
-    ft_rng_free(r);
-    return p;
-}
-
-static int parse_list(const char *s, double *v, int max)
-{
-    int n = 0;
-    char *buf = strdup(s), *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save))
-        v[n++] = atof(t);
-    free(buf);
-    return n;
-}
-
 int main(int argc, char **argv)
 {
     size_t size = 256;
@@ -90,7 +63,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--seeds") && i + 1 < argc)
             seeds = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--dims") && i + 1 < argc)
-            nd = parse_list(argv[++i], dims, 16);
+            nd = accuracy_parse_list(argv[++i], dims, 16);
         else if (!strcmp(argv[i], "--methods") && i + 1 < argc)
             methods = argv[++i];
         else if (!strcmp(argv[i], "--k") && i + 1 < argc)
@@ -147,7 +120,7 @@ int main(int argc, char **argv)
                     fprintf(stderr, "synth: %s\n", ft_last_error());
                     return 1;
                 }
-                ft_points *p = subsample(g, (uint64_t)(2000 + sd), 0.05, 4);
+                ft_points *p = accuracy_subsample(g, (uint64_t)(2000 + sd), 0.05, 4);
                 ft_recon_opts ro = FT_RECON_OPTS_DEFAULT;
                 ro.method = m;
                 ro.dim = D;

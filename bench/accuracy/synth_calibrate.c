@@ -18,39 +18,7 @@
 
 #include "fracterra/fracterra.h"
 #include "terrain/synth/synth_internal.h"
-
-static double lag_D(const float *z, size_t n)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t h = 1; h <= 16; h++) {
-        double s = 0.0, c = 0.0;
-        for (size_t y = 0; y < n; y++)
-            for (size_t x = 0; x < n; x++) {
-                if (x + h < n) {
-                    double d = (double)z[y * n + x + h] - z[y * n + x];
-                    s += d * d;
-                    c++;
-                }
-                if (y + h < n) {
-                    double d = (double)z[(y + h) * n + x] - z[y * n + x];
-                    s += d * d;
-                    c++;
-                }
-            }
-        double lx = log((double)h), ly = log(s / c);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    return 3.0 - (16.0 * sxy - sx * sy) / (16.0 * sxx - sx * sx) / 2.0;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
+#include "accuracy_util.h"
 
 int main(int argc, char **argv)
 {
@@ -81,9 +49,11 @@ int main(int argc, char **argv)
                 fprintf(stderr, "%s\n", ft_last_error());
                 return 1;
             }
-            d[s] = lag_D(z, n);
+            double v[ACCURACY_LAGS + 1];
+            accuracy_variogram16(z, n, v);
+            d[s] = accuracy_fit_variogram16(v);
         }
-        qsort(d, (size_t)seeds, sizeof d[0], cmp);
+        qsort(d, (size_t)seeds, sizeof d[0], accuracy_cmp_double);
         printf("%.3f %.4f\n", Dq, seeds % 2 ? d[seeds / 2] : 0.5 * (d[seeds / 2 - 1] + d[seeds / 2]));
         fflush(stdout);
     }

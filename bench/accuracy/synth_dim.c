@@ -18,58 +18,7 @@
 #include <string.h>
 
 #include "fracterra/fracterra.h"
-
-#define LAGS 16
-
-static void variogram(const float *z, size_t n, double *v)
-{
-    for (size_t h = 1; h <= LAGS; h++) {
-        double s = 0.0, c = 0.0;
-        for (size_t y = 0; y < n; y++)
-            for (size_t x = 0; x < n; x++) {
-                if (x + h < n) {
-                    double d = (double)z[y * n + x + h] - z[y * n + x];
-                    s += d * d;
-                    c++;
-                }
-                if (y + h < n) {
-                    double d = (double)z[(y + h) * n + x] - z[y * n + x];
-                    s += d * d;
-                    c++;
-                }
-            }
-        v[h] = s / c;
-    }
-}
-
-static double fit_D(const double *v)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int h = 1; h <= LAGS; h++) {
-        double x = log((double)h), y = log(v[h]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    return 3.0 - (LAGS * sxy - sx * sy) / (LAGS * sxx - sx * sx) / 2.0;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static int parse_list(const char *s, double *v, int max)
-{
-    int n = 0;
-    char *buf = strdup(s), *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save))
-        v[n++] = atof(t);
-    free(buf);
-    return n;
-}
+#include "accuracy_util.h"
 
 int main(int argc, char **argv)
 {
@@ -83,7 +32,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--seeds") && i + 1 < argc)
             seeds = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--dims") && i + 1 < argc)
-            nd = parse_list(argv[++i], dims, 16);
+            nd = accuracy_parse_list(argv[++i], dims, 16);
         else if (!strcmp(argv[i], "--methods") && i + 1 < argc)
             methods = argv[++i];
         else {
@@ -91,8 +40,8 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (seeds < 1 || seeds > 1000 || n < 2 * LAGS) {
-        fprintf(stderr, "synth_dim: seeds in 1..1000 and size >= %d\n", 2 * LAGS);
+    if (seeds < 1 || seeds > 1000 || n < 2 * ACCURACY_LAGS) {
+        fprintf(stderr, "synth_dim: seeds in 1..1000 and size >= %d\n", 2 * ACCURACY_LAGS);
         return 2;
     }
     double *ds = malloc((size_t)seeds * sizeof *ds);
@@ -109,7 +58,7 @@ int main(int argc, char **argv)
             return 2;
         }
         for (int di = 0; di < nd; di++) {
-            double mean[LAGS + 1] = {0}, v[LAGS + 1];
+            double mean[ACCURACY_LAGS + 1] = {0}, v[ACCURACY_LAGS + 1];
             for (int s = 0; s < seeds; s++) {
                 ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
                 o.method = m;
@@ -120,16 +69,16 @@ int main(int argc, char **argv)
                     fprintf(stderr, "synth: %s\n", ft_last_error());
                     return 1;
                 }
-                variogram(g->z, n, v);
-                for (int h = 1; h <= LAGS; h++)
+                accuracy_variogram16(g->z, n, v);
+                for (int h = 1; h <= ACCURACY_LAGS; h++)
                     mean[h] += v[h] / seeds;
-                ds[s] = fit_D(v);
+                ds[s] = accuracy_fit_variogram16(v);
                 ft_grid_free(g);
             }
-            qsort(ds, (size_t)seeds, sizeof *ds, cmp_double);
+            qsort(ds, (size_t)seeds, sizeof *ds, accuracy_cmp_double);
             double med = ds[seeds / 2];
             printf("%-9s %5.2f %8.4f %8.4f %8.4f %+9.4f %+9.4f%s\n", name, dims[di], ds[seeds / 4], med,
-                   ds[3 * seeds / 4], med - dims[di], fit_D(mean) - dims[di],
+                   ds[3 * seeds / 4], med - dims[di], accuracy_fit_variogram16(mean) - dims[di],
                    fabs(med - dims[di]) <= 0.03 ? "" : "  > 0.03");
             ok &= fabs(med - dims[di]) <= 0.03;
             fflush(stdout);
