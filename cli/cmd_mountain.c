@@ -444,17 +444,9 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
 
 /* ---- the command ------------------------------------------------------------------------------- */
 
+/* Every output can be written (check_args has already checked their names and extensions). */
 static int check_outputs(const cli_command *cmd, const mountain_args *a, const char *out)
 {
-    /* The outputs are staged under temporary names whose driver is found from the real name's extension. */
-    const char *dot = strrchr(out, '.');
-    if (a->driver == NULL && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
-        return cli_usage_error(cmd, "OUT '%s' has no extension: end it in .geojson, .gpkg, .shp or .gmt, or name "
-                               "a driver with -f", out);
-    dot = a->dem_path ? strrchr(a->dem_path, '.') : NULL;
-    if (a->dem_path && (dot == NULL || strchr(dot, '/') != NULL || dot[1] == '\0'))
-        return cli_usage_error(cmd, "--dem '%s' has no extension: end it in .tif (or another raster format's)",
-                               a->dem_path);
     const char *paths[4] = {out, a->dem_path, a->view_path, a->map_path};
     for (int i = 0; i < 4; i++)
         if (paths[i] != NULL && ft_io_check_writable(paths[i]) != FT_OK)
