@@ -7,7 +7,7 @@
  * pairs of cells valid in the DEM only (a simulation is measured on the DEM's footprint): an estimator written here, independent of the library's. Prints one row per
  * DEM: the DEM's D, and the median, min and max over the seeds of each model's simulations.
  *
- *   fracterra_accuracy_clarke [--seeds N] DEM...
+ *   fracterra_accuracy_clarke [--seeds N] [--no-taper] DEM...
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -20,6 +20,8 @@
 #include "fracterra/fracterra.h"
 
 #define MAX_SEEDS 64
+
+static int use_taper = 1; /* --no-taper: the raw periodogram */
 
 /* gamma(h) = half the mean squared difference of the pairs h cells apart along rows and columns whose both
  * cells are valid in v (a grid of g's size: the original DEM, so a simulation is measured on its footprint). */
@@ -77,6 +79,7 @@ static int simulate_dims(const ft_grid *g, ft_clarke_noise noise, int seeds, dou
 {
     ft_clarke_opts co = FT_CLARKE_OPTS_DEFAULT;
     co.noise = noise;
+    co.taper = use_taper;
     ft_clarke_model *m = NULL;
     if (ft_clarke_fit(g, &co, &m) != FT_OK)
         return -1;
@@ -134,12 +137,16 @@ static int measure(const char *path, int seeds)
 int main(int argc, char **argv)
 {
     int seeds = 8, first = 1;
-    if (argc > 2 && strcmp(argv[1], "--seeds") == 0) {
-        seeds = atoi(argv[2]);
-        first = 3;
+    for (; first < argc && argv[first][0] == '-'; first++) {
+        if (strcmp(argv[first], "--seeds") == 0 && first + 1 < argc)
+            seeds = atoi(argv[++first]);
+        else if (strcmp(argv[first], "--no-taper") == 0)
+            use_taper = 0;
+        else
+            seeds = 0; /* unknown option: usage */
     }
     if (first >= argc || seeds < 1 || seeds > MAX_SEEDS) {
-        fprintf(stderr, "usage: %s [--seeds N (1-%d)] DEM...\n", argv[0], MAX_SEEDS);
+        fprintf(stderr, "usage: %s [--seeds N (1-%d)] [--no-taper] DEM...\n", argv[0], MAX_SEEDS);
         return 2;
     }
     printf("# variogram D (own estimator, every whole lag, rows and columns), %d seeds: median [min max]\n", seeds);
