@@ -99,10 +99,14 @@ static int simulate_dims(const ft_grid *g, ft_clarke_noise noise, int seeds, dou
     }
     if (noise == FT_CLARKE_NOISE_SPECTRUM)
         for (size_t i = 0; i < m->nregimes; i++)
-            printf("#   regime %zu: D %.3f over wavelengths %.4g-%.4g (%.1f-%.1f cells)%s\n", i + 1, m->regimes[i].D,
-                   m->regimes[i].wavelength_lo, m->regimes[i].wavelength_hi,
+        {
+            printf("#   regime %zu: D %.3f over wavelengths %.4g-%.4g (%.1f-%.1f cells of %g)\n", i + 1,
+                   m->regimes[i].D, m->regimes[i].wavelength_lo, m->regimes[i].wavelength_hi,
                    m->regimes[i].wavelength_lo / fabs(g->gt[1]), m->regimes[i].wavelength_hi / fabs(g->gt[1]),
-                   i + 1 < m->nregimes ? "" : "");
+                   fabs(g->gt[1]));
+            if (i + 1 < m->nregimes)
+                printf("#   break at wavelength %.4g (%.1f cells)\n", m->breaks[i], m->breaks[i] / fabs(g->gt[1]));
+        }
     ft_clarke_model_free(m);
     summary(a, seeds, fine);
     summary(b, seeds, coarse);
