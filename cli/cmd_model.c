@@ -31,6 +31,14 @@ static int on_fit_option(const cli_command *cmd, int opt, const char *arg, void 
     switch (opt) {
     case 'c': return cli_parse_double(cmd, "--cutoff", arg, 0.0, 100.0, CLI_OPEN_LO, &a->co.cutoff);
     case 'T': a->co.taper = 0; return CLI_CONTINUE;
+    case 'n':
+        if (strcmp(arg, "spectrum") == 0)
+            a->co.noise = FT_CLARKE_NOISE_SPECTRUM;
+        else if (strcmp(arg, "power-law") == 0)
+            a->co.noise = FT_CLARKE_NOISE_POWER_LAW;
+        else
+            return cli_usage_error(cmd, "--noise must be spectrum or power-law, got '%s'", arg);
+        return CLI_CONTINUE;
     case 'w': return cli_parse_double(cmd, "--min-wavelength", arg, 0.0, INFINITY, CLI_CLOSED, &a->co.min_wavelength);
     case 'o': a->out = arg; return CLI_CONTINUE;
     case 'j': a->json = 1; return CLI_CONTINUE;
@@ -75,6 +83,18 @@ static void print_model(const char *dem, const ft_clarke_model *m)
            m->intercept, m->slope, m->npairs, m->min_wavelength, m->r2);
     printf("  D = (8 - beta)/2 = %.3f   (Clarke's eq. viii, 3 - beta/2: %.3f)   c = %.4g\n", m->D, m->D_clarke_eq8,
            m->c);
+    double cell = fmin(hypot(m->gt[1], m->gt[4]), hypot(m->gt[2], m->gt[5]));
+    printf("  regimes   %zu of the radial spectrum (%zu rings) over wavelengths of %g cells or more\n", m->nregimes,
+           m->nspectrum, m->min_wavelength);
+    for (size_t i = 0; i < m->nregimes; i++) {
+        const ft_clarke_regime *g = &m->regimes[i];
+        printf("    %zu: D %.3f over wavelengths %.4g-%.4g (%.1f-%.1f cells), %zu rings, r2 %.3f\n", i + 1, g->D,
+               g->wavelength_lo, g->wavelength_hi, g->wavelength_lo / cell, g->wavelength_hi / cell, g->bins, g->r2);
+        if (i + 1 < m->nregimes)
+            printf("       break at wavelength %.4g (%.1f cells)\n", m->breaks[i], m->breaks[i] / cell);
+    }
+    printf("  noise F   %s\n", m->noise == FT_CLARKE_NOISE_SPECTRUM ? "the measured radial spectrum"
+                                                                    : "the one power law (Clarke)");
 }
 
 static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem, const ft_clarke_model *m,
@@ -82,8 +102,13 @@ static int fit_report(const cli_command *cmd, const fit_args *a, const char *dem
 {
     if (!(m->D > 2.0 && m->D < 3.0))
         cli_warn(cmd, "%s: the spectrum (beta = %.2f) is %s than any fractional Brownian surface's: D = %.2f is "
-                 "outside (2,3); the model still simulates with the fitted power", dem, m->slope,
-                 m->D <= 2.0 ? "steeper" : "flatter", m->D);
+                 "outside (2,3); %s", dem, m->slope, m->D <= 2.0 ? "steeper" : "flatter", m->D,
+                 m->noise == FT_CLARKE_NOISE_SPECTRUM ? "the model simulates the measured spectrum, see its regimes"
+                                                      : "the model still simulates with the fitted power");
+    for (size_t i = 0; i < m->nregimes; i++)
+        if (!(m->regimes[i].D >= 2.0 && m->regimes[i].D <= 3.0))
+            cli_warn(cmd, "%s: spectrum regime %zu (wavelengths %.4g-%.4g) has D = %.2f, outside [2,3]", dem, i + 1,
+                     m->regimes[i].wavelength_lo, m->regimes[i].wavelength_hi, m->regimes[i].D);
     if (a->out && ft_io_write_clarke_model(a->out, m) != FT_OK)
         return cli_fail(cmd);
     const char *from = isnan(north) ? "grid north" : "true north";
@@ -117,6 +142,7 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
 {
     static const struct option longopts[] = {{"cutoff", required_argument, NULL, 'c'},
                                              {"no-taper", no_argument, NULL, 'T'},
+                                             {"noise", required_argument, NULL, 'n'},
                                              {"min-wavelength", required_argument, NULL, 'w'},
                                              {"output", required_argument, NULL, 'o'},
                                              {"json", no_argument, NULL, 'j'},
@@ -157,11 +183,15 @@ static int run_fit(const cli_command *cmd, int argc, char **argv)
 static const cli_command cmd_model_fit = {
     "model fit",
     "fit Clarke's model to a DEM",
-    "fracterra model fit DEM [--cutoff PCT] [--no-taper] [--min-wavelength CELLS] [-o MODEL.json] [--json]",
+    "fracterra model fit DEM [--cutoff PCT] [--no-taper] [--min-wavelength CELLS] [--noise KIND] [-o MODEL.json]\n"
+    "                    [--json]",
     "Fits z = T + cF + H (Clarke 1987): T the least-squares plane, H the harmonics of the detrended DEM\n"
-    "holding at least PCT percent of its variance, F fractal noise whose power follows the log-log\n"
-    "regression of harmonic power on wavelength over every harmonic. D = (8 - beta)/2 for the 2-D\n"
-    "spectrum; Clarke's eq. viii value (3 - beta/2) is printed as well, labelled. Nodata cells are filled\n"
+    "holding at least PCT percent of its variance, F fractal noise. Clarke's F follows one log-log\n"
+    "regression of harmonic power on wavelength; D = (8 - beta)/2 for the 2-D spectrum (Clarke's eq. viii\n"
+    "value, 3 - beta/2, is printed as well, labelled). Real DEMs bend: by default F is the DEM's measured\n"
+    "radial spectrum of z - T - H (quarter-octave rings), so a simulation has the DEM's roughness at every\n"
+    "scale; its regimes (straight runs, each with D and a wavelength range) and the breaks between them\n"
+    "are found by the log-log regime search and reported. Nodata cells are filled\n"
     "with the trend before the Fourier analysis (counted in \"nodata_filled\"). A harmonic is one of the\n"
     "grid's Fourier modes (k, l); its wavelength (ground units) and direction (clockwise from true north,\n"
     "or grid north without a CRS) are those of the plane wave of continuous frequency fitting the detrended\n"
@@ -171,9 +201,13 @@ static const cli_command cmd_model_fit = {
     "  --no-taper          regress on the raw periodogram (Clarke) instead of a Hann-tapered one\n"
     "  --min-wavelength N  regress over the waves of at least N cells (default 4: aliasing flattens the\n"
     "                      band near the Nyquist frequency); 0 = every wave, as Clarke\n"
+    "  --noise KIND        the F the model simulates: spectrum (default, the measured radial spectrum) or\n"
+    "                      power-law (Clarke's one law)\n"
     "  -o, --output FILE   write the model (JSON) for `fracterra model simulate`\n"
     "  -j, --json          print the model: \"method\", \"D\", \"D_clarke_eq8\", \"r2\", \"stderr\", \"range\",\n"
-    "                      \"c\", \"grid\", \"original\", \"trend\", \"harmonics\", \"regression\", \"input\", \"output\"\n"
+    "                      \"c\", \"grid\", \"original\", \"trend\", \"harmonics\", \"regression\", \"format_version\",\n"
+    "                      \"noise\", \"regimes\" (D, wavelength, wavelength_cells, frequency, slope, r2, bins),\n"
+    "                      \"breaks\" (wavelengths), \"spectrum\", \"warnings\", \"input\", \"output\"\n"
     "  -h, --help          print this help\n\n"
     "Example:\n"
     "  fracterra model fit dem.tif --cutoff 2.5 -o dem-model.json\n",

@@ -79,6 +79,24 @@ typedef struct {
     double direction;   /**< azimuth of the wave vector, degrees clockwise from north in [0, 180) */
 } ft_clarke_harmonic;
 
+/** Which fractal noise F a Clarke model simulates. */
+typedef enum {
+    FT_CLARKE_NOISE_POWER_LAW = 0, /**< Clarke's one power law (slope, intercept) at every wavelength */
+    FT_CLARKE_NOISE_SPECTRUM = 1   /**< the DEM's measured radially averaged spectrum (spectrum_*), log-log
+                                        interpolated; below its shortest wavelength the finest regime's law */
+} ft_clarke_noise;
+
+/** One straight regime of the binned radial spectrum: log10 power = intercept + slope log10 wavelength
+ *  over wavelengths [wavelength_lo, wavelength_hi] (ground units), found by the log-log regime search
+ *  (src/core/loglog_regimes.c). */
+typedef struct {
+    double wavelength_lo, wavelength_hi; /**< ground units */
+    double slope, intercept;             /**< of log10 power on log10 wavelength */
+    double D;                            /**< (8 - slope) / 2 (may lie outside [2, 3]: then a warning) */
+    double r2, stderr_D;
+    size_t bins;                         /**< spectrum bins in the regime */
+} ft_clarke_regime;
+
 typedef struct {
     /* T (eq. xii): z = beta0 + beta1 x + beta2 y, x and y map coordinates of cell centres */
     double beta0, beta1, beta2;
@@ -105,6 +123,17 @@ typedef struct {
     double D;               /**< (8 - slope) / 2: slope = beta of a 2-D isotropic spectrum P ~ f^-beta */
     double D_clarke_eq8;    /**< 3 - slope / 2, Clarke's eq. viii as printed (the variogram relation) */
     double c;               /**< scale of F so that var(T + cF + H) = sd² on the fitted grid */
+    /* F's measured spectrum (model file format 2): the tapered periodogram of the residual without H,
+     * averaged over quarter-octave rings of frequency; bin i holds spectrum_count[i] waves of mean power
+     * spectrum_power[i] (per plane wave, as the regression's) at the geometric-mean wavelength
+     * spectrum_wavelength[i] (ground units, strictly increasing) */
+    ft_clarke_noise noise;  /**< the F ft_clarke_simulate draws */
+    size_t nspectrum;
+    double *spectrum_wavelength, *spectrum_power, *spectrum_count;
+    ft_clarke_regime *regimes; /**< the regimes of the bins of at least min_wavelength cells, by increasing
+                                    wavelength (0 if the search found none) */
+    size_t nregimes;
+    double *breaks;         /**< nregimes - 1 wavelengths (ground units) where neighbouring regimes meet */
 } ft_clarke_model;
 
 typedef struct {
@@ -118,10 +147,12 @@ typedef struct {
                                  aliasing flattens; 0 = every wave (Clarke) */
     ft_progress_fn progress;
     void *progress_arg;
+    ft_clarke_noise noise;  /**< the F the model simulates; default FT_CLARKE_NOISE_SPECTRUM (the spectrum
+                                 and its regimes are measured and reported either way) */
 } ft_clarke_opts;
 #define FT_CLARKE_OPTS_DEFAULT                                                                                       \
     {.struct_size = sizeof(ft_clarke_opts), .cutoff = 2.5, .taper = 1, .min_wavelength = 4.0, .progress = NULL,      \
-     .progress_arg = NULL}
+     .progress_arg = NULL, .noise = FT_CLARKE_NOISE_SPECTRUM}
 
 /** Fits Clarke's model to a DEM of any size (at least 4 x 4 cells with 3 valid ones not on a line).
  *  Nodata cells are filled with the trend before the Fourier analysis (model->nodata_filled says how

@@ -376,6 +376,13 @@ class ft_clarke_harmonic(c.Structure):
 
 
 @_mirror
+class ft_clarke_regime(c.Structure):
+    _c_name_ = "ft_clarke_regime"
+    _fields_ = [("wavelength_lo", _dbl), ("wavelength_hi", _dbl), ("slope", _dbl), ("intercept", _dbl), ("D", _dbl),
+                ("r2", _dbl), ("stderr_D", _dbl), ("bins", _sz)]
+
+
+@_mirror
 class ft_clarke_model(c.Structure):
     _c_name_ = "ft_clarke_model"
     _fields_ = [("beta0", _dbl), ("beta1", _dbl), ("beta2", _dbl), ("trend_r2", _dbl), ("nx", _sz), ("ny", _sz),
@@ -383,7 +390,9 @@ class ft_clarke_model(c.Structure):
                 ("nodata_filled", _sz), ("cutoff", _dbl), ("taper", _int), ("min_wavelength", _dbl),
                 ("harmonics", _P(ft_clarke_harmonic)), ("nharmonics", _sz), ("harmonic_share", _dbl),
                 ("slope", _dbl), ("intercept", _dbl), ("r2", _dbl), ("stderr_slope", _dbl), ("npairs", _sz),
-                ("D", _dbl), ("D_clarke_eq8", _dbl), ("c", _dbl)]
+                ("D", _dbl), ("D_clarke_eq8", _dbl), ("c", _dbl), ("noise", _int), ("nspectrum", _sz),
+                ("spectrum_wavelength", _P(_dbl)), ("spectrum_power", _P(_dbl)), ("spectrum_count", _P(_dbl)),
+                ("regimes", _P(ft_clarke_regime)), ("nregimes", _sz), ("breaks", _P(_dbl))]
 
 
 @_mirror
@@ -391,8 +400,8 @@ class ft_clarke_opts(_Opts):
     _c_name_ = "ft_clarke_opts"
     _c_default_ = "FT_CLARKE_OPTS_DEFAULT"
     _fields_ = [("struct_size", _sz), ("cutoff", _dbl), ("taper", _int), ("min_wavelength", _dbl), ("progress", PROGRESS),
-                ("progress_arg", _vp)]
-    _defaults_ = dict(cutoff=2.5, taper=1, min_wavelength=4.0)
+                ("progress_arg", _vp), ("noise", _int)]
+    _defaults_ = dict(cutoff=2.5, taper=1, min_wavelength=4.0, noise=1)
 
 
 @_mirror

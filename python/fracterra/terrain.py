@@ -117,11 +117,18 @@ class ClarkeModel:
         self._ptr = ptr
         m = ptr.contents
         for f, _t in S.ft_clarke_model._fields_:
-            if f in ("harmonics", "crs_wkt", "gt"):
+            if f in ("harmonics", "crs_wkt", "gt", "spectrum_wavelength", "spectrum_power", "spectrum_count",
+                     "regimes", "breaks"):
                 continue
             setattr(self, f, getattr(m, f))
         self.geotransform = tuple(m.gt)
         self.wkt = m.crs_wkt.decode() if m.crs_wkt else None
+        self.noise = "spectrum" if m.noise == 1 else "power-law"
+        self.spectrum = {k: np.array([getattr(m, "spectrum_" + k)[i] for i in range(m.nspectrum)])
+                         for k in ("wavelength", "power", "count")}
+        self.regimes = [{f: getattr(m.regimes[i], f) for f, _ in S.ft_clarke_regime._fields_}
+                        for i in range(m.nregimes)]
+        self.breaks = [m.breaks[i] for i in range(max(0, m.nregimes - 1))]
         self.harmonics = np.zeros(m.nharmonics, HARMONIC_DTYPE)
         for i in range(m.nharmonics):
             h = m.harmonics[i]
@@ -136,10 +143,15 @@ class ClarkeModel:
         return "ClarkeModel(D=%.4f, %d harmonics, c=%.4g)" % (self.D, self.nharmonics, self.c)
 
 
-def clarke_fit(dem, *, cutoff=2.5, taper=True, min_wavelength=4.0, progress=None, progress_arg=None):
-    """Fits Clarke's model to a DEM (a Grid or array), as `fracterra model`'s fit."""
+def clarke_fit(dem, *, cutoff=2.5, taper=True, min_wavelength=4.0, noise="spectrum", progress=None,
+               progress_arg=None):
+    """Fits Clarke's model to a DEM (a Grid or array), as `fracterra model`'s fit. noise: the F the model
+    simulates, "spectrum" (the DEM's measured radial spectrum) or "power-law" (Clarke's one law)."""
+    if noise not in ("spectrum", "power-law"):
+        raise ValueError("noise must be 'spectrum' or 'power-law', got %r" % (noise,))
     o = S.ft_clarke_opts.default()
     o.cutoff, o.taper, o.min_wavelength = float(cutoff), 1 if taper else 0, float(min_wavelength)
+    o.noise = 1 if noise == "spectrum" else 0
     pr = Progress(progress, progress_arg)
     pr.install(o)
     cg = _CGrid(as_grid(dem))

@@ -7,7 +7,11 @@
  * beta0 + beta1 x + beta2 y, r2), "harmonics" (cutoff, total share, the list: k, l, a, b, power, share,
  * wavelength, direction), "regression" (eqs. x, xv: slope, intercept, r2, stderr, pairs, taper,
  * min_wavelength_cells),
- * "D_clarke_eq8" (Clarke's eq. viii, the variogram relation, labelled) and "c". Reading is strict: every key
+ * "D_clarke_eq8" (Clarke's eq. viii, the variogram relation, labelled) and "c". Format 2 ("format_version":
+ * 2) adds "noise" ("spectrum" or "power-law": the F the simulation draws), "spectrum" (the measured radial
+ * spectrum: wavelength, power per plane wave, waves per ring), "regimes" (D, wavelength range in ground
+ * units and cells, frequency range, slope, intercept, r2, stderr, bins) and "breaks" (wavelengths); a file
+ * without "format_version" is format 1 and simulates Clarke's power law. Reading is strict: every key
  * the simulation uses must be there with the right type, and the error names it. Numbers are written with
  * the fewest digits that read back to the same double, so a model survives a write and a read bit for bit.
  *
@@ -27,6 +31,9 @@
 #include "io/io_internal.h"
 
 #define MODEL_NAME "clarke1987"
+/* 1: F is the regression's power law (files without "format_version"); 2: adds "noise", "spectrum",
+ * "regimes" and "breaks" (F may be the measured radial spectrum). Version 1 files still load. */
+#define MODEL_FORMAT_VERSION 2
 
 /* ---- writing ---- */
 
@@ -99,6 +106,71 @@ static json_object *regression_json(const ft_clarke_model *m)
     return o;
 }
 
+static double cell_size(const ft_clarke_model *m)
+{
+    return fmin(hypot(m->gt[1], m->gt[4]), hypot(m->gt[2], m->gt[5]));
+}
+
+static json_object *spectrum_json(const ft_clarke_model *m)
+{
+    json_object *o = json_object_new_object();
+    json_object_object_add(o, "rings_per_octave", json_object_new_int(4));
+    json_object_object_add(o, "wavelength", jarray(m->spectrum_wavelength, m->nspectrum));
+    json_object_object_add(o, "power", jarray(m->spectrum_power, m->nspectrum));
+    json_object_object_add(o, "waves", jarray(m->spectrum_count, m->nspectrum));
+    return o;
+}
+
+static json_object *regime_json(const ft_clarke_model *m, const ft_clarke_regime *g)
+{
+    json_object *o = json_object_new_object();
+    double wl[2] = {g->wavelength_lo, g->wavelength_hi}, cells[2], freq[2] = {1.0 / g->wavelength_hi,
+                                                                               1.0 / g->wavelength_lo};
+    cells[0] = wl[0] / cell_size(m);
+    cells[1] = wl[1] / cell_size(m);
+    json_object_object_add(o, "D", jnum(g->D));
+    json_object_object_add(o, "stderr", jnum(g->stderr_D));
+    json_object_object_add(o, "r2", jnum(g->r2));
+    json_object_object_add(o, "wavelength", jarray(wl, 2));
+    json_object_object_add(o, "wavelength_cells", jarray(cells, 2));
+    json_object_object_add(o, "frequency", jarray(freq, 2));
+    json_object_object_add(o, "slope", jnum(g->slope));
+    json_object_object_add(o, "intercept", jnum(g->intercept));
+    json_object_object_add(o, "bins", json_object_new_int64((int64_t)g->bins));
+    return o;
+}
+
+static json_object *regimes_json(const ft_clarke_model *m)
+{
+    json_object *a = json_object_new_array();
+    for (size_t i = 0; i < m->nregimes; i++)
+        json_object_array_add(a, regime_json(m, &m->regimes[i]));
+    return a;
+}
+
+/* Sentences for the user about the model: a D outside [2, 3] is reported, never silently used. */
+static json_object *warnings_json(const ft_clarke_model *m)
+{
+    json_object *a = json_object_new_array();
+    char buf[256];
+    if (m->D < 2.0 || m->D > 3.0) {
+        snprintf(buf, sizeof buf, "the one power law's D = %.3f lies outside [2, 3]: the spectrum is not one "
+                 "fractal law (see \"regimes\")", m->D);
+        json_object_array_add(a, json_object_new_string(buf));
+    }
+    for (size_t i = 0; i < m->nregimes; i++) {
+        const ft_clarke_regime *g = &m->regimes[i];
+        if (g->D < 2.0 || g->D > 3.0) {
+            snprintf(buf, sizeof buf, "regime %zu (wavelengths %.4g-%.4g) has D = %.3f outside [2, 3]", i + 1,
+                     g->wavelength_lo, g->wavelength_hi, g->D);
+            json_object_array_add(a, json_object_new_string(buf));
+        }
+    }
+    if (m->nspectrum > 0 && m->nregimes == 0)
+        json_object_array_add(a, json_object_new_string("the regime search found no straight run in the spectrum"));
+    return a;
+}
+
 /* Shortest and longest wavelength of the grid (the regression's range). */
 static void wavelength_range(const ft_clarke_model *m, double range[2])
 {
@@ -114,6 +186,9 @@ static json_object *model_to_json(const ft_clarke_model *m)
     wavelength_range(m, range);
     json_object_object_add(o, "method", json_object_new_string("clarke"));
     json_object_object_add(o, "model", json_object_new_string(MODEL_NAME));
+    json_object_object_add(o, "format_version", json_object_new_int(MODEL_FORMAT_VERSION));
+    json_object_object_add(o, "noise", json_object_new_string(m->noise == FT_CLARKE_NOISE_SPECTRUM ? "spectrum"
+                                                                                                   : "power-law"));
     json_object_object_add(o, "D", jnum(m->D));
     json_object_object_add(o, "D_clarke_eq8", jnum(m->D_clarke_eq8));
     json_object_object_add(o, "r2", jnum(m->r2));
@@ -133,6 +208,10 @@ static json_object *model_to_json(const ft_clarke_model *m)
     json_object_object_add(o, "trend", t);
     json_object_object_add(o, "harmonics", harmonics_json(m));
     json_object_object_add(o, "regression", regression_json(m));
+    json_object_object_add(o, "regimes", regimes_json(m));
+    json_object_object_add(o, "breaks", jarray(m->breaks, m->nregimes > 1 ? m->nregimes - 1 : 0));
+    json_object_object_add(o, "spectrum", spectrum_json(m));
+    json_object_object_add(o, "warnings", warnings_json(m));
     return o;
 }
 
@@ -317,6 +396,105 @@ static void read_scalars(reader *r, json_object *o, ft_clarke_model *m)
         r->rc = ft_error(FT_E_FORMAT, "%s: key \"original.sd\" must be >= 0, got %g", r->what, m->sd);
 }
 
+/* A numeric array of exactly n elements (n = SIZE_MAX: any length, set into *n_out) into a new buffer. */
+static double *num_array(reader *r, json_object *o, const char *parent, const char *key, size_t *n)
+{
+    json_object *a = get(r, o, parent, key, json_type_array);
+    if (a == NULL)
+        return NULL;
+    size_t len = json_object_array_length(a);
+    if (*n != SIZE_MAX && len != *n) {
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"%s.%s\" has %zu elements, %zu expected", r->what, parent, key, len,
+                         *n);
+        return NULL;
+    }
+    *n = len;
+    double *v = ft_malloc((len ? len : 1) * sizeof *v);
+    if (v == NULL) {
+        r->rc = ft_last_error_code();
+        return NULL;
+    }
+    char name[64];
+    snprintf(name, sizeof name, "%s.%s", parent, key);
+    for (size_t i = 0; i < len && r->rc == FT_OK; i++)
+        v[i] = element(r, a, name, i);
+    return v;
+}
+
+static void read_spectrum(reader *r, json_object *o, ft_clarke_model *m)
+{
+    json_object *sp = get(r, o, "", "spectrum", json_type_object);
+    size_t n = SIZE_MAX;
+    m->spectrum_wavelength = num_array(r, sp, "spectrum", "wavelength", &n);
+    if (r->rc == FT_OK)
+        m->nspectrum = n;
+    m->spectrum_power = num_array(r, sp, "spectrum", "power", &n);
+    m->spectrum_count = num_array(r, sp, "spectrum", "waves", &n);
+}
+
+static void read_regime(reader *r, json_object *g, ft_clarke_regime *out)
+{
+    size_t two = 2;
+    double *wl = num_array(r, g, "regimes[]", "wavelength", &two);
+    if (wl) {
+        out->wavelength_lo = wl[0];
+        out->wavelength_hi = wl[1];
+    }
+    free(wl);
+    out->D = num(r, g, "regimes[]", "D");
+    out->stderr_D = num(r, g, "regimes[]", "stderr");
+    out->r2 = num(r, g, "regimes[]", "r2");
+    out->slope = num(r, g, "regimes[]", "slope");
+    out->intercept = num(r, g, "regimes[]", "intercept");
+    out->bins = (size_t)integer(r, g, "regimes[]", "bins", 0, LLONG_MAX);
+}
+
+static void read_regimes(reader *r, json_object *o, ft_clarke_model *m)
+{
+    json_object *list = get(r, o, "", "regimes", json_type_array);
+    size_t n = list ? json_object_array_length(list) : 0;
+    if (r->rc != FT_OK || n == 0)
+        return;
+    if ((m->regimes = ft_calloc(n, sizeof *m->regimes)) == NULL) {
+        r->rc = ft_last_error_code();
+        return;
+    }
+    m->nregimes = n;
+    for (size_t i = 0; i < n && r->rc == FT_OK; i++) {
+        json_object *g = json_object_array_get_idx(list, i);
+        if (!json_object_is_type(g, json_type_object))
+            r->rc = ft_error(FT_E_FORMAT, "%s: key \"regimes\" element %zu is not an object", r->what, i);
+        else
+            read_regime(r, g, &m->regimes[i]);
+    }
+    size_t nb = n - 1;
+    m->breaks = num_array(r, o, "", "breaks", &nb);
+}
+
+/* Format 2's F: the noise kind, the measured spectrum and its regimes. */
+static void read_noise(reader *r, json_object *o, ft_clarke_model *m)
+{
+    json_object *noise = get(r, o, "", "noise", json_type_string);
+    if (noise && strcmp(json_object_get_string(noise), "spectrum") == 0)
+        m->noise = FT_CLARKE_NOISE_SPECTRUM;
+    else if (noise && strcmp(json_object_get_string(noise), "power-law") == 0)
+        m->noise = FT_CLARKE_NOISE_POWER_LAW;
+    else if (noise)
+        r->rc = ft_error(FT_E_FORMAT, "%s: key \"noise\" is \"%s\", it must be \"spectrum\" or \"power-law\"",
+                         r->what, json_object_get_string(noise));
+    read_spectrum(r, o, m);
+    read_regimes(r, o, m);
+}
+
+/* The file's format version: 1 when absent (files written before format 2). */
+static long long format_version(reader *r, json_object *o)
+{
+    json_object *v = NULL;
+    if (!json_object_object_get_ex(o, "format_version", &v))
+        return 1;
+    return integer(r, o, "", "format_version", 1, MODEL_FORMAT_VERSION);
+}
+
 static int model_from_json(json_object *o, const char *what, ft_clarke_model **out)
 {
     reader r = {what, FT_OK};
@@ -326,9 +504,12 @@ static int model_from_json(json_object *o, const char *what, ft_clarke_model **o
         r.rc = ft_error(FT_E_FORMAT, "%s: key \"model\" is \"%s\", not \"%s\"", what, json_object_get_string(name),
                         MODEL_NAME);
     ft_clarke_model *m = NULL;
+    long long version = format_version(&r, o);
     if (read_harmonics(&r, o, &m) == FT_OK) {
         read_grid(&r, o, m);
         read_scalars(&r, o, m);
+        if (version >= 2)
+            read_noise(&r, o, m);
     }
     if (r.rc != FT_OK) {
         ft_clarke_model_free(m);

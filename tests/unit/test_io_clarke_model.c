@@ -58,6 +58,26 @@ static ft_clarke_model *awkward_model(void)
     m->D = (8.0 - m->slope) / 2.0;
     m->D_clarke_eq8 = 3.0 - m->slope / 2.0;
     m->c = 1.0 / 7.0;
+    /* format 2: the measured spectrum, two regimes and their break */
+    m->noise = FT_CLARKE_NOISE_SPECTRUM;
+    m->nspectrum = 3;
+    m->spectrum_wavelength = malloc(3 * sizeof(double));
+    m->spectrum_power = malloc(3 * sizeof(double));
+    m->spectrum_count = malloc(3 * sizeof(double));
+    m->regimes = calloc(2, sizeof *m->regimes);
+    m->breaks = malloc(sizeof(double));
+    assert_true(m->spectrum_wavelength && m->spectrum_power && m->spectrum_count && m->regimes && m->breaks);
+    const double wl[3] = {21.0, 1.0 / 3.0 * 100.0, 610.0}, pw[3] = {0.1 + 0.2, 7e-5, 123456.789}, ct[3] = {
+                                                                                                 812, 96, 2};
+    memcpy(m->spectrum_wavelength, wl, sizeof wl);
+    memcpy(m->spectrum_power, pw, sizeof pw);
+    memcpy(m->spectrum_count, ct, sizeof ct);
+    m->regimes[0] = (ft_clarke_regime){.wavelength_lo = 21.0, .wavelength_hi = 100.0 / 3.0, .slope = 2.9,
+                                       .intercept = -8.6069, .D = 2.55, .r2 = 0.99, .stderr_D = 0.04, .bins = 11};
+    m->regimes[1] = (ft_clarke_regime){.wavelength_lo = 100.0 / 3.0, .wavelength_hi = 610.0, .slope = -1.15,
+                                       .intercept = 6.77, .D = 4.575, .r2 = 0.9, .stderr_D = 0.08, .bins = 7};
+    m->nregimes = 2;
+    m->breaks[0] = 1.0 / 3.0 * 101.0;
     return m;
 }
 
@@ -92,6 +112,21 @@ static void assert_same_model(const ft_clarke_model *a, const ft_clarke_model *b
     assert_true(a->stderr_slope == b->stderr_slope);
     assert_int_equal(a->npairs, b->npairs);
     assert_true(a->D == b->D && a->D_clarke_eq8 == b->D_clarke_eq8 && a->c == b->c);
+    assert_int_equal(a->noise, b->noise);
+    assert_int_equal(a->nspectrum, b->nspectrum);
+    for (size_t i = 0; i < a->nspectrum; i++)
+        assert_true(a->spectrum_wavelength[i] == b->spectrum_wavelength[i] &&
+                    a->spectrum_power[i] == b->spectrum_power[i] && a->spectrum_count[i] == b->spectrum_count[i]);
+    assert_int_equal(a->nregimes, b->nregimes);
+    for (size_t i = 0; i < a->nregimes; i++) {
+        const ft_clarke_regime *x = &a->regimes[i], *y = &b->regimes[i];
+        assert_true(x->wavelength_lo == y->wavelength_lo && x->wavelength_hi == y->wavelength_hi);
+        assert_true(x->slope == y->slope && x->intercept == y->intercept && x->D == y->D && x->r2 == y->r2);
+        assert_true(x->stderr_D == y->stderr_D);
+        assert_int_equal(x->bins, y->bins);
+        if (i + 1 < a->nregimes)
+            assert_true(a->breaks[i] == b->breaks[i]);
+    }
 }
 
 static void test_round_trip_is_exact(void **state)
@@ -171,6 +206,43 @@ static void expect_broken(const char *from, const char *to, int code, const char
     ft_clarke_model_free(m);
 }
 
+/* A file without "format_version" (format 1, written before the measured spectrum) still loads, as Clarke's
+ * power law; a spectrum whose wavelengths do not increase reads, but the simulation refuses it by name. */
+static void test_format_1_and_bad_spectrum(void **state)
+{
+    (void)state;
+    ft_clarke_model *m = awkward_model(), *back = NULL;
+    char *text = ft_io_clarke_model_to_json(m);
+    assert_non_null(text);
+    char *v = strstr(text, "\"format_version\""), *d = strstr(text, "\"D\""), *r = strstr(text, "\"regimes\"");
+    assert_true(v && d && r && v < d && d < r);
+    size_t n = strlen(text) + 16;
+    char *old = malloc(n);
+    assert_non_null(old);
+    snprintf(old, n, "%.*s%.*s\"x\": 0}", (int)(v - text), text, (int)(r - d), d);
+    assert_int_equal(ft_io_read_clarke_model(ft_test_tmp_text("v1.json", old), &back), FT_OK);
+    assert_int_equal(back->noise, FT_CLARKE_NOISE_POWER_LAW);
+    assert_int_equal(back->nspectrum, 0);
+    assert_int_equal(back->nregimes, 0);
+    assert_true(back->D == m->D && back->slope == m->slope);
+    ft_clarke_model_free(back);
+    back = NULL;
+
+    m->spectrum_wavelength[1] = 10.0; /* below the first ring's 21 */
+    assert_int_equal(ft_io_write_clarke_model(ft_test_tmp("bad.json"), m), FT_OK);
+    assert_int_equal(ft_io_read_clarke_model(ft_test_tmp("bad.json"), &back), FT_OK);
+    ft_grid *g = NULL;
+    back->harmonics[1].a = 1.0; /* the awkward 1e300 would be its own error */
+    assert_int_equal(ft_clarke_simulate(back, NULL, &g), FT_E_INVALID);
+    assert_null(g);
+    if (strstr(ft_last_error(), "spectrum wavelength 1") == NULL)
+        fail_msg("'%s' does not name the spectrum wavelength", ft_last_error());
+    free(old);
+    free(text);
+    ft_clarke_model_free(back);
+    ft_clarke_model_free(m);
+}
+
 static void test_broken_files(void **state)
 {
     (void)state;
@@ -179,6 +251,11 @@ static void test_broken_files(void **state)
     expect_broken("\"size\": [", "\"size\": [ -5, ", FT_E_FORMAT, "grid.size");
     expect_broken("\"regression\"", "\"regression\": 1, \"x\"", FT_E_FORMAT, "regression");
     expect_broken("\"harmonics\"", "", FT_E_FORMAT, "not valid JSON");
+    expect_broken("\"format_version\": 2", "\"format_version\": 3", FT_E_FORMAT, "format_version");
+    expect_broken("\"noise\": \"spectrum\"", "\"noise\": \"pink\"", FT_E_FORMAT, "pink");
+    expect_broken("\"waves\": [", "\"waves\": [ 1,", FT_E_FORMAT, "spectrum.waves");
+    expect_broken("\"spectrum\": {", "\"spectrum_\": {", FT_E_FORMAT, "\"spectrum\"");
+    expect_broken("\"breaks\": [", "\"breaks\": [ 5,", FT_E_FORMAT, "breaks");
     ft_clarke_model *back = NULL;
     assert_int_equal(ft_io_read_clarke_model(ft_test_tmp_text("empty.json", " \n"), &back), FT_E_FORMAT);
     assert_non_null(strstr(ft_last_error(), "empty"));
@@ -209,6 +286,7 @@ int main(void)
         cmocka_unit_test(test_json_text),
         cmocka_unit_test(test_fitted_model_simulates_the_same),
         cmocka_unit_test(test_broken_files),
+        cmocka_unit_test(test_format_1_and_bad_spectrum),
         cmocka_unit_test(test_write_failure_leaves_nothing),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);

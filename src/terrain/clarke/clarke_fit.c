@@ -125,6 +125,11 @@ void ft_clarke_model_free(ft_clarke_model *m)
         return;
     free(m->harmonics);
     free(m->crs_wkt);
+    free(m->spectrum_wavelength);
+    free(m->spectrum_power);
+    free(m->spectrum_count);
+    free(m->regimes);
+    free(m->breaks);
     free(m);
 }
 
@@ -408,7 +413,7 @@ static double fractal_variance(const ft_clarke_model *m, const clarke_frame *fr)
             clarke_bin kind = clarke_bin_kind(kx, (size_t)ky, nx, ny);
             if (kind == CLARKE_BIN_SKIP)
                 continue;
-            double p = clarke_power(m, clarke_wavelength(fr, (int)kx, clarke_signed_l((size_t)ky, ny)));
+            double p = clarke_noise_power(m, clarke_wavelength(fr, (int)kx, clarke_signed_l((size_t)ky, ny)));
             sum += kind == CLARKE_BIN_SELF ? p : 0.5 * p;
         }
         rows[ky] = sum;
@@ -420,7 +425,7 @@ static double fractal_variance(const ft_clarke_model *m, const clarke_frame *fr)
     for (size_t i = 0; i < m->nharmonics; i++) {
         const ft_clarke_harmonic *h = &m->harmonics[i];
         int self = (h->k == 0 || 2 * (size_t)h->k == nx) && (h->l == 0 || 2 * (size_t)abs(h->l) == ny);
-        double p = clarke_power(m, clarke_wavelength(fr, h->k, h->l)); /* the mode's, as in the sum */
+        double p = clarke_noise_power(m, clarke_wavelength(fr, h->k, h->l)); /* the mode's, as in the sum */
         var -= self ? p : 0.5 * p;
     }
     return var;
@@ -446,6 +451,9 @@ static int check_input(const ft_grid *dem, const ft_clarke_opts *o, ft_clarke_mo
         return ft_error(FT_E_INVALID, "Clarke model: no grid given");
     if (!isfinite(o->min_wavelength) || o->min_wavelength < 0.0)
         return ft_error(FT_E_INVALID, "Clarke model: min_wavelength must be >= 0 cells, got %g", o->min_wavelength);
+    if (o->noise != FT_CLARKE_NOISE_POWER_LAW && o->noise != FT_CLARKE_NOISE_SPECTRUM)
+        return ft_error(FT_E_INVALID, "Clarke model: noise must be power-law (%d) or spectrum (%d), got %d",
+                        FT_CLARKE_NOISE_POWER_LAW, FT_CLARKE_NOISE_SPECTRUM, (int)o->noise);
     if (o->taper != 0 && o->taper != 1)
         return ft_error(FT_E_INVALID, "Clarke model: taper must be 0 (none) or 1 (Hann), got %d", o->taper);
     if (!isfinite(o->cutoff) || o->cutoff <= 0.0 || o->cutoff > 100.0)
@@ -472,6 +480,7 @@ static int model_init(const ft_grid *dem, const ft_clarke_opts *o, ft_clarke_mod
     m->cutoff = o->cutoff;
     m->taper = o->taper;
     m->min_wavelength = o->min_wavelength;
+    m->noise = o->noise;
     if (dem->crs_wkt && (m->crs_wkt = ft_strdup(dem->crs_wkt)) == NULL) {
         ft_clarke_model_free(m);
         return ft_last_error_code();
@@ -519,6 +528,63 @@ static int analyse(const ft_grid *dem, ft_clarke_model *m, double b0c, const cla
     return regression(ri, m);
 }
 
+/* Zeroes the bins of H (and their conjugate twins in the edge columns) of a half-spectrum. */
+static void remove_harmonics(const ft_clarke_model *m, fftw_complex *spec)
+{
+    size_t hx = m->nx / 2 + 1;
+    for (size_t i = 0; i < m->nharmonics; i++) {
+        const ft_clarke_harmonic *h = &m->harmonics[i];
+        size_t up = (size_t)(((long)h->l % (long)m->ny + (long)m->ny) % (long)m->ny);
+        size_t down = (size_t)(((-(long)h->l) % (long)m->ny + (long)m->ny) % (long)m->ny);
+        memset(&spec[up * hx + (size_t)h->k], 0, sizeof(fftw_complex));
+        if (h->k == 0 || 2 * (size_t)h->k == m->nx)
+            memset(&spec[down * hx + (size_t)h->k], 0, sizeof(fftw_complex));
+    }
+}
+
+/* The power of every wave of F's own part of the residual, z - T - H (the grid modes of H removed), on
+ * the periodogram under the fit's taper, divided by the taper's mean square; NaN where the half-spectrum
+ * holds no wave of its own or the power is 0. buf: the FFT buffer (overwritten). */
+static int noise_wave_powers(const ft_grid *dem, const ft_clarke_model *m, double b0c, int taper, double *buf,
+                             double *wave_power)
+{
+    size_t nx = m->nx, ny = m->ny, hx = nx / 2 + 1, rs = ft_fft_real_stride(nx);
+    fftw_complex *spec = (fftw_complex *)(void *)buf;
+    int rc = transform_residual(dem, m, b0c, 0, buf);
+    if (rc != FT_OK)
+        return rc;
+    remove_harmonics(m, spec);
+    if ((rc = ft_fft_c2r_2d(ny, nx, spec, buf)) != FT_OK)
+        return rc;
+    double *wx = taper_table(nx, taper), *wy = wx ? taper_table(ny, taper) : NULL;
+    if (wy == NULL) {
+        free(wx);
+        return ft_last_error_code();
+    }
+    double n = (double)nx * (double)ny, norm = taper ? taper_power(nx, ny) : 1.0;
+    for (size_t row = 0; row < ny; row++)
+        for (size_t col = 0; col < nx; col++)
+            buf[row * rs + col] *= wy[row] * wx[col] / n; /* FFTW's inverse is unnormalised */
+    free(wx);
+    free(wy);
+    if ((rc = ft_fft_r2c_2d(ny, nx, buf, spec)) != FT_OK)
+        return rc;
+    for (size_t ky = 0; ky < ny; ky++) {
+        for (size_t kx = 0; kx < hx; kx++) {
+            clarke_bin kind = clarke_bin_kind(kx, ky, nx, ny);
+            double a = 0.0, b = 0.0;
+            wave_power[ky * hx + kx] = NAN;
+            if (kind == CLARKE_BIN_SKIP)
+                continue;
+            wave_coefficients(spec[ky * hx + kx], kind, n, &a, &b);
+            double p = (a * a + b * b) / norm;
+            if (p > 0.0 && isfinite(p))
+                wave_power[ky * hx + kx] = p;
+        }
+    }
+    return FT_OK;
+}
+
 static void take_harmonics(ft_clarke_model *m, harmonic_scan *hs)
 {
     qsort(hs->sig, hs->nsig, sizeof *hs->sig, by_share_desc);
@@ -534,20 +600,31 @@ static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, cons
 {
     size_t nwaves = m->ny * (m->nx / 2 + 1);
     regression_input ri = {ft_malloc(nwaves * sizeof(double)), ft_malloc(nwaves * sizeof(double)), 0};
+    double *wave_power = ft_malloc(nwaves * sizeof(double));
     harmonic_scan hs = {0};
     double *buf = ft_fft_alloc_real(ft_fft_real_stride(dem->nx) * dem->ny);
-    int rc = ri.log_wavelength && ri.log_power && buf ? FT_OK : ft_last_error_code();
+    int rc = ri.log_wavelength && ri.log_power && wave_power && buf ? FT_OK : ft_last_error_code();
     if (rc == FT_OK)
         rc = analyse(dem, m, b0c, fr, o, buf, &ri, &hs);
     if (rc == FT_OK) {
         take_harmonics(m, &hs);
-        scale_c(m, fr, hs.total_var);
         rc = residual_fill(dem, m, b0c, 0, buf, ft_fft_real_stride(dem->nx));
     }
     if (rc == FT_OK)
         rc = clarke_refine_harmonics(dem, buf, ft_fft_real_stride(dem->nx), fr, m->harmonics, m->nharmonics);
+    if (rc == FT_OK)
+        rc = noise_wave_powers(dem, m, b0c, o->taper, buf, wave_power);
+    if (rc == FT_OK)
+        rc = clarke_measure_spectrum(m, fr, wave_power);
+    if (rc == FT_OK) {
+        double cell = fmin(fr->lx / (double)m->nx, fr->ly / (double)m->ny);
+        rc = clarke_spectrum_regimes(m, o->min_wavelength * cell * (1.0 - 1e-9));
+    }
+    if (rc == FT_OK)
+        scale_c(m, fr, hs.total_var);
     free(ri.log_wavelength);
     free(ri.log_power);
+    free(wave_power);
     free(hs.sig);
     ft_fft_free(buf);
     return rc;

@@ -42,4 +42,14 @@ int clarke_refine_harmonics(const ft_grid *dem, const double *res, size_t rs, co
 /* The regression's power for one plane wave of this wavelength (eq. xv, log10 form). */
 double clarke_power(const ft_clarke_model *m, double wavelength);
 
+/* F's measured spectrum (clarke_spectrum.c): the quarter-octave rings of wave_power (per half-spectrum
+ * bin, NaN where there is no wave: the periodogram of z - T - H) into m->spectrum_*. */
+int clarke_measure_spectrum(ft_clarke_model *m, const clarke_frame *fr, const double *wave_power);
+/* The regimes and breaks of the rings of at least min_wl ground units into m->regimes, m->breaks. */
+int clarke_spectrum_regimes(ft_clarke_model *m, double min_wl);
+/* The power of one plane wave of this wavelength in the F the model simulates (m->noise). */
+double clarke_noise_power(const ft_clarke_model *m, double wavelength);
+/* FT_E_INVALID naming the bad value unless the noise, spectrum and regimes of m are usable. */
+int clarke_check_spectrum(const ft_clarke_model *m);
+
 #endif /* FRACTERRA_CLARKE_INTERNAL_H */

@@ -8,7 +8,8 @@
  *    placed at bin (k E, l E) as (a - i b)/2 with the phase shift that moves the fitted grid's cell
  *    centres onto the new ones;
  *  - F (eqs. xiii-xv): every other wave of the new grid but the DC term, amplitude sqrt(P(wavelength)),
- *    P from the log-log regression, divided by E² since the harmonic spacing shrinks E times per axis,
+ *    P from the log-log regression (or, model->noise = spectrum, from the DEM's measured radial spectrum:
+ *    clarke_spectrum.c), divided by E² since the harmonic spacing shrinks E times per axis,
  *    and a uniform random phase (one seeded stream per spectrum row, so the cells do not depend on the
  *    thread count). Wavelengths beyond the fitted extent get the power at that extent, not an
  *    extrapolation. Amplitudes follow the regression exactly (eq. xiv gives them from P; Clarke kept the
@@ -78,7 +79,7 @@ static int check_model(const ft_clarke_model *m)
         if (rc != FT_OK)
             return rc;
     }
-    return FT_OK;
+    return clarke_check_spectrum(m);
 }
 
 static int check_opts(const ft_clarke_model *m, const ft_clarke_sim_opts *o, ft_grid **out)
@@ -189,7 +190,7 @@ static void fill_harmonics(const ft_clarke_model *m, const sim_grid *s, fftw_com
 static double fractal_amplitude(const ft_clarke_model *m, const sim_grid *s, size_t kx, size_t ky)
 {
     double wl = clarke_wavelength(&s->frame, (int)kx, clarke_signed_l(ky, s->ny));
-    double p = clarke_power(m, fmin(wl, s->max_wavelength)) / ((double)s->e * (double)s->e);
+    double p = clarke_noise_power(m, fmin(wl, s->max_wavelength)) / ((double)s->e * (double)s->e);
     return isfinite(p) && p > 0.0 ? sqrt(p) : 0.0;
 }
 
