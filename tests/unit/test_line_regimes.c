@@ -4,7 +4,9 @@
  * closed form) reports two, each with the dimension of its generator, and the break where the box-count
  * asymptotes of the two generators meet, between half the segment length where the generator changes and
  * that length; at the generators' own segment lengths the divider plot is two exact lines meeting where
- * the generator changes, and the break is found there; box counting of a circle of radius 50 km with boxes of 5 to
+ * the generator changes, and the break is found there; a two-regime lattice curve counted in the grid of
+ * its own cells has box counts that are exact powers, two lines meeting where the generator changes, and
+ * the break is found there; box counting of a circle of radius 50 km with boxes of 5 to
  * 50 km reads D within 0.02 of 1 (the mean over grid origins; the fewest over them does not).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -13,6 +15,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -252,6 +255,121 @@ static void check_divider_break(const double *deg, int up)
     ft_chain_free(c);
 }
 
+/* A lattice curve (a Peano-type construction on a 3 x 3 subdivision): the square of side L is cut into
+ * 3 x 3 cells, of which the curve visits m, edge-adjacent, entering at the middle of one side and leaving
+ * at the middle of the opposite side (straight cell) or of a neighbouring side (turning cell); every
+ * visited cell is cut again, K levels deep, and the chain joins the centres of the visited finest cells.
+ * At level k the curve visits the m_0 m_1 ... m_(k-1) cells of side L 3^-k that hold its finest cells and
+ * no other: the box count in the grid of those cells (origin at the square's corner) is that product
+ * exactly, with no prefactor, so with m = m_a above level `up` and m_b below, log N against log s is two
+ * exact lines of slopes -log m_a / log 3 and -log m_b / log 3 meeting at l = L 3^-up. The patterns in the
+ * frame entering eastward at (0, 1): column, row of the visited cells in order (m = 3, 5, 7). */
+static const int lattice_straight[3][7][2] = {
+    {{0, 1}, {1, 1}, {2, 1}},
+    {{0, 1}, {0, 2}, {1, 2}, {2, 2}, {2, 1}},
+    {{0, 1}, {0, 0}, {1, 0}, {1, 1}, {1, 2}, {2, 2}, {2, 1}},
+};
+static const int lattice_left[3][7][2] = { /* leaves northward at (1, 2); mirrored (row 2 - j) for right */
+    {{0, 1}, {1, 1}, {1, 2}},
+    {{0, 1}, {1, 1}, {2, 1}, {2, 2}, {1, 2}},
+    {{0, 1}, {0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}},
+};
+
+/* Direction 0 east, 1 north, 2 west, 3 south of a unit step (di, dj). */
+static int lattice_dir(int di, int dj)
+{
+    return di > 0 ? 0 : dj > 0 ? 1 : di < 0 ? 2 : 3;
+}
+
+/* Visited cell t of the cell at (i0, j0) (finest-cell units, side `size`) entered going `din`, left going
+ * `dout`, in the square's frame: the pattern turned by din quarter turns about the cell's centre. */
+static void lattice_cell(int m, int din, int dout, int t, int *ci, int *cj)
+{
+    int turn = (dout - din + 4) % 4, idx = m / 2 - 1;
+    const int *p = turn == 0 ? lattice_straight[idx][t] : lattice_left[idx][t];
+    int u = p[0] - 1, v = (turn == 3 ? 2 - p[1] : p[1]) - 1;
+    for (int r = 0; r < din; r++) {
+        int w = u;
+        u = -v;
+        v = w;
+    }
+    *ci = u + 1;
+    *cj = v + 1;
+}
+
+static void lattice_emit(ft_chain *c, const int *m, int level, int levels, long i0, long j0, long size, int din,
+                         int dout)
+{
+    if (level == levels) {
+        assert_int_equal(ft_chain_push(c, (double)i0 + 0.5, (double)j0 + 0.5), FT_OK);
+        return;
+    }
+    long sub = size / 3;
+    int ci[7], cj[7];
+    for (int t = 0; t < m[level]; t++)
+        lattice_cell(m[level], din, dout, t, &ci[t], &cj[t]);
+    for (int t = 0; t < m[level]; t++) {
+        int in = t == 0 ? din : lattice_dir(ci[t] - ci[t - 1], cj[t] - cj[t - 1]);
+        int out = t + 1 == m[level] ? dout : lattice_dir(ci[t + 1] - ci[t], cj[t + 1] - cj[t]);
+        assert_true(t == 0 || abs(ci[t] - ci[t - 1]) + abs(cj[t] - cj[t - 1]) == 1);
+        lattice_emit(c, m, level + 1, levels, i0 + ci[t] * sub, j0 + cj[t] * sub, sub, in, out);
+    }
+}
+
+/* The lattice curve of `levels` levels, m[k] cells at level k (k = 0 the coarsest), on a square of side
+ * 3^levels (finest cells of side 1 m). */
+static ft_chain *lattice_curve(const int *m, int levels)
+{
+    size_t n = 1;
+    long side = 1;
+    for (int k = 0; k < levels; k++) {
+        n *= (size_t)m[k];
+        side *= 3;
+    }
+    ft_chain *c = ft_chain_create(n, 0);
+    lattice_emit(c, m, 0, levels, 0, 0, side, 0, 0);
+    assert_int_equal(c->n, n);
+    return c;
+}
+
+/* Box counting of the two-regime lattice curve in the grid of its own cells (origin at the square's
+ * corner, boxes L 3^-k): every count is the closed form m_a^min(k, up) m_b^max(k - up, 0), so the plot is two
+ * exact lines meeting at l = L 3^-up, the box-count counterpart of the divider at the segment lengths.
+ * The regime code finds both, each D to 1e-4 of log m / log 3, and the break at l to 1%. */
+static void check_box_break_lattice(int m_a, int m_b, int up, int levels)
+{
+    int m[12];
+    for (int k = 0; k < levels; k++)
+        m[k] = k < up ? m_a : m_b;
+    ft_chain *c = lattice_curve(m, levels);
+    const ft_chain *cs[] = {c};
+    double L = pow(3.0, levels), l = L / pow(3.0, up), Da = log(m_a) / log(3.0), Db = log(m_b) / log(3.0);
+    ft_loglog *t = ft_loglog_create(0);
+    double expect = pow(m_a, up) * pow(m_b, levels - up);
+    for (int k = levels; k >= 0; k--) { /* ascending box size */
+        uint64_t n = 0;
+        assert_int_equal(ft_line_box_count(cs, 1, L / pow(3.0, k), 0.0, 0.0, &n), FT_OK);
+        assert_int_equal(n, (uint64_t)expect);
+        assert_int_equal(ft_loglog_push(t, L / pow(3.0, k), (double)n, (double)n), FT_OK);
+        expect /= k > up ? m_b : m_a;
+    }
+    const ft_dim_map box = FT_DIM_MAP_BOXCOUNT_LINE;
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &box, &r), FT_OK);
+    print_message("  lattice curve, %d cells of 9 (D = %.4f) above l = %g m, %d (D = %.4f) below, %zu vertices: "
+                  "%zu regime(s)\n", m_a, Da, l, m_b, Db, c->n, r->nregimes);
+    for (size_t k = 0; k < r->nregimes; k++)
+        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
+                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
+    assert_int_equal(r->nregimes, 2);
+    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
+    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
+    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
+    ft_dim_result_free(r);
+    ft_loglog_free(t);
+    ft_chain_free(c);
+}
+
 static void test_two_regimes(void **state)
 {
     (void)state;
@@ -262,6 +380,8 @@ static void test_two_regimes(void **state)
     check_two_regimes(upw, 4, C30, C75);
     check_divider_break(down, 5);
     check_divider_break(upw, 4);
+    check_box_break_lattice(5, 3, 5, 9);
+    check_box_break_lattice(3, 5, 4, 9);
 
     /* the headline is the widest regime, and says so; --regime picks the other */
     ft_chain *c = koch_type(9, down, 1e5);
