@@ -223,6 +223,22 @@ static void check_two_regimes(const double *deg, int up, double C_a, double C_b)
     ft_chain_free(c);
 }
 
+/* A table of two exact straight lines, of dimensions Db below l and Da above, meeting at l: the regime
+ * code finds two regimes, each D to 1e-4, and the break at l to 1%. */
+static void check_exact_break(const ft_loglog *t, const ft_dim_map *map, double Da, double Db, double l)
+{
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, map, &r), FT_OK);
+    for (size_t k = 0; k < r->nregimes; k++)
+        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
+                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
+    assert_int_equal(r->nregimes, 2);
+    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
+    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
+    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
+    ft_dim_result_free(r);
+}
+
 /* The divider plot of the two-regime curve at the generators' own segment lengths r_k (a hair under, so
  * the walk steps vertex to vertex): exactly straight at D_a for r_k >= l and at D_b for r_k <= l, both
  * lines through the row at l (the length there is L (4 f_a)^up from either side: no prefactor differs,
@@ -238,19 +254,10 @@ static void check_divider_break(const double *deg, int up)
     check_divider_exact(c, deg, up, 9, t); /* below l, checked against the closed form */
     check_divider_exact(c, deg, 1, up, t); /* above l, from the row at l on */
     assert_int_equal(t->n, 9);
+    print_message("  divider at the segment lengths, %d x %.0f above l = %.1f m, %d x %.0f below\n", up, deg[0], l,
+                  9 - up, deg[8]);
     const ft_dim_map div = FT_DIM_MAP_DIVIDER;
-    ft_dim_result *r = NULL;
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
-    print_message("  divider at the segment lengths, %d x %.0f above l = %.1f m, %d x %.0f below: %zu regime(s)\n",
-                  up, deg[0], l, 9 - up, deg[8], r->nregimes);
-    for (size_t k = 0; k < r->nregimes; k++)
-        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
-                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
-    assert_int_equal(r->nregimes, 2);
-    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
-    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
-    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
-    ft_dim_result_free(r);
+    check_exact_break(t, &div, Da, Db, l);
     ft_loglog_free(t);
     ft_chain_free(c);
 }
@@ -357,20 +364,12 @@ static void check_box_break_lattice(int m_a, int m_b, int up, int levels)
         assert_int_equal(ft_loglog_push(t, L / pow(3.0, k), (double)n, (double)n), FT_OK);
         expect /= k > up ? m_b : m_a;
     }
+    print_message("  lattice curve, %d cells of 9 (D = %.4f) above l = %g m, %d (D = %.4f) below, %zu vertices\n", m_a,
+                  Da, l, m_b, Db, c->n);
     const ft_dim_map box = FT_DIM_MAP_BOXCOUNT_LINE;
-    ft_dim_result *r = NULL;
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &box, &r), FT_OK);
-    print_message("  lattice curve, %d cells of 9 (D = %.4f) above l = %g m, %d (D = %.4f) below, %zu vertices: "
-                  "%zu regime(s)\n", m_a, Da, l, m_b, Db, c->n, r->nregimes);
-    for (size_t k = 0; k < r->nregimes; k++)
-        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
-                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
-    assert_int_equal(r->nregimes, 2);
-    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
-    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
-    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
-    ft_dim_result_free(r);
+    check_exact_break(t, &box, Da, Db, l);
     ft_loglog_free(t);
+    ft_dim_result *r = NULL;
     if (m_b == 3) { /* below l: straight legs along the centre lines of the cells of side l, at least l apart */
         ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
         o.min_scale = 1.0;
