@@ -349,12 +349,10 @@ static int measure_all(const cli_command *cmd, const line_input *in, const char 
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
 {
     line_args *a = ctx;
-    int rc = cli_dim_option(cmd, opt, arg, &a->dim);
+    int rc = cli_dim_input_option(cmd, opt, arg, &a->dim, &a->method, &a->layer);
     if (rc != CLI_DIM_NOT_SHARED)
         return rc;
     switch (opt) {
-    case 'm': a->method = arg; return CLI_CONTINUE;
-    case 'l': a->layer = arg; return CLI_CONTINUE;
     case 'w': a->where = arg; return CLI_CONTINUE;
     case 'b': a->by = arg; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");

@@ -40,12 +40,10 @@ enum { OPT_ROW = 0x400, OPT_FROM, OPT_TO, OPT_SPACING };
 static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx)
 {
     profile_args *a = ctx;
-    int rc = cli_dim_option(cmd, opt, arg, &a->dim);
+    int rc = cli_dim_input_option(cmd, opt, arg, &a->dim, &a->method, &a->layer);
     if (rc != CLI_DIM_NOT_SHARED)
         return rc;
     switch (opt) {
-    case 'm': a->method = arg; return CLI_CONTINUE;
-    case 'l': a->layer = arg; return CLI_CONTINUE;
     case 'b': return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->band);
     case OPT_ROW: return cli_parse_int(cmd, "--row", arg, 0, 2147483647L, &a->row);
     case OPT_FROM: a->has_from = 1; return parse_point(cmd, "--from", arg, a->from);

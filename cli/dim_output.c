@@ -52,6 +52,16 @@ int cli_dim_option(const cli_command *cmd, int opt, const char *arg, cli_dim_opt
     }
 }
 
+int cli_dim_input_option(const cli_command *cmd, int opt, const char *arg, cli_dim_opts *o, const char **method,
+                         const char **layer)
+{
+    switch (opt) {
+    case 'm': *method = arg; return CLI_CONTINUE;
+    case 'l': *layer = arg; return CLI_CONTINUE;
+    default: return cli_dim_option(cmd, opt, arg, o);
+    }
+}
+
 static int has_plot_extension(const char *path)
 {
     const char *slash = strrchr(path, '/'), *dot = strrchr(slash ? slash : path, '.');

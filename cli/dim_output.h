@@ -69,6 +69,10 @@ int cli_parse_noise_model(const cli_command *cmd, const char *arg, int *mode);
 
 /** Handles a shared option: CLI_CONTINUE, CLI_USAGE (bad value, message printed) or CLI_DIM_NOT_SHARED. */
 int cli_dim_option(const cli_command *cmd, int opt, const char *arg, cli_dim_opts *o);
+/** The options of the commands that read a method and a layer (dim line, dim profile): -m into *method,
+ *  -l into *layer, any other as cli_dim_option. CLI_CONTINUE, CLI_USAGE or CLI_DIM_NOT_SHARED. */
+int cli_dim_input_option(const cli_command *cmd, int opt, const char *arg, cli_dim_opts *o, const char **method,
+                         const char **layer);
 /** Checks the options together once parsed (--min-scale below --max-scale): CLI_CONTINUE or CLI_USAGE. */
 int cli_dim_check(const cli_command *cmd, const cli_dim_opts *o);
 

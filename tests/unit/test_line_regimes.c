@@ -4,7 +4,9 @@
  * closed form) reports two, each with the dimension of its generator, and the break where the box-count
  * asymptotes of the two generators meet, between half the segment length where the generator changes and
  * that length; at the generators' own segment lengths the divider plot is two exact lines meeting where
- * the generator changes, and the break is found there; box counting of a circle of radius 50 km with boxes of 5 to
+ * the generator changes, and the break is found there; a two-regime lattice curve counted in the grid of
+ * its own cells has box counts that are exact powers, two lines meeting where the generator changes, and
+ * the break is found there; box counting of a circle of radius 50 km with boxes of 5 to
  * 50 km reads D within 0.02 of 1 (the mean over grid origins; the fewest over them does not).
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -13,6 +15,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -220,6 +223,22 @@ static void check_two_regimes(const double *deg, int up, double C_a, double C_b)
     ft_chain_free(c);
 }
 
+/* A table of two exact straight lines, of dimensions Db below l and Da above, meeting at l: the regime
+ * code finds two regimes, each D to 1e-4, and the break at l to 1%. */
+static void check_exact_break(const ft_loglog *t, const ft_dim_map *map, double Da, double Db, double l)
+{
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, map, &r), FT_OK);
+    for (size_t k = 0; k < r->nregimes; k++)
+        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
+                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
+    assert_int_equal(r->nregimes, 2);
+    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
+    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
+    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
+    ft_dim_result_free(r);
+}
+
 /* The divider plot of the two-regime curve at the generators' own segment lengths r_k (a hair under, so
  * the walk steps vertex to vertex): exactly straight at D_a for r_k >= l and at D_b for r_k <= l, both
  * lines through the row at l (the length there is L (4 f_a)^up from either side: no prefactor differs,
@@ -235,20 +254,139 @@ static void check_divider_break(const double *deg, int up)
     check_divider_exact(c, deg, up, 9, t); /* below l, checked against the closed form */
     check_divider_exact(c, deg, 1, up, t); /* above l, from the row at l on */
     assert_int_equal(t->n, 9);
+    print_message("  divider at the segment lengths, %d x %.0f above l = %.1f m, %d x %.0f below\n", up, deg[0], l,
+                  9 - up, deg[8]);
     const ft_dim_map div = FT_DIM_MAP_DIVIDER;
-    ft_dim_result *r = NULL;
-    assert_int_equal(ft_loglog_fit_auto(t, 0.0, 0.0, NULL, &div, &r), FT_OK);
-    print_message("  divider at the segment lengths, %d x %.0f above l = %.1f m, %d x %.0f below: %zu regime(s)\n",
-                  up, deg[0], l, 9 - up, deg[8], r->nregimes);
-    for (size_t k = 0; k < r->nregimes; k++)
-        print_message("      %g .. %g  D = %.4f%s%.6g\n", r->regimes[k].scale_lo, r->regimes[k].scale_hi,
-                      r->regimes[k].D, k + 1 < r->nregimes ? "  break " : "", k + 1 < r->nregimes ? r->breaks[k] : 0.0);
-    assert_int_equal(r->nregimes, 2);
-    assert_true(fabs(r->regimes[0].D - Db) < 1e-4);
-    assert_true(fabs(r->regimes[1].D - Da) < 1e-4);
-    assert_true(r->breaks[0] > l / 1.01 && r->breaks[0] < l * 1.01);
-    ft_dim_result_free(r);
+    check_exact_break(t, &div, Da, Db, l);
     ft_loglog_free(t);
+    ft_chain_free(c);
+}
+
+/* A lattice curve (a Peano-type construction on a 3 x 3 subdivision): the square of side L is cut into
+ * 3 x 3 cells, of which the curve visits m, edge-adjacent, entering at the middle of one side and leaving
+ * at the middle of the opposite side (straight cell) or of a neighbouring side (turning cell); every
+ * visited cell is cut again, K levels deep, and the chain joins the centres of the visited finest cells.
+ * At level k the curve visits the m_0 m_1 ... m_(k-1) cells of side L 3^-k that hold its finest cells and
+ * no other: the box count in the grid of those cells (origin at the square's corner) is that product
+ * exactly, with no prefactor, so with m = m_a above level `up` and m_b below, log N against log s is two
+ * exact lines of slopes -log m_a / log 3 and -log m_b / log 3 meeting at l = L 3^-up. The patterns in the
+ * frame entering eastward at (0, 1): column, row of the visited cells in order (m = 3, 5, 7). */
+static const int lattice_straight[3][7][2] = {
+    {{0, 1}, {1, 1}, {2, 1}},
+    {{0, 1}, {0, 2}, {1, 2}, {2, 2}, {2, 1}},
+    {{0, 1}, {0, 0}, {1, 0}, {1, 1}, {1, 2}, {2, 2}, {2, 1}},
+};
+static const int lattice_left[3][7][2] = { /* leaves northward at (1, 2); mirrored (row 2 - j) for right */
+    {{0, 1}, {1, 1}, {1, 2}},
+    {{0, 1}, {1, 1}, {2, 1}, {2, 2}, {1, 2}},
+    {{0, 1}, {0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}},
+};
+
+/* Direction 0 east, 1 north, 2 west, 3 south of a unit step (di, dj). */
+static int lattice_dir(int di, int dj)
+{
+    return di > 0 ? 0 : dj > 0 ? 1 : di < 0 ? 2 : 3;
+}
+
+/* Visited cell t of the cell at (i0, j0) (finest-cell units, side `size`) entered going `din`, left going
+ * `dout`, in the square's frame: the pattern turned by din quarter turns about the cell's centre. */
+static void lattice_cell(int m, int din, int dout, int t, int *ci, int *cj)
+{
+    int turn = (dout - din + 4) % 4, idx = m / 2 - 1;
+    const int *p = turn == 0 ? lattice_straight[idx][t] : lattice_left[idx][t];
+    int u = p[0] - 1, v = (turn == 3 ? 2 - p[1] : p[1]) - 1;
+    for (int r = 0; r < din; r++) {
+        int w = u;
+        u = -v;
+        v = w;
+    }
+    *ci = u + 1;
+    *cj = v + 1;
+}
+
+static void lattice_emit(ft_chain *c, const int *m, int level, int levels, long i0, long j0, long size, int din,
+                         int dout)
+{
+    if (level == levels) {
+        assert_int_equal(ft_chain_push(c, (double)i0 + 0.5, (double)j0 + 0.5), FT_OK);
+        return;
+    }
+    long sub = size / 3;
+    int ci[7], cj[7];
+    for (int t = 0; t < m[level]; t++)
+        lattice_cell(m[level], din, dout, t, &ci[t], &cj[t]);
+    for (int t = 0; t < m[level]; t++) {
+        int in = t == 0 ? din : lattice_dir(ci[t] - ci[t - 1], cj[t] - cj[t - 1]);
+        int out = t + 1 == m[level] ? dout : lattice_dir(ci[t + 1] - ci[t], cj[t + 1] - cj[t]);
+        assert_true(t == 0 || abs(ci[t] - ci[t - 1]) + abs(cj[t] - cj[t - 1]) == 1);
+        lattice_emit(c, m, level + 1, levels, i0 + ci[t] * sub, j0 + cj[t] * sub, sub, in, out);
+    }
+}
+
+/* The lattice curve of `levels` levels, m[k] cells at level k (k = 0 the coarsest), on a square of side
+ * 3^levels (finest cells of side 1 m). */
+static ft_chain *lattice_curve(const int *m, int levels)
+{
+    size_t n = 1;
+    long side = 1;
+    for (int k = 0; k < levels; k++) {
+        n *= (size_t)m[k];
+        side *= 3;
+    }
+    ft_chain *c = ft_chain_create(n, 0);
+    lattice_emit(c, m, 0, levels, 0, 0, side, 0, 0);
+    assert_int_equal(c->n, n);
+    return c;
+}
+
+/* Box counting of the two-regime lattice curve in the grid of its own cells (origin at the square's
+ * corner, boxes L 3^-k): every count is the closed form m_a^min(k, up) m_b^max(k - up, 0), so the plot is two
+ * exact lines meeting at l = L 3^-up, the box-count counterpart of the divider at the segment lengths.
+ * The regime code finds both, each D to 1e-4 of log m / log 3, and the break at l to 1%. With m_b = 3 the
+ * curve below l is straight legs at least l apart: no box is entered twice, every grid-line crossing
+ * enters a new box, and the mean count over uniform origins is 1 + length / s, with no prefactor; the box
+ * estimator's mean over its 4 x 4 origins is checked against it to 0.5% (docs/loglog.md: the prefactor
+ * that moves the estimator's break off l is the coarse generator's). */
+static void check_box_break_lattice(int m_a, int m_b, int up, int levels)
+{
+    int m[12];
+    for (int k = 0; k < levels; k++)
+        m[k] = k < up ? m_a : m_b;
+    ft_chain *c = lattice_curve(m, levels);
+    const ft_chain *cs[] = {c};
+    double L = pow(3.0, levels), l = L / pow(3.0, up), Da = log(m_a) / log(3.0), Db = log(m_b) / log(3.0);
+    ft_loglog *t = ft_loglog_create(0);
+    double expect = pow(m_a, up) * pow(m_b, levels - up);
+    for (int k = levels; k >= 0; k--) { /* ascending box size */
+        uint64_t n = 0;
+        assert_int_equal(ft_line_box_count(cs, 1, L / pow(3.0, k), 0.0, 0.0, &n), FT_OK);
+        assert_int_equal(n, (uint64_t)expect);
+        assert_int_equal(ft_loglog_push(t, L / pow(3.0, k), (double)n, (double)n), FT_OK);
+        expect /= k > up ? m_b : m_a;
+    }
+    print_message("  lattice curve, %d cells of 9 (D = %.4f) above l = %g m, %d (D = %.4f) below, %zu vertices\n", m_a,
+                  Da, l, m_b, Db, c->n);
+    const ft_dim_map box = FT_DIM_MAP_BOXCOUNT_LINE;
+    check_exact_break(t, &box, Da, Db, l);
+    ft_loglog_free(t);
+    ft_dim_result *r = NULL;
+    if (m_b == 3) { /* below l: straight legs along the centre lines of the cells of side l, at least l apart */
+        ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
+        o.min_scale = 1.0;
+        o.max_scale = l / 1.5;
+        o.nscales = 6;
+        o.fit_whole_range = 1;
+        assert_int_equal(ft_line_dim(cs, 1, FT_LINE_BOX, &o, &r), FT_OK);
+        double len = chain_length(c), worst = 0.0;
+        for (size_t i = 0; i < r->table->n; i++) {
+            double e = r->table->rows[i].value / (1.0 + len / r->table->rows[i].scale) - 1.0;
+            worst = fabs(e) > worst ? fabs(e) : worst;
+        }
+        print_message("      mean over %d origins below l: N = 1 + length / s to %.2g\n", o.box_offsets * o.box_offsets,
+                      worst);
+        assert_true(worst < 0.005);
+        ft_dim_result_free(r);
+    }
     ft_chain_free(c);
 }
 
@@ -262,6 +400,8 @@ static void test_two_regimes(void **state)
     check_two_regimes(upw, 4, C30, C75);
     check_divider_break(down, 5);
     check_divider_break(upw, 4);
+    check_box_break_lattice(5, 3, 5, 9);
+    check_box_break_lattice(3, 5, 4, 9);
 
     /* the headline is the widest regime, and says so; --regime picks the other */
     ft_chain *c = koch_type(9, down, 1e5);
