@@ -49,6 +49,7 @@ accuracy: build
 	./$(BUILD)/fracterra_accuracy_profile $(ACCURACY_PROFILE_FLAGS)
 	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8 --synth exact
 	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.5,2.8 --synth sra
+	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8 --synth sra --every 0 --fraction 0.11 --methods conditional,fractal
 	./$(BUILD)/fracterra_accuracy_synth_dim --size 256 --seeds 41
 	./$(BUILD)/fracterra_accuracy_synth_dim --size 1024 --seeds 7 --methods fft,sra,midpoint --dims 2.1,2.2,2.3
 

@@ -5,10 +5,12 @@
  *     u = s + S(d - s)
  * s an unconditional fBm of exponent H = 3 - D (ft_terrain_synth: Stein's exact circulant embedding up to
  * EXACT_MAX nodes per side, spectral synthesis above, where the embedding's torus would not fit in
- * memory), scaled so that its one-cell increments have the RMS `amp` measured on the data
- * (recon_temperature.c); S the T = 0 solution operator with the data's weights (recon_multigrid.c).
- * S is linear, so S(d - s) = u* - S(s) with u* = S(d) computed once for all realizations. At fixed
- * data nodes u = s + d - s = d: the data are honoured exactly; between them u has the roughness of s.
+ * memory) plus white noise carrying the data's white share of the one-cell increment variance (a
+ * nugget; recon_temperature.c, ft_recon_small_scales); S the T = 0 solution operator with the data's
+ * weights (recon_multigrid.c). S is linear, so S(d - s) = u* - S(s) with u* = S(d) computed once for all
+ * realizations. At fixed data nodes u = s + d - s = d: the data are honoured exactly; between them u has
+ * the roughness of s. The scale of s - S(s) is then set so that u's mean |dz| at one cell is the data's
+ * (what the interpolant u* already carries is not counted twice).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
