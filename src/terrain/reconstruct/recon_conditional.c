@@ -21,8 +21,10 @@
 #include "terrain/reconstruct/reconstruct_internal.h"
 
 #define EXACT_MAX 1536
-/* Bisections of kappa after its bracket [k, 2k]: 2^-30 relative, far below the seeds' scatter. */
-#define KAPPA_BISECTIONS 30
+/* kappa is found when u's mean |dz| at one cell is within this fraction of the data's (far below the
+ * seeds' scatter), in at most KAPPA_MAX_STEPS false-position steps after its bracket. */
+#define KAPPA_RTOL 1e-6
+#define KAPPA_MAX_STEPS 60
 
 /* Mean of |d + kappa e| over the one-node differences along rows and columns (rows summed in order). */
 static double mean_abs_step(const float *d, const float *e, double kappa, size_t nx, size_t ny)
@@ -45,22 +47,44 @@ static double mean_abs_step(const float *d, const float *e, double kappa, size_t
 }
 
 /* The kappa >= 0 with mean_abs_step(ustar, e, kappa) = m1 (0 if ustar alone is already as rough). The
- * mean is convex in kappa and below m1 at 0, so it crosses m1 once for kappa > 0: bracket, then bisect. */
+ * mean is convex in kappa and below m1 at 0, so it crosses m1 once for kappa > 0: bracket by doubling,
+ * then the Illinois variant of false position (a handful of passes; bisection's guarantee kept by the
+ * bracket) until the mean is within KAPPA_RTOL of m1. */
 static double match_kappa(const float *ustar, const float *e, double m1, size_t nx, size_t ny)
 {
-    if (!(mean_abs_step(ustar, e, 0.0, nx, ny) < m1))
+    double flo = mean_abs_step(ustar, e, 0.0, nx, ny) - m1;
+    if (!(flo < 0.0))
         return 0.0;
-    double lo = 0.0, hi = 1.0;
-    for (int i = 0; i < 60 && mean_abs_step(ustar, e, hi, nx, ny) < m1; i++) {
+    double lo = 0.0, hi = 1.0, fhi = mean_abs_step(ustar, e, hi, nx, ny) - m1;
+    for (int i = 0; i < 60 && fhi < 0.0; i++) {
         lo = hi;
+        flo = fhi;
         hi *= 2.0;
+        fhi = mean_abs_step(ustar, e, hi, nx, ny) - m1;
     }
-    for (int i = 0; i < KAPPA_BISECTIONS; i++) {
-        double mid = 0.5 * (lo + hi);
-        if (mean_abs_step(ustar, e, mid, nx, ny) < m1)
-            lo = mid;
-        else
-            hi = mid;
+    if (fhi < 0.0)
+        return hi;
+    int side = 0;
+    for (int i = 0; i < KAPPA_MAX_STEPS; i++) {
+        double k = (lo * fhi - hi * flo) / (fhi - flo);
+        if (!(k > lo && k < hi))
+            k = 0.5 * (lo + hi);
+        double f = mean_abs_step(ustar, e, k, nx, ny) - m1;
+        if (fabs(f) <= KAPPA_RTOL * m1)
+            return k;
+        if (f < 0.0) {
+            lo = k;
+            flo = f;
+            if (side == -1)
+                fhi *= 0.5;
+            side = -1;
+        } else {
+            hi = k;
+            fhi = f;
+            if (side == 1)
+                flo *= 0.5;
+            side = 1;
+        }
     }
     return 0.5 * (lo + hi);
 }
