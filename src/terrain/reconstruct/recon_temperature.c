@@ -122,8 +122,9 @@ static double pair_mean(const float *z, const uint8_t *has, size_t nx, size_t ny
  * variances V_h = (pi / 2) m_h² are split as V_h = A h^(2H) + N, an fBm part and a white part N (a nugget:
  * the last level of successive random addition, a DEM's quantization and noise), so A = (V_2 - V_1) /
  * (4^H - 1) and the white share N / V_1, clamped to [0, FT_RECON_NUGGET_MAX]. The Yokoya line
- * extrapolated down to one cell assumes N = 0 and overstates m_1 by 7-10 % on SRA surfaces
- * (docs/terrain-reconstruct.md). */
+ * extrapolated down to one cell assumes N = 0 and overstates m_1 wherever the terrain bends below its
+ * power law (fBm plus white noise; the volcano DEM: lag 1 at 1.13 of the original, 1.03 with the pairs;
+ * docs/terrain-reconstruct.md). */
 int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t ny, double H, double *m1,
                           double *nugget)
 {
