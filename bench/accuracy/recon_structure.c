@@ -12,6 +12,7 @@
  *   fracterra_accuracy_recon_structure [--size 256] [--seeds 4] [--dims 2.2,2.5,2.8]
  *       [--synth exact|sra|sra-raw] [--methods fractal,conditional,smooth] [--k K] [--tension t]
  *       [--dem FILE]   (a real DEM instead of Syn: its valid cells, D estimated from the subset)
+ *       [--every N] [--fraction F]   (Sub: every Nth cell (0: none) plus a random fraction F; default 4, 0.05)
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -54,7 +55,8 @@ int main(int argc, char **argv)
 {
     size_t size = 256;
     int seeds = 4, nd = 3;
-    double dims[16] = {2.2, 2.5, 2.8}, k = 0.0, tension = -2.0;
+    double dims[16] = {2.2, 2.5, 2.8}, k = 0.0, tension = -2.0, frac = 0.05;
+    int every = 4;
     const char *methods = "fractal,conditional,smooth", *dem = NULL;
     ft_synth_method synth = FT_SYNTH_EXACT;
     for (int i = 1; i < argc; i++) {
@@ -70,6 +72,10 @@ int main(int argc, char **argv)
             k = atof(argv[++i]);
         else if (!strcmp(argv[i], "--dem") && i + 1 < argc)
             dem = argv[++i];
+        else if (!strcmp(argv[i], "--every") && i + 1 < argc)
+            every = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--fraction") && i + 1 < argc)
+            frac = atof(argv[++i]);
         else if (!strcmp(argv[i], "--tension") && i + 1 < argc)
             tension = atof(argv[++i]);
         else if (!strcmp(argv[i], "--synth") && i + 1 < argc) {
@@ -79,7 +85,8 @@ int main(int argc, char **argv)
             }
         } else {
             fprintf(stderr, "usage: recon_structure [--size N] [--seeds S] [--dims a,b] [--synth exact|sra|sra-raw] "
-                            "[--methods fractal,conditional,smooth] [--k K] [--tension t] [--dem FILE]\n");
+                            "[--methods fractal,conditional,smooth] [--k K] [--tension t] [--dem FILE] "
+                            "[--every N] [--fraction F]\n");
             return 2;
         }
     }
@@ -95,7 +102,11 @@ int main(int argc, char **argv)
         printf("DEM %s (%zu x %zu), %d subsets, D estimated from the data; ", dem, real->nx, real->ny, seeds);
     } else
         printf("size %zu, %d seeds, synth %s, ", size, seeds, ft_synth_method_name(synth));
-    printf("subset every 4th cell + 5%%; S_rec(h) / S_orig(h), mean |dz| at lag h\n");
+    if (every > 0)
+        printf("subset every %dth cell + %g%%; ", every, 100.0 * frac);
+    else
+        printf("subset a random %g%% of the cells; ", 100.0 * frac);
+    printf("S_rec(h) / S_orig(h), mean |dz| at lag h\n");
     printf("%-12s %5s", "method", "D");
     for (size_t i = 0; i < sizeof show / sizeof *show; i++)
         printf(" %6d", show[i]);
@@ -120,7 +131,7 @@ int main(int argc, char **argv)
                     fprintf(stderr, "synth: %s\n", ft_last_error());
                     return 1;
                 }
-                ft_points *p = accuracy_subsample(g, (uint64_t)(2000 + sd), 0.05, 4);
+                ft_points *p = accuracy_subsample(g, (uint64_t)(2000 + sd), frac, every);
                 ft_recon_opts ro = FT_RECON_OPTS_DEFAULT;
                 ro.method = m;
                 ro.dim = D;

@@ -635,52 +635,84 @@ static double eq7_tension(double D)
     return r / (1.0 + r);
 }
 
-/* The conditional reconstruction of exact fBm (256², every 4th cell plus a random 5%) has the original's
- * mean |dz| within 5% at every lag from 1 to 32 cells (2 seeds; the 3-seed run of
- * bench/accuracy/recon_structure.c measured <= 3.2% over D = 2.2 .. 2.8), with the blend D gives; the
- * smooth method's blend follows a given D (its grids differ) and stays the fixed one without it. */
+/* Exact fBm plus white noise carrying `share` of the one-cell increment variance: a surface whose
+ * structure function bends below its power law at the smallest lags (as SRA surfaces and real DEMs do). */
+static ft_grid *fbm_nugget(size_t n, double D, uint64_t seed, double share)
+{
+    ft_grid *g = fbm(n, D, seed);
+    double v = 0.0, c = 0.0;
+    for (size_t y = 0; y < n; y++)
+        for (size_t x = 0; x + 1 < n; x++) {
+            double a = g->z[y * n + x + 1] - g->z[y * n + x], b = g->z[(x + 1) * n + y] - g->z[x * n + y];
+            v += a * a + b * b;
+            c += 2.0;
+        }
+    double sd = sqrt(share * (v / c) / (2.0 * (1.0 - share)));
+    ft_rng *r = ft_rng_create(seed, 9);
+    for (size_t k = 0; k < n * n; k++)
+        g->z[k] = (float)(g->z[k] + ft_rng_gaussian(r, sd));
+    ft_rng_free(r);
+    return g;
+}
+
+/* The largest |S_rec(h) / S_orig(h) - 1| over lags 1 .. 32 of the conditional reconstruction of 2 seeds of
+ * exact fBm (share 0) or fBm plus white noise (256², every 4th cell plus a random 5%). */
+static double structure_worst(double D, double share, uint64_t seed0)
+{
+    double so[33] = {0}, sr[33] = {0};
+    for (uint64_t s = 0; s < 2; s++) {
+        ft_grid *g = share > 0.0 ? fbm_nugget(256, D, seed0 + s, share) : fbm(256, D, seed0 + s);
+        ft_points *p = ft_points_create(0);
+        ft_rng *r = ft_rng_create(800 + s, 1);
+        for (size_t y = 0; y < g->ny; y++)
+            for (size_t x = 0; x < g->nx; x++)
+                if ((x % 4 == 0 && y % 4 == 0) | (ft_rng_uniform(r) < 0.05)) {
+                    double cx, cy;
+                    ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
+                    assert_int_equal(ft_points_push(p, cx, cy, g->z[y * g->nx + x]), 0);
+                }
+        ft_rng_free(r);
+        ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
+        o.method = FT_RECON_CONDITIONAL;
+        o.dim = D;
+        o.seed = 0x5eed0000 + s;
+        ft_recon_info info;
+        ft_grid *out = recon(p, g, &o, &info);
+        assert_true(fabs(info.tension - eq7_tension(D)) < 1e-12);
+        mean_abs_increments(g, so);
+        mean_abs_increments(out, sr);
+        ft_grid_free(out);
+        ft_points_free(p);
+        ft_grid_free(g);
+    }
+    double worst = 0.0;
+    size_t at = 0;
+    for (size_t h = 1; h <= 32; h++)
+        if (fabs(sr[h] / so[h] - 1.0) > worst) {
+            worst = fabs(sr[h] / so[h] - 1.0);
+            at = h;
+        }
+    print_message("D %.1f, white share %.2f: mean |dz| reconstruction / original: lag 1 %.3f, 2 %.3f, 4 %.3f, "
+                  "32 %.3f, worst %.3f at lag %zu\n", D, share, sr[1] / so[1], sr[2] / so[2], sr[4] / so[4],
+                  sr[32] / so[32], worst, at);
+    return worst;
+}
+
+/* The conditional reconstruction (256², every 4th cell plus a random 5%) has the original's mean |dz|
+ * within 5% at every lag from 1 to 32 cells (2 seeds), with the blend D gives, on exact fBm and on fBm
+ * whose one-cell increments carry a white share of 0.4 at D 2.5 and 2.8 (its amplitude and white share
+ * come from the data's own pairs 1 and 2 cells apart; the Yokoya line extrapolated to one cell with a
+ * pure fBm missed these by 0.065 and 0.083, worst lag); the smooth method's blend follows a given D (its
+ * grids differ) and stays the fixed one without it. */
 static void test_structure_function(void **state)
 {
     (void)state;
     static const double dims[] = {2.2, 2.5, 2.8};
     int bad = 0;
     for (size_t i = 0; i < 3; i++) {
-        double so[33] = {0}, sr[33] = {0};
-        for (uint64_t s = 0; s < 2; s++) {
-            ft_grid *g = fbm(256, dims[i], 700 + s);
-            ft_points *p = ft_points_create(0);
-            ft_rng *r = ft_rng_create(800 + s, 1);
-            for (size_t y = 0; y < g->ny; y++)
-                for (size_t x = 0; x < g->nx; x++)
-                    if ((x % 4 == 0 && y % 4 == 0) | (ft_rng_uniform(r) < 0.05)) {
-                        double cx, cy;
-                        ft_grid_cell_center(g, (double)x, (double)y, &cx, &cy);
-                        assert_int_equal(ft_points_push(p, cx, cy, g->z[y * g->nx + x]), 0);
-                    }
-            ft_rng_free(r);
-            ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
-            o.method = FT_RECON_CONDITIONAL;
-            o.dim = dims[i];
-            o.seed = 0x5eed0000 + s;
-            ft_recon_info info;
-            ft_grid *out = recon(p, g, &o, &info);
-            assert_true(fabs(info.tension - eq7_tension(dims[i])) < 1e-12);
-            mean_abs_increments(g, so);
-            mean_abs_increments(out, sr);
-            ft_grid_free(out);
-            ft_points_free(p);
-            ft_grid_free(g);
-        }
-        double worst = 0.0;
-        size_t at = 0;
-        for (size_t h = 1; h <= 32; h++)
-            if (fabs(sr[h] / so[h] - 1.0) > worst) {
-                worst = fabs(sr[h] / so[h] - 1.0);
-                at = h;
-            }
-        print_message("D %.1f: mean |dz| reconstruction / original: lag 1 %.3f, 4 %.3f, 32 %.3f, worst %.3f at "
-                      "lag %zu\n", dims[i], sr[1] / so[1], sr[4] / so[4], sr[32] / so[32], worst, at);
-        bad += !(worst <= 0.05);
+        bad += !(structure_worst(dims[i], 0.0, 700) <= 0.05);
+        if (i > 0)
+            bad += !(structure_worst(dims[i], 0.4, 710) <= 0.05);
     }
     assert_int_equal(bad, 0);
 

@@ -13,7 +13,8 @@
  *    variance 2 sigma_l² 4^-l, so Var(dz_1) = 2 sigma_0² / (1 - 2^(2H - 2)) and the finest level's share
  *    falls from 0.67 (D = 2.8) to 0.24 (D = 2.2); g(0.6) = 1 keeps k the paper's kind of constant;
  *  - k: FT_RECON_K_DEFAULT, calibrated by eq. 11 (bench/accuracy/recon_calibrate.c; the figures below).
- *  Sigma0 and the Yokoya line also give the conditional method's one-cell amplitude.
+ *  - the conditional method's small scales: mean |dz| at one cell and the white share, from the data's own
+ *    closest pairs (ft_recon_small_scales), or, with too few of them, the Yokoya line at one cell.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -84,10 +85,62 @@ double ft_recon_line_at(const ft_recon_line *l, double scale)
     return pow(10.0, l->a + l->b * log10(scale));
 }
 
-/* E|dz| = sqrt(2/pi) sd(dz) for Gaussian increments: the fitted E|dz| at one cell, as an RMS. */
+/* Yokoya's fitted E|dz| at one cell. */
 double ft_recon_amplitude(const ft_recon_line *y, double cell)
 {
-    return ft_recon_line_at(y, cell) * sqrt(M_PI / 2.0);
+    return ft_recon_line_at(y, cell);
+}
+
+/* Mean |dz| over the pairs of data nodes h apart along the rows and the columns; *n the pair count. */
+static double pair_mean(const float *z, const uint8_t *has, size_t nx, size_t ny, size_t h, size_t *n)
+{
+    double sum = 0.0;
+    size_t c = 0;
+    for (size_t y = 0; y < ny; y++) {
+        double r = 0.0;
+        for (size_t x = 0; x < nx; x++) {
+            size_t i = y * nx + x;
+            if (!has[i])
+                continue;
+            if (x + h < nx && has[i + h]) {
+                r += fabs((double)z[i + h] - (double)z[i]);
+                c++;
+            }
+            if (y + h < ny && has[i + h * nx]) {
+                r += fabs((double)z[i + h * nx] - (double)z[i]);
+                c++;
+            }
+        }
+        sum += r;
+    }
+    *n = c;
+    return c ? sum / (double)c : NAN;
+}
+
+/* The conditional method's small scales from the data's own closest pairs (no power law below the data
+ * spacing): m_h = mean |dz| of the node pairs h = 1 and 2 cells apart. Their Gaussian increment
+ * variances V_h = (pi / 2) m_h² are split as V_h = A h^(2H) + N, an fBm part and a white part N (a nugget:
+ * the last level of successive random addition, a DEM's quantization and noise), so A = (V_2 - V_1) /
+ * (4^H - 1) and the white share N / V_1, clamped to [0, FT_RECON_NUGGET_MAX]. The Yokoya line
+ * extrapolated down to one cell assumes N = 0 and overstates m_1 wherever the terrain bends below its
+ * power law (fBm plus white noise; the volcano DEM: lag 1 at 1.13 of the original, 1.03 with the pairs;
+ * docs/terrain-reconstruct.md). */
+int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t ny, double H, double *m1,
+                          double *nugget)
+{
+    size_t n1 = 0, n2 = 0;
+    double a1 = pair_mean(z, has, nx, ny, 1, &n1);
+    if (n1 < FT_RECON_PAIR_MIN || !(a1 > 0.0))
+        return 0;
+    double a2 = pair_mean(z, has, nx, ny, 2, &n2), share = 0.0;
+    if (n2 >= FT_RECON_PAIR_MIN && a2 > 0.0) {
+        double v1 = a1 * a1, v2 = a2 * a2, A = (v2 - v1) / (pow(4.0, H) - 1.0);
+        share = 1.0 - A / v1;
+        share = share < 0.0 ? 0.0 : share > FT_RECON_NUGGET_MAX ? FT_RECON_NUGGET_MAX : share;
+    }
+    *m1 = a1;
+    *nugget = share;
+    return 1;
 }
 
 static double sra_share(double H)

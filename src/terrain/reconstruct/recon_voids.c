@@ -184,7 +184,7 @@ int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid 
     if (nvoid > 0) {
         double gt1 = dem->gt[1], gt5 = dem->gt[5], gt2 = dem->gt[2], gt4 = dem->gt[4];
         double cell = sqrt(fabs(gt1 * gt5 - gt2 * gt4));
-        rc = ft_recon_job_params(&o, NULL, dem, cell > 0.0 ? cell : 1.0, &par, &inf);
+        rc = ft_recon_job_params(&o, NULL, dem, NULL, cell > 0.0 ? cell : 1.0, &par, &inf);
         label = rc == FT_OK ? ft_calloc(n, sizeof *label) : NULL;
         if (rc == FT_OK && label == NULL)
             rc = FT_E_NOMEM;

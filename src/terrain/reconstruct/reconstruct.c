@@ -126,7 +126,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
         if (par->method == FT_RECON_FRACTAL)
             rc = ft_recon_fractal(p, ustar, par->T0, par->H, par->sweeps, seed, u, &rp);
         else if (par->method == FT_RECON_CONDITIONAL)
-            rc = ft_recon_conditional(p, ustar, par->H, par->amp, seed, u, &rp);
+            rc = ft_recon_conditional(p, ustar, par->H, par->amp, par->nugget, seed, u, &rp);
         if (stochastic)
             res = u;
         if (rc != FT_OK)
@@ -242,11 +242,40 @@ int ft_recon_outputs(const ft_grid *like, int want_sd, ft_grid **out, ft_grid **
     return FT_OK;
 }
 
-int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem, double cell,
-                        ft_recon_params *par, ft_recon_info *info)
+/* The conditional method's small scales (mean |dz| at one cell, white share): from the closest pairs of
+ * data nodes (the fixed nodes of `bound`, or dem's valid cells) when there are enough of them, else the
+ * Yokoya line at one cell and no white part. */
+static int conditional_small_scales(const ft_recon_line *yk, const ft_recon_problem *bound, const ft_grid *dem,
+                                    double cell, ft_recon_params *par)
 {
-    *par = (ft_recon_params){o->method, 0.0, 0.0, 0.0, o->sweeps > 0 ? o->sweeps : FT_RECON_SWEEPS_DEFAULT,
-                             o->tension, o->realizations, o->seed};
+    int got = 0;
+    par->nugget = 0.0;
+    if (bound) {
+        got = ft_recon_small_scales(bound->d, bound->lev[0].fixed, bound->nx, bound->ny, par->H, &par->amp,
+                                    &par->nugget);
+    } else if (dem) {
+        size_t n = dem->nx * dem->ny;
+        uint8_t *has = ft_malloc(n);
+        if (has == NULL)
+            return FT_E_NOMEM;
+        for (size_t i = 0; i < n; i++)
+            has[i] = (uint8_t)((dem->mask == NULL || dem->mask[i]) && isfinite(dem->z[i]));
+        got = ft_recon_small_scales(dem->z, has, dem->nx, dem->ny, par->H, &par->amp, &par->nugget);
+        free(has);
+    }
+    if (!got)
+        par->amp = ft_recon_amplitude(yk, cell);
+    return FT_OK;
+}
+
+int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem,
+                        const ft_recon_problem *bound, double cell, ft_recon_params *par, ft_recon_info *info)
+{
+    *par = (ft_recon_params){.method = o->method,
+                             .sweeps = o->sweeps > 0 ? o->sweeps : FT_RECON_SWEEPS_DEFAULT,
+                             .tension = o->tension,
+                             .realizations = o->realizations,
+                             .seed = o->seed};
     int tension_from_dim = o->tension == FT_RECON_TENSION_FROM_DIM;
     info->tension = o->tension;
     if (o->method == FT_RECON_SMOOTH) {
@@ -279,8 +308,7 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
         par->tension = info->tension = o->method == FT_RECON_FRACTAL ? FT_RECON_FRACTAL_TENSION
                                                                      : ft_recon_tension_for_dim(D);
     if (o->method == FT_RECON_CONDITIONAL) {
-        par->amp = ft_recon_amplitude(&yk, cell);
-        return FT_OK;
+        return conditional_small_scales(&yk, bound, dem, cell, par);
     }
     info->k = o->k > 0.0 ? o->k : FT_RECON_K_DEFAULT;
     if (o->temperature > 0.0) {
@@ -336,7 +364,7 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
     if (outside && inside == NULL)
         rc = FT_E_NOMEM;
     if (rc == FT_OK)
-        rc = ft_recon_job_params(&o, inside ? inside : p, NULL, cell, &par, &inf);
+        rc = ft_recon_job_params(&o, inside ? inside : p, NULL, pr, cell, &par, &inf);
     ft_points_free(inside);
     if (rc == FT_OK)
         rc = ft_recon_report(&prog, 0.02, "reconstruct: roughness of the data");

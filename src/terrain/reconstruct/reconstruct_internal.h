@@ -44,6 +44,7 @@ static inline int ft_recon_threads(int nthreads, size_t nodes)
 
 /** Stream ids of the random numbers (mixed with the seed by ft_rng_fast_init). */
 #define FT_RECON_STREAM_GIBBS UINT64_C(0x7265630000000000)
+#define FT_RECON_STREAM_WHITE UINT64_C(0x7265637700000000)
 
 /** One level of the hierarchy: nodes at spacing 2^l fine nodes. */
 typedef struct {
@@ -148,10 +149,17 @@ int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out);
 int ft_recon_fit_grid(const ft_grid *g, int pentland, ft_recon_line *out);
 /** The line's value at a scale (ground units). */
 double ft_recon_line_at(const ft_recon_line *l, double scale);
-/** Root-mean-square elevation difference at one cell (ground size `cell`): Yokoya's fitted E|dz|
- *  extrapolated to one cell, times sqrt(pi / 2) (Gaussian increments). The conditional method's fBm
- *  amplitude. */
+/** Mean absolute elevation difference at one cell (ground size `cell`): Yokoya's fitted E|dz|
+ *  extrapolated to one cell. The conditional method's amplitude when the data have too few close pairs. */
 double ft_recon_amplitude(const ft_recon_line *yokoya, double cell);
+/** The conditional method's small scales measured on the data nodes (has[i] != 0) of an nx x ny grid:
+ *  *m1 = mean |dz| of the node pairs 1 apart along rows and columns, *nugget = the white share of the
+ *  one-cell increment variance from the pairs 1 and 2 apart (0 if lag 2 has too few). Returns 0 (and
+ *  leaves both) when lag 1 has fewer than FT_RECON_PAIR_MIN pairs. */
+int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t ny, double H, double *m1,
+                          double *nugget);
+#define FT_RECON_PAIR_MIN 64
+#define FT_RECON_NUGGET_MAX 0.9
 /** T_0 = k g(H) sigma0² (eq. 13 with the SRA factor g, docs/terrain-reconstruct.md). */
 double ft_recon_temperature0(double k, double H, double sigma0);
 /** T_l = T_0 2^(2 H l) (eq. 12: the SRA variance ratio of level l). */
@@ -172,10 +180,11 @@ int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, d
                      uint64_t seed, float *u, const ft_recon_progress *prog);
 
 /* ---- recon_conditional.c ---- */
-/** Conditional simulation: s = amp x unconditional fBm (exponent H, seed), u = s + the T = 0 interpolation
- *  of the residuals d - s at the data nodes (ustar = that of d, so only s's part is solved). */
-int ft_recon_conditional(const ft_recon_problem *p, const float *ustar, double H, double amp, uint64_t seed,
-                         float *u, const ft_recon_progress *prog);
+/** Conditional simulation: s = unconditional fBm (exponent H, seed) plus white noise carrying the share
+ *  `nugget` of its one-cell increment variance, e = s - the T = 0 interpolation of s's values at the data
+ *  nodes, u = ustar + kappa e with kappa such that u's mean |dz| at one cell along rows and columns is m1. */
+int ft_recon_conditional(const ft_recon_problem *p, const float *ustar, double H, double m1, double nugget,
+                         uint64_t seed, float *u, const ft_recon_progress *prog);
 
 /* ---- reconstruct.c ---- */
 /** What one problem needs to be reconstructed. */
@@ -183,7 +192,8 @@ typedef struct {
     ft_recon_method method;
     double H;           /**< 3 - D */
     double T0;          /**< fractal: temperature of level 0 */
-    double amp;         /**< conditional: RMS one-cell increment of the fBm */
+    double amp;         /**< conditional: mean |dz| at one cell of the result */
+    double nugget;      /**< conditional: white share of the one-cell increment variance */
     int sweeps;         /**< fractal: Gibbs sweeps per level */
     double tension;     /**< the prior's blend (opts->tension or ft_recon_tension_for_dim(D)) */
     int realizations;
@@ -200,9 +210,11 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
 int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *info, ft_grid **out,
                    ft_grid **sd_out);
 /** D, T_0 and the fBm amplitude of the job from the options and the data (pts, or dem's valid cells);
- *  cell = the ground size of one cell. Fills info's dim, dim_estimated, sigma0, k, temperature. */
-int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem, double cell,
-                        ft_recon_params *par, ft_recon_info *info);
+ *  bound (may be NULL): pts bound to the target's nodes, whose fixed nodes give the conditional method's
+ *  amplitude (ft_recon_amplitude_pairs); cell = the ground size of one cell. Fills info's dim,
+ *  dim_estimated, sigma0, k, temperature. */
+int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem,
+                        const ft_recon_problem *bound, double cell, ft_recon_params *par, ft_recon_info *info);
 /** New output grids shaped like `like` (size, geotransform, CRS, no mask); sd_out only if want_sd. */
 int ft_recon_outputs(const ft_grid *like, int want_sd, ft_grid **out, ft_grid **sd_out);
 
