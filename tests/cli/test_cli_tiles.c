@@ -425,6 +425,12 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_int_equal(mpirun2(ft_test_tmp("surface.out"), args), 0);
     b = slurp(ft_test_tmp("surface.out"));
     assert_string_equal(a, b); /* one report, from rank 0 only, equal to the whole run's */
+    free(b);
+    /* 9-row stripes: the lags beyond 9 cells read their partner rows, on both ranks */
+    snprintf(args, sizeof args, "dim surface %s --json --tile-rows 9", dem);
+    assert_int_equal(mpirun2(ft_test_tmp("surface9.out"), args), 0);
+    b = slurp(ft_test_tmp("surface9.out"));
+    assert_string_equal(a, b);
     free(a);
     free(b);
     const char *hw = ft_test_tmp("hw.tif"), *h2 = ft_test_tmp("h2.tif");
