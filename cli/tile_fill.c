@@ -194,9 +194,11 @@ static int fill_rank(fill_run *f, ft_grid_reader *r, ft_grid_reader *mr, const f
     }
     size_t halo = fill_halo(&j->fo);
     double fit = 0.25 * (double)ft_memory_limit() / ((double)f->nx * FILL_BYTES_PER_CELL);
-    size_t k = j->tile_rows > 0 ? (size_t)j->tile_rows : fit >= 1e9 ? (size_t)1e9 : fit > 2.0 * (double)halo
+    /* automatic: the stripe and its halo fill a quarter of --max-memory, but a stripe is never thinner than
+     * its halo (thinner stripes would read and label the halo over and over for a few rows each) */
+    size_t k = j->tile_rows > 0 ? (size_t)j->tile_rows : fit >= 1e9 ? (size_t)1e9 : fit > 3.0 * (double)halo
                                                                                     ? (size_t)fit - 2 * halo
-                                                                                    : 1;
+                                                                                    : halo;
     int rc = CLI_OK;
     for (size_t y = a; y < b && rc == CLI_OK; y += k)
         rc = fill_stripe(f, r, mr, y, y + k < b ? y + k : b, &halo);
