@@ -5,7 +5,9 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "cli_geo.h"
+#include "cli_ranks.h"
 #include "terrain_cli.h"
+#include "tile_cli.h"
 
 #include <errno.h>
 #include <math.h>
@@ -21,6 +23,7 @@ typedef struct {
     int max_void_ground; /* 1: in ground units (suffix m) */
     const char *mask, *driver;
     int band, json;
+    long tile_rows; /* 0: automatic */
 } fill_args;
 
 enum {
@@ -29,7 +32,11 @@ enum {
     OPT_MEAN,
     OPT_RING,
     OPT_BAND,
+    OPT_TILE_ROWS,
 };
+/* Bytes per cell of a whole-DEM fill (the DEM, its filled copy, void flags and labels, the sd band): beyond
+ * half of --max-memory the DEM is filled stripe by stripe. */
+#define FILL_WHOLE_BYTES_PER_CELL 20.0
 
 /* --max-void N (cells) or Nm (ground units of the CRS): N >= 0, 0 = no limit. */
 static int parse_max_void(const cli_command *cmd, const char *arg, fill_args *a)
@@ -58,6 +65,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case OPT_RING: return cli_parse_int(cmd, "--ring", arg, 2, 100000, &a->fo.ring);
     case 'S': return terrain_parse_seed(cmd, arg, &a->fo.seed);
     case OPT_BAND: return cli_parse_int(cmd, "--band", arg, 1, 65535, &a->band);
+    case OPT_TILE_ROWS: return tile_parse_rows(cmd, arg, &a->tile_rows);
     case 'f': a->driver = arg; return CLI_CONTINUE;
     case 'j': a->json = 1; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");
@@ -156,8 +164,9 @@ static json_object *void_json(const ft_fill_void *v, size_t id)
     return o;
 }
 
+/* st: the output's figures (NULL: computed from g). */
 static int report(const cli_command *cmd, const fill_args *a, const char *in, const char *out, const ft_grid *g,
-                  const ft_fill_result *r)
+                  const ft_grid_stats *st, const ft_fill_result *r)
 {
     const char *what = a->fo.mean ? "kriging mean"
                        : a->fo.realizations > 1 ? "mean and sd of conditional realizations"
@@ -204,8 +213,44 @@ static int report(const cli_command *cmd, const fill_args *a, const char *in, co
     if (dem > 0)
         json_object_array_add(w, json_object_new_string("some voids' model comes from the whole DEM"));
     json_object_object_add(o, "warnings", w);
-    terrain_add_grid_json(o, g);
+    if (st)
+        terrain_add_grid_json_of(o, g, st);
+    else
+        terrain_add_grid_json(o, g);
     return cli_print_json(cmd, o);
+}
+
+/* Stripe by stripe (--tile-rows, a DEM beyond half of --max-memory, mpiexec): tile_fill.c. */
+static int run_fill_tiled(const cli_command *cmd, fill_args *a, const char *in, const char *out)
+{
+    if (a->driver != NULL && strcmp(a->driver, "GTiff") != 0)
+        return cli_usage_error(cmd, "-f %s: a DEM filled stripe by stripe (--tile-rows, beyond half of "
+                               "--max-memory, mpiexec) is written as GeoTIFF only", a->driver);
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ro.band = a->band;
+    ft_grid_reader *r = NULL;
+    if (ft_io_grid_reader_open(in, &ro, &r) != FT_OK)
+        return cli_fail(cmd);
+    const ft_grid *hdr = ft_io_grid_reader_header(r);
+    int rc = resolve_max_void(cmd, a, hdr, in);
+    ft_crs_info crs;
+    if (rc == CLI_CONTINUE && (rc = cli_geo_crs(cmd, in, hdr->crs_wkt, &crs)) == CLI_CONTINUE && crs.geographic &&
+        cli_rank() == 0)
+        cli_geo_warn_square_cells(cmd, in, hdr, &crs);
+    if (rc == CLI_CONTINUE) {
+        tile_fill_job job = {.in = in, .out = out, .mask = a->mask, .fo = a->fo, .band = a->band,
+                             .tile_rows = a->tile_rows};
+        job.fo.progress = cli_rank() == 0 ? cli_progress() : NULL;
+        ft_fill_result res;
+        ft_grid_stats st;
+        rc = tile_fill(cmd, &job, &res, &st);
+        if (rc == CLI_OK && cli_rank() == 0)
+            rc = report(cmd, a, in, out, hdr, &st, &res);
+        if (rc == CLI_OK && cli_rank() == 0)
+            free(res.voids);
+    }
+    ft_io_grid_reader_close(r);
+    return rc;
 }
 
 static int run_fill(const cli_command *cmd, int argc, char **argv)
@@ -221,6 +266,7 @@ static int run_fill(const cli_command *cmd, int argc, char **argv)
         {"band", required_argument, NULL, OPT_BAND},
         {"format", required_argument, NULL, 'f'},
         {"json", no_argument, NULL, 'j'},
+        {"tile-rows", required_argument, NULL, OPT_TILE_ROWS},
         CLI_OPT_HELP,
         CLI_OPT_END,
     };
@@ -241,6 +287,11 @@ static int run_fill(const cli_command *cmd, int argc, char **argv)
     const char *in = argv[first], *out = argv[first + 1];
     if (ft_io_check_writable(out) != FT_OK)
         return cli_fail(cmd);
+    size_t nx = 0, ny = 0;
+    if ((rc = tile_band_size(cmd, in, a.band, &nx, &ny)) != CLI_CONTINUE)
+        return rc;
+    if (tile_wanted(a.tile_rows, nx, ny, FILL_WHOLE_BYTES_PER_CELL))
+        return run_fill_tiled(cmd, &a, in, out);
     ft_grid *dem = NULL, *z = NULL, *sd = NULL;
     uint8_t *valid = NULL;
     ft_fill_result *res = NULL;
@@ -263,7 +314,7 @@ static int run_fill(const cli_command *cmd, int argc, char **argv)
             const ft_grid *bands[2] = {z, sd};
             lib = sd ? ft_io_write_grids(out, bands, 2, &wo) : ft_io_write_grid(out, z, &wo);
         }
-        rc = lib == FT_OK ? report(cmd, &a, in, out, z, res) : cli_fail(cmd);
+        rc = lib == FT_OK ? report(cmd, &a, in, out, z, NULL, res) : cli_fail(cmd);
     }
     ft_fill_result_free(res);
     ft_grid_free(sd);
@@ -277,7 +328,8 @@ const cli_command cli_cmd_fill = {
     "fill",
     "fill a DEM's nodata voids with terrain as rough as each void's surroundings",
     "fracterra fill DEM OUT.tif [--max-void N|Nm] [--mask FILE] [--mean | --realizations N] [--dim D|auto]\n"
-    "       [--ring W] [--seed N] [--band N] [-f DRIVER] [--json]",
+    "       [--ring W] [--seed N] [--band N] [-f DRIVER] [--tile-rows N] [--json]\n"
+    "       mpiexec -n N fracterra fill DEM OUT.tif [...]",
     "Fills the nodata voids of a DEM (gdal_fillnodata's job) with conditional simulation: each void gets a\n"
     "power variogram (D and amplitude) fitted on a ring of valid cells around it, then the intrinsic kriging\n"
     "of the valid cells within 2 cells of it plus an exact fBm of that variogram minus its own kriging. Every\n"
@@ -300,6 +352,10 @@ const cli_command cli_cmd_fill = {
     "      --seed N         random seed (default 1); same seed, same cells\n"
     "      --band N         band of DEM (default 1)\n"
     "  -f, --format DRIVER  GDAL driver of OUT (default: from the extension, GeoTIFF)\n"
+    "      --tile-rows N    fill N rows per stripe, each read with a halo of --max-void + ring + 1 rows (grown\n"
+    "                       when a void goes on beyond it); the cells and the report are the whole run's.\n"
+    "                       Automatic for a DEM beyond half of --max-memory and under mpiexec, where the\n"
+    "                       ranks share the stripes and rank 0 writes (GeoTIFF only; docs/tiling.md)\n"
     "  -j, --json           print {\"input\", \"output\", \"method\", \"model\", \"units\", \"max_void\", \"seed\",\n"
     "                       \"realizations\", \"bands\", \"voids_found\", \"voids_filled\", \"cells_filled\",\n"
     "                       \"cells_left\", \"voids\": [{\"id\", \"cells_box\": [col0, row0, col1, row1],\n"

@@ -173,7 +173,7 @@ static int take_global_options(int *argc, char **argv)
 /* Under mpiexec only the commands that decompose into stripes run; the others would all write the same file. */
 static int runs_on_ranks(const cli_command *cmd, int argc, char **argv)
 {
-    if (cli_nranks() == 1 || cmd == &cli_cmd_hillshade)
+    if (cli_nranks() == 1 || cmd == &cli_cmd_hillshade || cmd == &cli_cmd_fill)
         return 1;
     if (cmd == &cli_cmd_dim && argc > 1 && (strcmp(argv[1], "map") == 0 || strcmp(argv[1], "surface") == 0))
         return 1;

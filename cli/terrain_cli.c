@@ -65,23 +65,35 @@ json_object *terrain_grid_figures(const ft_grid *g)
 {
     ft_grid_stats st;
     ft_grid_compute_stats(g, &st);
+    return terrain_grid_figures_of(g, &st);
+}
+
+json_object *terrain_grid_figures_of(const ft_grid *g, const ft_grid_stats *st)
+{
     json_object *o = json_object_new_object(), *size = json_object_new_array();
     json_object_array_add(size, json_object_new_int64((int64_t)g->nx));
     json_object_array_add(size, json_object_new_int64((int64_t)g->ny));
     json_object_object_add(o, "size", size);
-    json_object_object_add(o, "mean", cli_json_double(st.mean));
-    json_object_object_add(o, "sd", cli_json_double(st.sd));
-    json_object_object_add(o, "min", cli_json_double(st.min));
-    json_object_object_add(o, "max", cli_json_double(st.max));
+    json_object_object_add(o, "mean", cli_json_double(st->mean));
+    json_object_object_add(o, "sd", cli_json_double(st->sd));
+    json_object_object_add(o, "min", cli_json_double(st->min));
+    json_object_object_add(o, "max", cli_json_double(st->max));
     return o;
 }
 
 void terrain_add_grid_json(json_object *o, const ft_grid *g)
+{
+    ft_grid_stats st;
+    ft_grid_compute_stats(g, &st);
+    terrain_add_grid_json_of(o, g, &st);
+}
+
+void terrain_add_grid_json_of(json_object *o, const ft_grid *g, const ft_grid_stats *st)
 {
     json_object *gt = json_object_new_array();
     for (int i = 0; i < 6; i++)
         json_object_array_add(gt, cli_json_double(g->gt[i]));
     json_object_object_add(o, "geotransform", gt);
     json_object_object_add(o, "crs", g->crs_wkt ? json_object_new_string(g->crs_wkt) : NULL);
-    json_object_object_add(o, "grid", terrain_grid_figures(g));
+    json_object_object_add(o, "grid", terrain_grid_figures_of(g, st));
 }

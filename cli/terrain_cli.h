@@ -25,5 +25,8 @@ json_object *terrain_report_start(int json, const char *in, const char *out);
 json_object *terrain_grid_figures(const ft_grid *g);
 /** Adds "geotransform" (6 numbers), "crs" (WKT or null) and "grid" (terrain_grid_figures) to o. */
 void terrain_add_grid_json(json_object *o, const ft_grid *g);
+/** The same with the figures given (a grid written stripe by stripe: g is its header). */
+json_object *terrain_grid_figures_of(const ft_grid *g, const ft_grid_stats *st);
+void terrain_add_grid_json_of(json_object *o, const ft_grid *g, const ft_grid_stats *st);
 
 #endif /* FRACTERRA_CLI_TERRAIN_H */

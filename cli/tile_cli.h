@@ -1,4 +1,4 @@
-/* fracterra — cli/tile_cli.h: `dim map` and `dim surface` on a raster read stripe by stripe (bounded memory)
+/* fracterra — cli/tile_cli.h: `dim map`, `dim surface`, `hillshade` and `fill` on a raster read stripe by stripe (bounded memory)
  * and, under mpiexec, on several ranks (tile_dim.c). The cells of a D map and the D of a surface are those of
  * the whole-raster run, bit for bit. docs/tiling.md.
  *
@@ -53,5 +53,17 @@ int tile_dim_surface(const cli_command *cmd, const char *in, int band, ft_surfac
  *  sharing the stripes, rank 0 writing: the cells of ft_io_hillshade's. CLI_OK or CLI_FAIL (printed). */
 int tile_hillshade(const cli_command *cmd, const char *in, const char *out, const ft_io_hillshade_opts *o,
                    long tile_rows);
+
+typedef struct {
+    const char *in, *out, *mask; /* DEM, OUT (GeoTIFF), --mask (may be NULL) */
+    ft_fill_opts fo;             /* max_void in cells */
+    int band;
+    long tile_rows;              /* 0: automatic */
+} tile_fill_job;
+
+/** `fill` stripe by stripe (tile_fill.c), ranks sharing the stripes, rank 0 writing OUT: the cells of
+ *  ft_terrain_fill's. On rank 0, CLI_OK with *res (voids in raster order, totals; free res->voids) and *st
+ *  (the output's band 1 figures, as ft_grid_compute_stats gives them); or CLI_FAIL (printed). */
+int tile_fill(const cli_command *cmd, const tile_fill_job *job, ft_fill_result *res, ft_grid_stats *st);
 
 #endif /* FRACTERRA_CLI_TILE_H */

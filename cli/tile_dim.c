@@ -301,6 +301,7 @@ int tile_dim_map(const cli_command *cmd, const char *in, const char *out, const 
 /* ---- dim surface ---- */
 
 /* Bytes per input cell of a stripe: the float cells and mask read, the sanitized cells and weights. */
+/* (the stripe holds k rows, near <= k rows below them, and the k partner rows of one longer lag at a time) */
 #define SURFACE_BYTES_PER_CELL 13.0
 
 /* Counts the valid cells of rows [first, first + rows) of g. */
@@ -313,18 +314,34 @@ static uint64_t count_rows(const ft_grid *g, size_t first, size_t rows)
     return ft_grid_count_valid(&v);
 }
 
-/* Rows [a, b) of this rank's share into sums (rank 0: added at once). */
-static int surface_rows(const cli_command *cmd, ft_grid_reader *r, ft_lag_stripes *ls, size_t a, size_t b,
-                        double *sums, uint64_t *valid)
+/* The rows the lag sums of stripe [a, b) ask for (ft_rows_fn); the valid cells of [a, b) counted once, from
+ * the first window (which starts at a). */
+typedef struct {
+    ft_grid_reader *r;
+    size_t a, b;
+    uint64_t *valid;
+    int counted;
+} surface_reads;
+
+static int surface_read(void *arg, size_t row0, size_t nrows, ft_grid **out)
 {
-    const ft_grid *h = ft_io_grid_reader_header(r);
-    size_t halo = ft_surface_lag_stripes_halo(ls), hi = b + halo < h->ny ? b + halo : h->ny;
-    ft_grid *s = NULL;
-    if (ft_io_grid_reader_read(r, 0, a, h->nx, hi - a, &s) != FT_OK)
-        return cli_fail(cmd);
-    int rc = ft_surface_lag_stripes_rows(ls, s, a, a, b, sums) == FT_OK ? CLI_OK : cli_fail(cmd);
-    *valid += count_rows(s, 0, b - a);
-    ft_grid_free(s);
+    surface_reads *sr = arg;
+    int rc = ft_io_grid_reader_read(sr->r, 0, row0, ft_io_grid_reader_header(sr->r)->nx, nrows, out);
+    if (rc == FT_OK && !sr->counted && row0 == sr->a) {
+        *sr->valid += count_rows(*out, 0, sr->b - sr->a < nrows ? sr->b - sr->a : nrows);
+        sr->counted = 1;
+    }
+    return rc;
+}
+
+/* Rows [a, b) of this rank's share into sums (rank 0: added at once); the lags up to near from the stripe
+ * and near rows below it, each longer lag from the stripe's partner rows (ft_surface_lag_stripes_rows_read). */
+static int surface_rows(const cli_command *cmd, ft_grid_reader *r, ft_lag_stripes *ls, size_t a, size_t b,
+                        size_t near, double *sums, uint64_t *valid)
+{
+    surface_reads sr = {r, a, b, valid, 0};
+    int rc = ft_surface_lag_stripes_rows_read(ls, surface_read, &sr, a, b, near, sums) == FT_OK ? CLI_OK
+                                                                                                 : cli_fail(cmd);
     if (rc == CLI_OK && cli_rank() == 0 && ft_surface_lag_stripes_add(ls, a, b, sums) != FT_OK)
         rc = cli_fail(cmd);
     return rc;
@@ -376,15 +393,17 @@ int tile_dim_surface(const cli_command *cmd, const char *in, int band, ft_surfac
     if (rc == CLI_OK) {
         tile_rank_share(*ny, &a, &b);
         size_t halo = ft_surface_lag_stripes_halo(ls), ns = ft_surface_lag_stripes_nsums(ls);
-        size_t rows = stripe_rows(*nx, SURFACE_BYTES_PER_CELL, 1);
-        size_t k = tile_rows > 0 ? (size_t)tile_rows : rows > halo ? rows - halo : 1; /* rows computed per stripe */
+        /* a stripe of k rows holds k + near rows sanitized and k partner rows of a longer lag: 3k rows at most */
+        size_t rows = stripe_rows(*nx, SURFACE_BYTES_PER_CELL, 3);
+        size_t k = tile_rows > 0 ? (size_t)tile_rows : rows / 3; /* rows computed per stripe */
+        size_t near = k < halo ? k : halo;
         /* rank 0 adds each stripe at once; the others keep their share's counters until the totals come */
         size_t held = cli_rank() == 0 ? (k < b - a ? k : b - a) : b - a;
         if (b > a && (sums = malloc((held ? held : 1) * ns * sizeof *sums)) == NULL)
             rc = cli_fail(cmd);
         for (size_t s = a; s < b && rc == CLI_OK; s += k) {
             size_t e = s + k < b ? s + k : b;
-            rc = surface_rows(cmd, r, ls, s, e, cli_rank() == 0 ? sums : sums + (s - a) * ns, valid);
+            rc = surface_rows(cmd, r, ls, s, e, near, cli_rank() == 0 ? sums : sums + (s - a) * ns, valid);
         }
     }
     int ok = cli_ranks_all_ok(rc == CLI_OK);

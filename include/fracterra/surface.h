@@ -247,6 +247,15 @@ FT_API size_t ft_surface_lag_stripes_nsums(const ft_lag_stripes *s);
  *  over rows; the same on any thread count. s is not changed. */
 FT_API int ft_surface_lag_stripes_rows(const ft_lag_stripes *s, const ft_grid *stripe, size_t stripe_row0, size_t r0,
                                        size_t r1, double *sums);
+/** Reads nrows rows of the grid from row0 (the whole width) into *out; FT_OK or an FT_E_* code (error set). */
+typedef int (*ft_rows_fn)(void *arg, size_t row0, size_t nrows, ft_grid **out);
+/** The counters of ft_surface_lag_stripes_rows for rows [r0, r1), bit for bit, without holding the max_lag rows
+ *  below the stripe: rows [r0, r1 + near) are read once through read and give the lags <= near; each longer
+ *  lag h reads rows [r0 + h, r1 + h) (clipped to the grid) for its column pairs. Peak memory: about
+ *  (2 (r1 - r0) + near) rows of 8 bytes a cell instead of (r1 - r0 + max_lag); reads: the stripe once more
+ *  per lag beyond near. */
+FT_API int ft_surface_lag_stripes_rows_read(const ft_lag_stripes *s, ft_rows_fn read, void *arg, size_t r0,
+                                            size_t r1, size_t near, double *sums);
 /** Adds the counters of rows [r0, r1) to the running totals; r0 must be the first row not yet added. */
 FT_API int ft_surface_lag_stripes_add(ft_lag_stripes *s, size_t r0, size_t r1, const double *sums);
 /** The running totals (nsums doubles into sums, which may be NULL); returns the first row not yet added. For

@@ -308,7 +308,8 @@ typedef struct {
     double dim;        /**< D in (2, 3) for every void; 0 (default) = fitted on each void's ring */
     int ring;          /**< width of the ring whose variogram is fitted, cells, >= 2; 0 (default) =
                             half the void's longer side, clamped to [10, 64] */
-    uint64_t seed;     /**< void k, realization r: streams of ft_rng_mix(ft_rng_mix(seed, k), r); default 1 */
+    uint64_t seed;     /**< realization r of the void whose first cell (raster order) is cell i = row * nx + col:
+                            streams of ft_rng_mix(ft_rng_mix(seed, i), r); default 1 */
     ft_progress_fn progress;
     void *progress_arg;
 } ft_fill_opts;
@@ -351,6 +352,17 @@ typedef struct {
  *  options and seed => bit-identical cells. Errors: FT_E_EMPTY if no cell is valid. */
 FT_API int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
                     ft_grid **sd_out, ft_fill_result **res);
+/** ft_terrain_fill on a window of whole rows (docs/tiling.md): win holds rows [row0, row0 + win->ny) of a
+ *  raster of ny rows (win's width and geotransform are the raster's, shifted), invalid (may be NULL) the
+ *  same window. Every void that meets rows [own0, own1) (the stripe, row0 <= own0 < own1 <= row0 +
+ *  win->ny) is filled in *out (the window) with the cells ft_terrain_fill gives it on the whole raster;
+ *  *res lists the voids whose first cell lies in the stripe (rows in the raster's numbering), and its
+ *  totals count those voids, so that the stripes' results in row order are the whole run's.
+ *  FT_E_UNSUPPORTED when a void meeting the stripe, with its ring, may go on beyond the window (read a
+ *  larger window), or when its ring is too poor and the whole DEM's model would be needed. */
+FT_API int ft_terrain_fill_rows(const ft_grid *win, const uint8_t *invalid, size_t row0, size_t ny, size_t own0,
+                                size_t own1, const ft_fill_opts *opts, ft_grid **out, ft_grid **sd_out,
+                                ft_fill_result **res);
 FT_API void ft_fill_result_free(ft_fill_result *r);
 FT_API const char *ft_fill_d_source_name(ft_fill_d_source s);
 

@@ -92,23 +92,50 @@ size_t ft_surface_lag_stripes_nsums(const ft_lag_stripes *s)
     return s ? 4 * s->nl : 0;
 }
 
-/* The pairs of global row i (zi, wi: its sanitized cells; the rows below follow at stride nx), as
- * exhaustive_row of lag_pairs.c forms them. */
-static void row_sums(const ft_lag_stripes *s, const float *zi, const float *wi, size_t i, double *acc)
+/* The pairs of global row i at lag k (zi, wi: its sanitized cells; zh, wh: those of row i + h, read only
+ * when the row has column pairs at that lag), as exhaustive_row of lag_pairs.c forms them. */
+static void lag_row_sums(const ft_lag_stripes *s, size_t k, const float *zi, const float *wi, const float *zh,
+                         const float *wh, size_t i, double *acc)
 {
     size_t nx = s->nx, ny = s->ny, hmax = s->lags[s->nl - 1];
-    for (size_t k = 0; k < s->nl; k++) {
-        size_t h = s->lags[k], j0 = (hmax - h + 1) / 2;
-        ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
-        if (h + hmax <= 2 * (nx - 1) && (2 * (nx - 1) - h - hmax) / 2 >= j0)
-            ft_lag_pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
-        if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1))
-            ft_lag_pair_sums(zi, wi, zi + h * nx, wi + h * nx, nx, &c);
-        acc[4 * k] = r.a + c.a;
-        acc[4 * k + 1] = r.b + c.b;
-        acc[4 * k + 2] = r.c + c.c;
-        acc[4 * k + 3] = (double)h * (r.c * s->cx + c.c * s->cy);
+    size_t h = s->lags[k], j0 = (hmax - h + 1) / 2;
+    ft_lag_acc r = {0.0, 0.0, 0.0, 0.0}, c = {0.0, 0.0, 0.0, 0.0};
+    if (h + hmax <= 2 * (nx - 1) && (2 * (nx - 1) - h - hmax) / 2 >= j0)
+        ft_lag_pair_sums(zi + j0, wi + j0, zi + j0 + h, wi + j0 + h, (2 * (nx - 1) - h - hmax) / 2 + 1 - j0, &r);
+    if (2 * i + h >= hmax && 2 * i + h + hmax <= 2 * (ny - 1)) /* then i + h < ny */
+        ft_lag_pair_sums(zi, wi, zh, wh, nx, &c);
+    acc[4 * k] = r.a + c.a;
+    acc[4 * k + 1] = r.b + c.b;
+    acc[4 * k + 2] = r.c + c.c;
+    acc[4 * k + 3] = (double)h * (r.c * s->cx + c.c * s->cy);
+}
+
+/* Every lag of global row i; the rows below it follow at stride nx. */
+static void row_sums(const ft_lag_stripes *s, const float *zi, const float *wi, size_t i, double *acc)
+{
+    for (size_t k = 0; k < s->nl; k++)
+        lag_row_sums(s, k, zi, wi, zi + s->lags[k] * s->nx, wi + s->lags[k] * s->nx, i, acc);
+}
+
+/* The sanitized cells (0 where not valid) and weights of rows [first, first + rows) of g. */
+static int sanitize(const ft_grid *g, size_t first, size_t rows, float **zo, float **wo)
+{
+    size_t n = rows * g->nx, base = first * g->nx;
+    float *z = ft_malloc((n ? n : 1) * sizeof *z), *w = ft_malloc((n ? n : 1) * sizeof *w);
+    if (z == NULL || w == NULL) {
+        free(z);
+        free(w);
+        return FT_E_NOMEM;
     }
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < n; k++) {
+        int ok = ft_surface_cell_ok(g, base + k);
+        z[k] = ok ? g->z[base + k] : 0.0f;
+        w[k] = (float)ok;
+    }
+    *zo = z;
+    *wo = w;
+    return FT_OK;
 }
 
 int ft_surface_lag_stripes_rows(const ft_lag_stripes *s, const ft_grid *stripe, size_t stripe_row0, size_t r0,
@@ -121,26 +148,71 @@ int ft_surface_lag_stripes_rows(const ft_lag_stripes *s, const ft_grid *stripe, 
         return ft_error(FT_E_INVALID, "%s: a stripe of %zu x %zu cells from row %zu cannot give rows %zu-%zu of the "
                         "%zu x %zu grid (it must be %zu cells wide and hold rows %zu-%zu)", s->name, stripe->nx,
                         stripe->ny, stripe_row0, r0, r1 - 1, s->nx, s->ny, s->nx, r0, need - 1);
-    size_t first = r0 - stripe_row0, rows = need - stripe_row0 - first, n = rows * s->nx;
-    float *z = ft_malloc(n * sizeof *z), *w = ft_malloc(n * sizeof *w);
-    if (z == NULL || w == NULL) {
-        free(z);
-        free(w);
+    size_t first = r0 - stripe_row0, rows = need - stripe_row0 - first;
+    float *z = NULL, *w = NULL;
+    if (sanitize(stripe, first, rows, &z, &w) != FT_OK)
         return FT_E_NOMEM;
-    }
-    size_t base = first * s->nx;
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < n; k++) {
-        int ok = ft_surface_cell_ok(stripe, base + k);
-        z[k] = ok ? stripe->z[base + k] : 0.0f;
-        w[k] = (float)ok;
-    }
 #pragma omp parallel for schedule(dynamic, 4)
     for (size_t i = r0; i < r1; i++)
         row_sums(s, z + (i - r0) * s->nx, w + (i - r0) * s->nx, i, sums + (i - r0) * 4 * s->nl);
     free(z);
     free(w);
     return FT_OK;
+}
+
+/* Rows [lo, hi) through read, checked, sanitized. */
+static int read_rows(const ft_lag_stripes *s, ft_rows_fn read, void *arg, size_t lo, size_t hi, float **z, float **w)
+{
+    ft_grid *g = NULL;
+    int rc = read(arg, lo, hi - lo, &g);
+    if (rc == FT_OK && (g == NULL || g->z == NULL || g->nx != s->nx || g->ny != hi - lo))
+        rc = ft_error(FT_E_INVALID, "%s: the reader gave %zu x %zu cells for rows %zu-%zu of a %zu-wide grid", s->name,
+                      g ? g->nx : 0, g ? g->ny : 0, lo, hi - 1, s->nx);
+    if (rc == FT_OK)
+        rc = sanitize(g, 0, hi - lo, z, w);
+    ft_grid_free(g);
+    return rc;
+}
+
+int ft_surface_lag_stripes_rows_read(const ft_lag_stripes *s, ft_rows_fn read, void *arg, size_t r0, size_t r1,
+                                     size_t near, double *sums)
+{
+    if (s == NULL || read == NULL || sums == NULL)
+        return ft_error(FT_E_INVALID, "lag stripes: NULL argument");
+    if (r0 >= r1 || r1 > s->ny)
+        return ft_error(FT_E_INVALID, "%s: rows %zu-%zu are not rows of the %zu-row grid", s->name, r0, r1 - 1, s->ny);
+    size_t nx = s->nx, hmax = s->lags[s->nl - 1], nk = near < hmax ? near : hmax;
+    size_t hi = r1 + nk < s->ny ? r1 + nk : s->ny;
+    float *z = NULL, *w = NULL;
+    int rc = read_rows(s, read, arg, r0, hi, &z, &w);
+    if (rc != FT_OK)
+        return rc;
+#pragma omp parallel for schedule(dynamic, 4)
+    for (size_t i = r0; i < r1; i++) {
+        const float *zi = z + (i - r0) * nx, *wi = w + (i - r0) * nx;
+        for (size_t k = 0; k < s->nl && s->lags[k] <= nk; k++)
+            lag_row_sums(s, k, zi, wi, zi + s->lags[k] * nx, wi + s->lags[k] * nx, i, sums + (i - r0) * 4 * s->nl);
+    }
+    for (size_t k = 0; k < s->nl && rc == FT_OK; k++) {
+        size_t h = s->lags[k];
+        if (h <= nk)
+            continue;
+        float *zf = NULL, *wf = NULL; /* rows [r0 + h, r1 + h), clipped: the partners of the column pairs */
+        if (r0 + h < s->ny && (rc = read_rows(s, read, arg, r0 + h, r1 + h < s->ny ? r1 + h : s->ny, &zf, &wf)) != FT_OK)
+            break;
+#pragma omp parallel for schedule(dynamic, 4)
+        for (size_t i = r0; i < r1; i++) {
+            size_t off = (i - r0) * nx;
+            int below = i + h < s->ny;
+            lag_row_sums(s, k, z + off, w + off, below ? zf + off : NULL, below ? wf + off : NULL, i,
+                         sums + (i - r0) * 4 * s->nl);
+        }
+        free(zf);
+        free(wf);
+    }
+    free(z);
+    free(w);
+    return rc;
 }
 
 int ft_surface_lag_stripes_add(ft_lag_stripes *s, size_t r0, size_t r1, const double *sums)

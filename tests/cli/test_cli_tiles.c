@@ -1,6 +1,6 @@
 /* fracterra — tests/cli/test_cli_tiles.c: `dim map` and `dim surface` stripe by stripe (--tile-rows, and
  * automatically beyond --max-memory) and on two MPI ranks give what the whole-raster run gives: every cell of
- * the map (across the stripe seams, nodata included) and the whole JSON report; so does `hillshade`. Refusals: random pairs,
+ * the map (across the stripe seams, nodata included) and the whole JSON report; so do `hillshade` and `fill`. Refusals: random pairs,
  * methods that do not decompose, geographic DEMs, formats other than GeoTIFF, commands that do not run on
  * ranks. The mpiexec tests run when the CLI was built with MPI (FT_TEST_MPIEXEC) and not under the
  * sanitizers (Open MPI's own allocations are reported as leaks there); they are skipped otherwise.
@@ -268,6 +268,110 @@ static void test_tiled_refusals(void **state)
     assert_int_equal(ft_test_dir_count(), 1); /* the DEM: no map, no temporary left behind */
 }
 
+/* ---- fill ---- */
+
+/* The synthetic DEM with 60 rectangular voids of 1-20 cells a side scattered over it (many across any
+ * stripe border), a 1 x 60 void (longer than --max-void 40: left nodata, across several stripes) and the
+ * round hole (40 cells wide: filled), as GeoTIFF. */
+static const char *voids_dem(void)
+{
+    ft_grid *g = NULL;
+    assert_int_equal(ft_io_read_grid(synthetic_dem(), NULL, &g), FT_OK);
+    assert_int_equal(ft_grid_ensure_mask(g), FT_OK);
+    ft_rng *r = ft_rng_create(11, 0);
+    for (int k = 0; k < 60; k++) {
+        size_t w = 1 + (size_t)(ft_rng_uniform(r) * 20.0), h = 1 + (size_t)(ft_rng_uniform(r) * 20.0);
+        size_t x0 = (size_t)(ft_rng_uniform(r) * (double)(g->nx - w)), y0 = (size_t)(ft_rng_uniform(r) * (double)(g->ny - h));
+        for (size_t y = y0; y < y0 + h; y++)
+            for (size_t x = x0; x < x0 + w; x++)
+                g->mask[y * g->nx + x] = 0;
+    }
+    ft_rng_free(r);
+    for (size_t y = 100; y < 160; y++)
+        g->mask[y * g->nx + 20] = 0;
+    const char *path = ft_test_tmp("voids.tif");
+    assert_int_equal(ft_io_write_grid(path, g, NULL), FT_OK);
+    ft_grid_free(g);
+    return path;
+}
+
+/* Band `band` of two fills, cell for cell (nodata where the other has nodata), and their georeferencing. */
+static void assert_same_fill(const char *a, const char *b, int band)
+{
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    o.band = band;
+    ft_grid *x = NULL, *y = NULL;
+    assert_int_equal(ft_io_read_grid(a, &o, &x), FT_OK);
+    assert_int_equal(ft_io_read_grid(b, &o, &y), FT_OK);
+    assert_int_equal(x->nx, y->nx);
+    assert_int_equal(x->ny, y->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true(x->gt[k] == y->gt[k]);
+    for (size_t i = 0; i < x->nx * x->ny; i++) {
+        int vx = x->mask == NULL || x->mask[i], vy = y->mask == NULL || y->mask[i];
+        assert_int_equal(vx, vy);
+        if (vx)
+            assert_memory_equal(&x->z[i], &y->z[i], sizeof(float));
+    }
+    ft_grid_free(x);
+    ft_grid_free(y);
+}
+
+static void test_fill_tiled_equals_whole(void **state)
+{
+    (void)state;
+    char *dem = strdup(voids_dem()); /* ft_test_tmp's buffers are reused */
+    const char *whole = ft_test_tmp("fw.tif"), *t7 = ft_test_tmp("f7.tif");
+    char *a = RUN_OUT("fill", dem, whole, "--max-void", "40", "--seed", "3", "--json");
+    json_object *o = json_tokener_parse(a);
+    assert_non_null(o);
+    assert_true(ft_test_json_int(o, "voids_filled") >= 40);
+    assert_true(ft_test_json_int(o, "cells_left") >= 60); /* the 1 x 60 void, and merged rectangles */
+    json_object_put(o);
+    /* 13-row stripes: many voids cross a seam, the long one several */
+    char *b = RUN_OUT("fill", dem, t7, "--max-void", "40", "--seed", "3", "--json", "--tile-rows", "13");
+    assert_same_fill(whole, t7, 1);
+    assert_same_report(a, b, "fw.tif", "f7.tif");
+    free(a);
+    free(b);
+    /* no --max-void: the halo grows until the long void lies whole in the window; the sd band too; and the
+     * stripes chosen from --max-memory */
+    const char *w0 = ft_test_tmp("fw0.tif"), *t0 = ft_test_tmp("ft0.tif"), *m0 = ft_test_tmp("fm0.tif");
+    a = RUN_OUT("fill", dem, w0, "--max-void", "0", "-n", "2", "--json");
+    b = RUN_OUT("fill", dem, t0, "--max-void", "0", "-n", "2", "--json", "--tile-rows", "29");
+    assert_same_fill(w0, t0, 1);
+    assert_same_fill(w0, t0, 2);
+    assert_same_report(a, b, "fw0.tif", "ft0.tif");
+    free(b);
+    b = RUN_OUT("--max-memory", "1M", "fill", dem, m0, "--max-void", "0", "-n", "2", "--json");
+    assert_same_fill(w0, m0, 1);
+    assert_same_report(a, b, "fw0.tif", "fm0.tif");
+    free(a);
+    free(b);
+    FT_TEST_EXPECT_FAILURE(2, "fill", "GeoTIFF only", "fill", dem, ft_test_tmp("f.asc"), "-f", "AAIGrid",
+                           "--tile-rows", "7");
+    free(dem);
+}
+
+/* ft_terrain_fill_rows: a stripe outside its window, and a window too small for a void meeting it. */
+static void test_fill_rows_errors(void **state)
+{
+    (void)state;
+    ft_grid *g = ft_grid_create(20, 10), *out = NULL;
+    assert_non_null(g);
+    for (size_t i = 0; i < 200; i++)
+        g->z[i] = (float)((i * 7919) % 13);
+    assert_int_equal(ft_grid_ensure_mask(g), FT_OK);
+    assert_int_equal(ft_terrain_fill_rows(g, NULL, 5, 100, 4, 8, NULL, &out, NULL, NULL), FT_E_INVALID);
+    assert_int_equal(ft_terrain_fill_rows(g, NULL, 5, 100, 8, 8, NULL, &out, NULL, NULL), FT_E_INVALID);
+    assert_int_equal(ft_terrain_fill_rows(g, NULL, 95, 100, 96, 99, NULL, &out, NULL, NULL), FT_E_INVALID);
+    g->mask[9 * 20 + 10] = 0; /* on the window's last row, which is not the raster's */
+    assert_int_equal(ft_terrain_fill_rows(g, NULL, 5, 100, 10, 15, NULL, &out, NULL, NULL), FT_E_UNSUPPORTED);
+    assert_non_null(strstr(ft_last_error(), "beyond the window"));
+    assert_null(out);
+    ft_grid_free(g);
+}
+
 /* ---- MPI ---- */
 
 #if defined(FT_TEST_MPIEXEC) && !defined(FT_TEST_SANITIZE)
@@ -321,6 +425,12 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     assert_int_equal(mpirun2(ft_test_tmp("surface.out"), args), 0);
     b = slurp(ft_test_tmp("surface.out"));
     assert_string_equal(a, b); /* one report, from rank 0 only, equal to the whole run's */
+    free(b);
+    /* 9-row stripes: the lags beyond 9 cells read their partner rows, on both ranks */
+    snprintf(args, sizeof args, "dim surface %s --json --tile-rows 9", dem);
+    assert_int_equal(mpirun2(ft_test_tmp("surface9.out"), args), 0);
+    b = slurp(ft_test_tmp("surface9.out"));
+    assert_string_equal(a, b);
     free(a);
     free(b);
     const char *hw = ft_test_tmp("hw.tif"), *h2 = ft_test_tmp("h2.tif");
@@ -328,6 +438,16 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     snprintf(args, sizeof args, "hillshade %s %s --tile-rows 30", dem, h2);
     assert_int_equal(mpirun2(ft_test_tmp("shade.out"), args), 0);
     assert_same_shade(hw, h2);
+    /* fill: the stripes' voids and cells gathered on rank 0 */
+    const char *vd = voids_dem(), *fw = ft_test_tmp("fw.tif"), *f2 = ft_test_tmp("f2.tif");
+    a = RUN_OUT("fill", vd, fw, "--max-void", "40", "--json");
+    snprintf(args, sizeof args, "fill %s %s --max-void 40 --json", vd, f2);
+    assert_int_equal(mpirun2(ft_test_tmp("fill.out"), args), 0);
+    assert_same_fill(fw, f2, 1);
+    b = slurp(ft_test_tmp("fill.out"));
+    assert_same_report(a, b, "fw.tif", "f2.tif");
+    free(a);
+    free(b);
     /* a command that does not decompose is refused on every rank, nothing written */
     snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64", ft_test_tmp("s.tif"));
     assert_int_equal(mpirun2(ft_test_tmp("synth.out"), args), 2);
@@ -349,6 +469,8 @@ int main(void)
         cmocka_unit_test(test_dim_surface_tiled_equals_whole),
         cmocka_unit_test(test_hillshade_tiled_equals_whole),
         cmocka_unit_test(test_tiled_refusals),
+        cmocka_unit_test(test_fill_tiled_equals_whole),
+        cmocka_unit_test(test_fill_rows_errors),
         cmocka_unit_test(test_mpi_two_ranks_equal_whole),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);

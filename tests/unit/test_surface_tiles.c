@@ -75,6 +75,44 @@ static ft_dim_result *by_stripes(const ft_grid *g, ft_surface_method m, const ft
     return r;
 }
 
+/* ft_rows_fn over a grid in memory; counts the windows asked for. */
+typedef struct {
+    const ft_grid *g;
+    size_t reads;
+} mem_rows;
+
+static int read_mem_rows(void *arg, size_t row0, size_t nrows, ft_grid **out)
+{
+    mem_rows *m = arg;
+    assert_true(nrows >= 1 && row0 + nrows <= m->g->ny);
+    *out = stripe_of(m->g, row0, row0 + nrows);
+    m->reads++;
+    return FT_OK;
+}
+
+/* D of g by stripes of h rows through ft_surface_lag_stripes_rows_read with the lags up to near from the
+ * stripe's own window; *reads: the windows read. */
+static ft_dim_result *by_rolling(const ft_grid *g, const ft_surface_dim_opts *o, size_t h, size_t near, size_t *reads)
+{
+    ft_lag_stripes *ls = NULL;
+    assert_int_equal(ft_surface_lag_stripes_create(g, FT_SURFACE_VARIOGRAM, o, &ls), FT_OK);
+    size_t ns = ft_surface_lag_stripes_nsums(ls);
+    double *sums = malloc(h * ns * sizeof *sums);
+    assert_non_null(sums);
+    mem_rows m = {g, 0};
+    for (size_t r0 = 0; r0 < g->ny; r0 += h) {
+        size_t r1 = r0 + h < g->ny ? r0 + h : g->ny;
+        assert_int_equal(ft_surface_lag_stripes_rows_read(ls, read_mem_rows, &m, r0, r1, near, sums), FT_OK);
+        assert_int_equal(ft_surface_lag_stripes_add(ls, r0, r1, sums), FT_OK);
+    }
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_surface_lag_stripes_fit(ls, &r), FT_OK);
+    free(sums);
+    ft_surface_lag_stripes_free(ls);
+    *reads = m.reads;
+    return r;
+}
+
 static void assert_same_result(const ft_dim_result *a, const ft_dim_result *b)
 {
     assert_memory_equal(&a->D, &b->D, sizeof a->D); /* the same bits, not only the same value */
@@ -114,6 +152,35 @@ static void test_lag_stripes_equal_whole(void **state)
     r = by_stripes(g, FT_SURFACE_VARIOGRAM, &o, 5);
     assert_same_result(whole, r);
     ft_dim_result_free(r);
+    ft_dim_result_free(whole);
+    ft_grid_free(g);
+}
+
+/* The lags beyond `near` read from their partner rows: the same bits as the whole grid, and one more read
+ * per stripe and longer lag. */
+static void test_lag_stripes_rolling_equal_whole(void **state)
+{
+    (void)state;
+    ft_grid *g = holed_surface(97, 131);
+    ft_surface_dim_opts o = FT_SURFACE_DIM_OPTS_DEFAULT;
+    o.min_scale = 10.0;
+    o.max_scale = 280.0; /* lags up to 40 cells (the cells are 7 ground units tall) */
+    o.fit_whole_range = 1;
+    ft_dim_result *whole = NULL;
+    assert_int_equal(ft_surface_dim(g, FT_SURFACE_VARIOGRAM, &o, &whole), FT_OK);
+    const size_t heights[3] = {1, 9, 64}, nears[3] = {0, 5, 1000};
+    for (int h = 0; h < 3; h++)
+        for (int n = 0; n < 3; n++) {
+            size_t reads = 0;
+            ft_dim_result *r = by_rolling(g, &o, heights[h], nears[n], &reads);
+            assert_same_result(whole, r);
+            size_t stripes = (g->ny + heights[h] - 1) / heights[h];
+            if (nears[n] >= 1000)
+                assert_int_equal(reads, stripes); /* every lag from the stripe's window */
+            else
+                assert_true(reads > stripes);
+            ft_dim_result_free(r);
+        }
     ft_dim_result_free(whole);
     ft_grid_free(g);
 }
@@ -233,6 +300,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lag_stripes_equal_whole),
+        cmocka_unit_test(test_lag_stripes_rolling_equal_whole),
         cmocka_unit_test(test_lag_stripes_handover),
         cmocka_unit_test(test_lag_stripes_refusals),
         cmocka_unit_test(test_dim_map_stripes_equal_whole),

@@ -11,7 +11,13 @@
  *     ft_terrain_synth) and s* its kriging from the same cells (conditioning by kriging, Journel &
  *     Huijbregts 1978, ch. VII): it honours every datum, and has the model's variogram inside the void
  *     and across its border.
- * Void k's realization r uses the seed ft_rng_mix(ft_rng_mix(seed, k), r).
+ * The realization r of the void whose first cell (raster order) is the raster's cell i = row * nx + col uses
+ * the seed ft_rng_mix(ft_rng_mix(seed, i), r): a void gets the same cells whatever window holds it.
+ *
+ * ft_terrain_fill_rows fills a window of whole rows (a stripe and its halo, docs/tiling.md): every void that
+ * meets the stripe's rows and lies whole in the window, with its ring, is filled as the whole-raster run
+ * fills it; the voids whose first cell is in the stripe are reported, so that the stripes' reports, in row
+ * order, are the whole run's.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -37,8 +43,17 @@ typedef struct {
     const ft_grid *dem;
     const uint8_t *isvoid;
     const uint32_t *label;
-    size_t nx, ny;
+    size_t nx, ny;      /* the window */
+    size_t row0, gny;   /* the window's first row in the raster, the raster's rows */
+    size_t own0, own1;  /* the stripe: raster rows [own0, own1) */
+    uint64_t *key;      /* per void: the raster index of its first cell */
 } fill_ctx;
+
+/* 1 if the window is a part of the raster (a stripe's run). */
+static int windowed(const fill_ctx *c)
+{
+    return c->row0 > 0 || c->ny < c->gny;
+}
 
 const char *ft_fill_d_source_name(ft_fill_d_source s)
 {
@@ -81,7 +96,8 @@ static int label_voids(fill_ctx *c, uint32_t *label, ft_fill_void **voids, size_
     size_t nx = c->nx, ny = c->ny, n = nx * ny, cap = 16, nv = 0;
     size_t *stack = ft_malloc(n * sizeof *stack);
     ft_fill_void *v = ft_malloc(cap * sizeof *v);
-    if (stack == NULL || v == NULL) {
+    c->key = ft_malloc(cap * sizeof *c->key);
+    if (stack == NULL || v == NULL || c->key == NULL) {
         free(stack);
         free(v);
         return FT_E_NOMEM;
@@ -91,14 +107,17 @@ static int label_voids(fill_ctx *c, uint32_t *label, ft_fill_void **voids, size_
             continue;
         if (nv == cap) {
             ft_fill_void *v2 = ft_realloc_array(v, cap * 2, sizeof *v);
-            if (v2 == NULL) {
+            uint64_t *k2 = v2 ? ft_realloc_array(c->key, cap * 2, sizeof *k2) : NULL;
+            if (v2 == NULL || k2 == NULL) {
                 free(stack);
-                free(v);
+                free(v2 ? v2 : v);
                 return FT_E_NOMEM;
             }
             v = v2;
+            c->key = k2;
             cap *= 2;
         }
+        c->key[nv] = (uint64_t)(c->row0 + s / nx) * nx + s % nx;
         ft_fill_void *k = &v[nv++];
         memset(k, 0, sizeof *k);
         k->x0 = k->x1 = s % nx;
@@ -126,7 +145,7 @@ static int label_voids(fill_ctx *c, uint32_t *label, ft_fill_void **voids, size_
                     }
                 }
         }
-        k->edge = k->x0 == 0 || k->y0 == 0 || k->x1 == nx - 1 || k->y1 == ny - 1;
+        k->edge = k->x0 == 0 || c->row0 + k->y0 == 0 || k->x1 == nx - 1 || c->row0 + k->y1 == c->gny - 1;
     }
     free(stack);
     *voids = v;
@@ -172,13 +191,21 @@ static void dilate(const uint8_t *src, uint8_t *dst, uint8_t *tmp, size_t bw, si
     }
 }
 
-/* The box [x0, x1] x [y0, y1] of void v grown by w cells, clipped to the raster. */
-static void grow_box(const fill_ctx *c, const ft_fill_void *v, size_t w, size_t b[4])
+/* The box [x0, x1] x [y0, y1] of void v grown by w cells, clipped to the raster, in window cells;
+ * FT_E_UNSUPPORTED when it leaves the window. */
+static int grow_box(const fill_ctx *c, const ft_fill_void *v, size_t w, size_t b[4])
 {
+    size_t gy0 = c->row0 + v->y0, gy1 = c->row0 + v->y1;
+    size_t lo = gy0 > w ? gy0 - w : 0, hi = gy1 + w < c->gny ? gy1 + w : c->gny - 1;
+    if (lo < c->row0 || hi >= c->row0 + c->ny)
+        return ft_error(FT_E_UNSUPPORTED, "fill: the void at cells (%zu..%zu, %zu..%zu) needs rows %zu-%zu, "
+                        "beyond the window's rows %zu-%zu", v->x0, v->x1, gy0, gy1, lo, hi, c->row0,
+                        c->row0 + c->ny - 1);
     b[0] = v->x0 > w ? v->x0 - w : 0;
-    b[1] = v->y0 > w ? v->y0 - w : 0;
+    b[1] = lo - c->row0;
     b[2] = v->x1 + w < c->nx ? v->x1 + w : c->nx - 1;
-    b[3] = v->y1 + w < c->ny ? v->y1 + w : c->ny - 1;
+    b[3] = hi - c->row0;
+    return FT_OK;
 }
 
 /* Cells of the box b: z (valid cells; 0 on voids), mine (cells of void k), ring (valid cells within w of
@@ -216,7 +243,8 @@ static int void_model(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fil
     if (o->ring == 0)
         w = w < RING_MIN ? RING_MIN : w > RING_MAX ? RING_MAX : w;
     size_t b[4];
-    grow_box(c, v, w, b);
+    if (grow_box(c, v, w, b) != FT_OK)
+        return FT_E_UNSUPPORTED;
     size_t bw = b[2] - b[0] + 1, bh = b[3] - b[1] + 1;
     float *z = ft_malloc(bw * bh * sizeof *z);
     uint8_t *mine = ft_malloc(bw * bh), *ring = ft_malloc(bw * bh);
@@ -231,6 +259,11 @@ static int void_model(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fil
     free(z);
     free(mine);
     free(ring);
+    if (rc == FT_E_EMPTY && windowed(c))
+        return ft_error(FT_E_UNSUPPORTED, "fill: the void at cells (%zu..%zu, %zu..%zu) has too few valid cells "
+                        "around it to fit a variogram (lags 1-%d, >= %d pairs each), and a stripe cannot fit the "
+                        "whole DEM's instead: fill it whole, or with a wider --ring", v->x0, v->x1,
+                        c->row0 + v->y0, c->row0 + v->y1, FT_FILL_LAG_MAX, FT_FILL_MIN_PAIRS);
     if (rc == FT_E_EMPTY) {
         if (*gstat == 1) {
             const ft_grid *g = c->dem;
@@ -249,7 +282,7 @@ static int void_model(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fil
         if (rc == FT_E_EMPTY)
             return ft_error(FT_E_EMPTY, "fill: the void at cells (%zu..%zu, %zu..%zu) has too few valid cells "
                             "around it, and the DEM too few, to fit a variogram (lags 1-%d, >= %d pairs each)",
-                            v->x0, v->x1, v->y0, v->y1, FT_FILL_LAG_MAX, FT_FILL_MIN_PAIRS);
+                            v->x0, v->x1, c->row0 + v->y0, c->row0 + v->y1, FT_FILL_LAG_MAX, FT_FILL_MIN_PAIRS);
     }
     if (rc == FT_E_NUMERIC) {
         v->source = FT_FILL_D_FLAT;
@@ -343,7 +376,8 @@ static int fill_void(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fill
                      ft_grid *out, ft_grid *sd)
 {
     size_t b[4];
-    grow_box(c, v, COND_WIDTH, b);
+    if (grow_box(c, v, COND_WIDTH, b) != FT_OK)
+        return FT_E_UNSUPPORTED;
     size_t bw = b[2] - b[0] + 1, bh = b[3] - b[1] + 1, n = bw * bh;
     float *z = ft_malloc(n * sizeof *z), *mean = ft_malloc(n * sizeof *mean);
     uint8_t *role = ft_malloc(n);
@@ -364,7 +398,7 @@ static int fill_void(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fill
         if (!s || !ks || !acc || !acc2)
             rc = FT_E_NOMEM;
     }
-    uint64_t vseed = ft_rng_mix(o->seed, (uint64_t)k);
+    uint64_t vseed = ft_rng_mix(o->seed, c->key[k]);
     for (int r = 0; r < R && rc == FT_OK; r++) {
         rc = void_fbm(bw, bh, m, ft_rng_mix(vseed, (uint64_t)r), s);
         if (rc == FT_OK)
@@ -400,6 +434,30 @@ static int fill_void(const fill_ctx *c, size_t k, ft_fill_void *v, const ft_fill
     return rc;
 }
 
+static size_t longer_side(const ft_fill_void *v)
+{
+    return v->x1 - v->x0 > v->y1 - v->y0 ? v->x1 - v->x0 + 1 : v->y1 - v->y0 + 1;
+}
+
+/* 1 if void k is the stripe's to report (its first cell is in the stripe's rows). */
+static int owned(const fill_ctx *c, size_t k)
+{
+    size_t row = (size_t)(c->key[k] / c->nx);
+    return row >= c->own0 && row < c->own1;
+}
+
+/* 1 if void v has a cell in the stripe's rows. */
+static int meets(const fill_ctx *c, const ft_fill_void *v)
+{
+    return c->row0 + v->y0 < c->own1 && c->row0 + v->y1 >= c->own0;
+}
+
+/* 1 if void v touches a window edge row that is not the raster's: it may go on beyond the window. */
+static int cut(const fill_ctx *c, const ft_fill_void *v)
+{
+    return (v->y0 == 0 && c->row0 > 0) || (v->y1 == c->ny - 1 && c->row0 + c->ny < c->gny);
+}
+
 static int fill_all(fill_ctx *c, const ft_fill_opts *o, ft_fill_void *voids, size_t nv, ft_grid *out,
                     ft_grid *sd, ft_fill_result *res)
 {
@@ -408,14 +466,21 @@ static int fill_all(fill_ctx *c, const ft_fill_opts *o, ft_fill_void *voids, siz
     size_t total = 0, done = 0;
     for (size_t k = 0; k < nv; k++) {
         ft_fill_void *v = &voids[k];
-        size_t longer = v->x1 - v->x0 > v->y1 - v->y0 ? v->x1 - v->x0 + 1 : v->y1 - v->y0 + 1;
-        v->filled = o->max_void == 0.0 || (double)longer <= o->max_void;
-        total += v->filled ? v->cells : 0;
+        v->filled = o->max_void == 0.0 || (double)longer_side(v) <= o->max_void;
+        /* a void cut by the window: only one already longer than max_void, and not the stripe's to report,
+         * is known well enough (left nodata) */
+        if (meets(c, v) && cut(c, v) && (v->filled || owned(c, k)))
+            return ft_error(FT_E_UNSUPPORTED, "fill: the void at cells (%zu..%zu, %zu..) goes on beyond the "
+                            "window's rows %zu-%zu", v->x0, v->x1, c->row0 + v->y0, c->row0,
+                            c->row0 + c->ny - 1);
+        total += v->filled && meets(c, v) ? v->cells : 0;
     }
     for (size_t k = 0; k < nv; k++) {
         ft_fill_void *v = &voids[k];
+        if (!meets(c, v))
+            continue;
         if (!v->filled) {
-            res->cells_left += v->cells;
+            res->cells_left += owned(c, k) ? v->cells : 0;
             continue;
         }
         ft_fill_model m;
@@ -424,8 +489,10 @@ static int fill_all(fill_ctx *c, const ft_fill_opts *o, ft_fill_void *voids, siz
             rc = fill_void(c, k, v, &m, o, out, sd);
         if (rc != FT_OK)
             return rc;
-        res->voids_filled++;
-        res->cells_filled += v->cells;
+        if (owned(c, k)) {
+            res->voids_filled++;
+            res->cells_filled += v->cells;
+        }
         done += v->cells;
         rc = ft_progress(o->progress, o->progress_arg, (double)done / (double)(total ? total : 1), "fill");
         if (rc != FT_OK)
@@ -434,8 +501,22 @@ static int fill_all(fill_ctx *c, const ft_fill_opts *o, ft_fill_void *voids, siz
     return FT_OK;
 }
 
-int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
-                    ft_grid **sd_out, ft_fill_result **res)
+/* The result keeps the stripe's voids, their rows in the raster's. */
+static void keep_owned(const fill_ctx *c, ft_fill_result *r)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < r->nvoids; k++)
+        if (owned(c, k)) {
+            r->voids[n] = r->voids[k];
+            r->voids[n].y0 += c->row0;
+            r->voids[n].y1 += c->row0;
+            n++;
+        }
+    r->nvoids = n;
+}
+
+static int fill_window(const ft_grid *dem, const uint8_t *invalid, const size_t rows[4], const ft_fill_opts *opts,
+                       ft_grid **out, ft_grid **sd_out, ft_fill_result **res)
 {
     ft_fill_opts o = FT_FILL_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_fill_opts) != FT_OK)
@@ -457,6 +538,7 @@ int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_op
     uint32_t *label = ft_calloc(n, sizeof *label);
     ft_fill_result *r = ft_calloc(1, sizeof *r);
     ft_grid *g = ft_grid_copy(dem), *sd = NULL;
+    fill_ctx c = {dem, isvoid, label, nx, ny, rows[0], rows[1], rows[2], rows[3], NULL};
     if (isvoid == NULL || label == NULL || r == NULL || g == NULL) {
         rc = FT_E_NOMEM;
         goto done;
@@ -465,7 +547,7 @@ int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_op
         isvoid[i] = (dem->mask && !dem->mask[i]) || !isfinite(dem->z[i]) || (invalid && !invalid[i]);
         nvoid += isvoid[i];
     }
-    if (nvoid == n) {
+    if (nvoid == n && rows[0] == 0 && ny == rows[1]) { /* a stripe may lie in a void */
         rc = ft_error(FT_E_EMPTY, "fill: the DEM (%zu x %zu) has no valid cell", nx, ny);
         goto done;
     }
@@ -486,10 +568,11 @@ int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_op
             goto done;
         memcpy(sd->mask, g->mask, n);
     }
-    fill_ctx c = {dem, isvoid, label, nx, ny};
     rc = label_voids(&c, label, &r->voids, &r->nvoids);
     if (rc == FT_OK)
         rc = fill_all(&c, &o, r->voids, r->nvoids, g, sd, r);
+    if (rc == FT_OK)
+        keep_owned(&c, r);
     if (rc == FT_OK && sd) {
         /* the sd grid's mask follows the output's */
         memcpy(sd->mask, g->mask, n);
@@ -497,6 +580,7 @@ int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_op
 done:
     free(isvoid);
     free(label);
+    free(c.key);
     if (rc != FT_OK) {
         ft_grid_free(g);
         ft_grid_free(sd);
@@ -511,4 +595,24 @@ done:
     else
         ft_fill_result_free(r);
     return FT_OK;
+}
+
+int ft_terrain_fill(const ft_grid *dem, const uint8_t *invalid, const ft_fill_opts *opts, ft_grid **out,
+                    ft_grid **sd_out, ft_fill_result **res)
+{
+    size_t ny = dem != NULL ? dem->ny : 0, rows[4] = {0, ny, 0, ny};
+    return fill_window(dem, invalid, rows, opts, out, sd_out, res);
+}
+
+int ft_terrain_fill_rows(const ft_grid *win, const uint8_t *invalid, size_t row0, size_t ny, size_t own0,
+                         size_t own1, const ft_fill_opts *opts, ft_grid **out, ft_grid **sd_out,
+                         ft_fill_result **res)
+{
+    if (out != NULL)
+        *out = NULL;
+    if (win != NULL && !(row0 + win->ny <= ny && row0 <= own0 && own0 < own1 && own1 <= row0 + win->ny))
+        return ft_error(FT_E_INVALID, "fill: rows %zu-%zu of a window of rows %zu-%zu in %zu rows: not a stripe "
+                        "inside the window inside the raster", own0, own1 - 1, row0, row0 + win->ny - 1, ny);
+    size_t rows[4] = {row0, ny, own0, own1};
+    return fill_window(win, invalid, rows, opts, out, sd_out, res);
 }
