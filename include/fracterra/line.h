@@ -213,7 +213,9 @@ enum {
 
 /** chains[c] holds the base positions and receives the result; raw[c] the raw ones (same vertex count and
  *  closedness). If the base geometry has no contact between segments (but shared end points), neither has
- *  the result. Serial and deterministic. stats (may be NULL) is added to. */
+ *  the result. The moves are visited in a fixed order (chunks of the chains walked in parallel, then the
+ *  moves whose tests reach other chunks, serially): the same result on any thread count. stats (may be NULL)
+ *  is added to. */
 FT_API int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
                         ft_line_guard_stats *stats);
 

@@ -23,6 +23,7 @@
 #include <geos_c.h>
 
 #include "fracterra/contour.h"
+#include "fracterra/line.h"
 
 /* ---- GEOS bridge (geos_bridge.c) ------------------------------------------------------------- */
 
@@ -84,5 +85,15 @@ int ft_contour_positive_region(ft_geos *g, ft_chain *const *rings, size_t nrings
 #define FT_CONTOUR_GRID_EXTENT 1e-12
 #define FT_CONTOUR_GRID_COORD 1e-13
 double ft_contour_grid(ft_chain *const *rings, size_t nrings, double scale);
+
+/* ---- guarded midpoint displacement (guard_displace.c) ----------------------------------------- */
+
+/** rings[0..nr): rings displaced by ft_contour_midpoint_displace from used[0..nr) (the same ring when not
+ *  displaced), each replaced by its guarded version: every added vertex moves from its place on the
+ *  undisplaced ring towards its displaced one only as far as it touches no other segment of the rings nor
+ *  of the rings of below (may be NULL), which stay fixed. A ring whose undisplaced vertices are not found
+ *  in order keeps its displaced positions. stats (may be NULL) is added to. */
+int ft_contour_guard_displaced(ft_chain **rings, const ft_chain *const *used, size_t nr, const ft_polygon_set *below,
+                               ft_line_guard_stats *stats);
 
 #endif /* FRACTERRA_CONTOUR_INTERNAL_H */

@@ -285,27 +285,44 @@ static int displace_ring(generator *gen, const ft_chain *ring, uint64_t stream, 
     return FT_OK;
 }
 
-/* Midpoint displacement of every ring of P (§4.1), cleaned; with thin, each ring is first thinned by
- * Douglas-Peucker at the thinning tolerance (the shrink's joins multiply vertices). */
-static int displaced(generator *gen, const ft_polygon_set *p, int level, int thin, ft_polygon_set **out)
+/* Midpoint displacement of every ring of P (§4.1), guarded against the rings of P and of the level below
+ * (always: mountain has no raw mode), cleaned; with thin, each ring is first thinned by Douglas-Peucker at the
+ * thinning tolerance (the shrink's joins multiply vertices). */
+static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_set *below, int level, int thin,
+                     ft_polygon_set **out)
 {
     size_t nr = set_rings(p);
     rings r = {ft_calloc(nr + 1, sizeof(ft_chain *)), 0};
-    if (r.c == NULL)
+    ft_chain **used = ft_calloc(nr + 1, sizeof *used); /* the rings displaced: thinned copies or NULL */
+    if (r.c == NULL || used == NULL) {
+        free(r.c);
+        free(used);
         return FT_E_NOMEM;
+    }
     int rc = FT_OK;
     for (size_t k = 0; rc == FT_OK && k < nr; k++) {
         const ft_chain *ring = ring_at(p, k);
-        ft_chain *t = NULL;
-        if (thin && (rc = ft_line_simplify(ring, gen->simplify, &t)) == FT_OK)
-            ring = t;
+        if (thin && (rc = ft_line_simplify(ring, gen->simplify, &used[k])) == FT_OK)
+            ring = used[k];
         if (rc == FT_OK)
             rc = displace_ring(gen, ring, stream_id(level, k, OP_MIDPOINT), &r.c[r.n]);
         r.n += rc == FT_OK;
-        ft_chain_free(t);
+    }
+    if (rc == FT_OK) {
+        const ft_chain **ring = ft_calloc(nr + 1, sizeof *ring);
+        if (ring == NULL)
+            rc = FT_E_NOMEM;
+        for (size_t k = 0; rc == FT_OK && k < nr; k++)
+            ring[k] = used[k] != NULL ? used[k] : ring_at(p, k);
+        if (rc == FT_OK)
+            rc = ft_contour_guard_displaced(r.c, ring, r.n, below, NULL);
+        free(ring);
     }
     if (rc == FT_OK)
         rc = clean_rings(gen, &r, out);
+    for (size_t k = 0; k < nr; k++)
+        ft_chain_free(used[k]);
+    free(used);
     rings_free(&r);
     return rc;
 }
@@ -476,7 +493,7 @@ static int next_level(generator *gen, const ft_polygon_set *p, int level, int up
     if (rc == FT_OK && cur->n > 0 && randomize && (rc = randomized(gen, cur, level, &step[1])) == FT_OK)
         cur = step[1];
     if (rc == FT_OK && cur->n > 0 && displace &&
-        (rc = displaced(gen, cur, level, gen->method == FT_MOUNTAIN_MIDPOINT, &step[2])) == FT_OK)
+        (rc = displaced(gen, cur, p, level, gen->method == FT_MOUNTAIN_MIDPOINT, &step[2])) == FT_OK)
         cur = step[2];
     if (rc == FT_OK && cur->n > 0 && gen->method == FT_MOUNTAIN_SIMPLE && (rc = thinned(gen, cur, &step[2])) == FT_OK)
         cur = step[2];

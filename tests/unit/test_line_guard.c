@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <geos_c.h>
+#include <omp.h>
 #include "fracterra/io.h"
 #include "fracterra/line.h"
 
@@ -288,6 +289,49 @@ static void test_no_jump_over_island(void **state)
     }
 }
 
+/* A chain long enough for several chunks of the parallel walk (16,384 blocks of 8 segments each): a spiral
+ * of 1 m steps whose turns are 1.5 m apart, jittered by up to 0.3 m (simple, and every turn lies next to the
+ * one before, so the moves near a chunk's start wait for the serial walk and some moves are refused): one
+ * guarded pass gives the same bits on 1 and 3 threads, and no self-intersection. */
+static void test_thread_count(void **state)
+{
+    (void)state;
+    const size_t n = 160000; /* 320,000 segments after the pass: 3 chunks */
+    ft_chain *c = ft_chain_create(n, 0);
+    ft_rng *r = ft_rng_create(20240501, 7);
+    double theta = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double rad = 100.0 + 1.5 * theta / (2.0 * M_PI), jit = 0.6 * (ft_rng_uniform(r) - 0.5);
+        c->x[i] = (rad + jit) * cos(theta);
+        c->y[i] = (rad + jit) * sin(theta);
+        theta += 1.0 / rad;
+    }
+    c->n = n;
+    ft_rng_free(r);
+    size_t k = 1;
+    assert_int_equal(ft_line_count_self_intersections(c, &k), FT_OK);
+    assert_int_equal(k, 0);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.iterations = 1;
+    int threads = omp_get_max_threads();
+    ft_chain *out[2] = {NULL, NULL};
+    for (int t = 0; t < 2; t++) {
+        omp_set_num_threads(t == 0 ? 1 : 3);
+        assert_int_equal(ft_line_enhance(c, &o, &out[t]), FT_OK);
+    }
+    omp_set_num_threads(threads);
+    assert_int_equal(out[0]->n, 2 * n - 1);
+    assert_int_equal(out[1]->n, out[0]->n);
+    assert_memory_equal(out[0]->x, out[1]->x, out[0]->n * sizeof(double));
+    assert_memory_equal(out[0]->y, out[1]->y, out[0]->n * sizeof(double));
+    k = 1;
+    assert_int_equal(ft_line_count_self_intersections(out[0], &k), FT_OK);
+    assert_int_equal(k, 0);
+    ft_chain_free(out[0]);
+    ft_chain_free(out[1]);
+    ft_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -297,6 +341,7 @@ int main(void)
         cmocka_unit_test(test_contour_stack_disjoint),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_no_jump_over_island),
+        cmocka_unit_test(test_thread_count),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
