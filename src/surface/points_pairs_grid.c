@@ -34,6 +34,7 @@
 #define CELLS_PER_LAG 16
 #define MIN_PER_CELL 16.0
 #define CHUNKS 64
+#define FEW_MAX 8 /* offsets meeting at most this many annuli take a lane screen (vector copies) */
 #define RANGE_SLACK 1e-9 /* relative widening of an offset's range when listing the annuli it meets */
 
 /* The grid's points again, each cell padded with NaN points to a multiple of the screen's lanes. */
@@ -189,18 +190,35 @@ static void cell_pair(const pts_grid *g, size_t a, size_t b, const pts_lags *L, 
 /* One pair of the lane screen that lies in an annulus of [k0, k0 + nk): the exact test of
  * pts_add_binned over those annuli (they hold every annulus the pair can be in). Point i of cell a and
  * point j of cell b, in the padded arrays. */
-static void add_lane_pair(const pts_lags *L, pts_acc *acc, const padded_cells *p, size_t i, size_t j, uint32_t k0,
-                          uint32_t nk)
+static inline __attribute__((always_inline)) void add_lane_pair(const pts_lags *L, pts_acc *acc,
+                                                                 const padded_cells *p, size_t i, size_t j,
+                                                                 uint32_t k0, const uint32_t nk)
 {
     double dx = p->x[j] - p->x[i], dy = p->y[j] - p->y[i], d2 = dx * dx + dy * dy, dz = p->z[j] - p->z[i];
-    for (size_t k = k0; k < (size_t)k0 + nk; k++)
-        if (d2 >= L->lo2[k] && d2 <= L->hi2[k]) {
-            double adz = dz < 0.0 ? -dz : dz;
-            acc[k].a += (pts_i128)(int64_t)(adz * L->qa + 0.5);
-            acc[k].b += (pts_i128)(int64_t)(adz * adz * L->qb + 0.5);
-            acc[k].s += (pts_i128)(int64_t)(sqrt(d2) * L->qs + 0.5);
-            acc[k].c++;
-        }
+    double adz = dz < 0.0 ? -dz : dz;
+    int64_t ta = (int64_t)(adz * L->qa + 0.5), tb = (int64_t)(adz * adz * L->qb + 0.5);
+    int64_t ts = (int64_t)(sqrt(d2) * L->qs + 0.5);
+    /* the annulus (or annuli) holding the pair without a branch: its terms are added, others get 0 */
+    for (uint32_t k = 0; k < nk; k++) {
+        int64_t in = (d2 >= L->lo2[k0 + k]) & (d2 <= L->hi2[k0 + k]);
+        pts_acc *q = &acc[k];
+        q->a += (pts_i128)(ta & -in);
+        q->b += (pts_i128)(tb & -in);
+        q->s += (pts_i128)(ts & -in);
+        q->c += (uint64_t)in;
+    }
+}
+
+/* The candidates cand[0..n) (i << 16 | j, within cells a and b) through the exact test, summed in local
+ * counters (registers for few annuli: no chain through memory from one pair to the next), then added to
+ * the thread's. */
+static inline __attribute__((always_inline)) void add_candidates(const pts_lags *L, pts_acc *acc,
+                                                                  const padded_cells *p, size_t i0, size_t j0,
+                                                                  const uint32_t *cand, size_t n, uint32_t k0,
+                                                                  const uint32_t nk)
+{
+    for (size_t t = 0; t < n; t++)
+        add_lane_pair(L, acc + k0, p, i0 + (cand[t] >> 16), j0 + (cand[t] & 0xffffu), k0, nk);
 }
 
 /* One thread's counters and buffers. */
@@ -208,13 +226,11 @@ typedef struct {
     pts_acc *acc;
     double *d2;     /* cell_pair: a row of squared separations */
     int32_t *bin;   /* and their bins */
-    uint32_t *ci, *cj; /* the float screen's candidate pairs (padded indices) */
+    uint32_t *cand; /* the float screen's candidate pairs (i << 16 | j, indices within their cells) */
 } scratch;
 
 typedef struct pair_job pair_job;
 typedef void (*lane_fn)(const pair_job *, size_t, size_t, const lane_offset *, scratch *);
-
-#define FEW_MAX 8 /* the most annuli any screen takes */
 
 struct pair_job {
     const pts_grid *g;
@@ -246,7 +262,7 @@ static void lane_pair_generic(const pair_job *jb, size_t a, size_t b, const lane
             for (uint32_t k = 0; k < off->nk; k++)
                 in |= (d2 >= lo2[k]) & (d2 <= hi2[k]);
             if (in)
-                add_lane_pair(jb->L, acc, p, i, j, off->k0, off->nk);
+                add_lane_pair(jb->L, acc + off->k0, p, i, j, off->k0, off->nk);
         }
 }
 
@@ -278,7 +294,7 @@ lane_body_avx2(const pair_job *jb, size_t a, size_t b, const lane_offset *off, s
                 in = _mm256_or_pd(in, _mm256_and_pd(_mm256_cmp_pd(d2, lo[k], _CMP_GE_OQ),
                                                     _mm256_cmp_pd(d2, hi[k], _CMP_LE_OQ)));
             for (unsigned bits = (unsigned)_mm256_movemask_pd(in); bits; bits &= bits - 1)
-                add_lane_pair(jb->L, acc, p, i, j + (unsigned)__builtin_ctz(bits), off->k0, nk);
+                add_lane_pair(jb->L, acc + off->k0, p, i, j + (unsigned)__builtin_ctz(bits), off->k0, nk);
         }
     }
 }
@@ -299,26 +315,26 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
     }
     const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m512 ox = _mm512_set1_ps(off->fx), oy = _mm512_set1_ps(off->fy);
-    uint32_t *ci = w->ci, *cj = w->cj;
-    size_t n = 0, i0 = p->start[a], i1 = padded_end(jb, a);
-    for (size_t j = p->start[b]; j < p->start[b + 1]; j += 16) {
+    uint32_t *cand = w->cand;
+    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b];
+    for (size_t j = j0; j < p->start[b + 1]; j += 16) {
         __m512 xb = _mm512_add_ps(_mm512_loadu_ps(p->fx + j), ox);
         __m512 yb = _mm512_add_ps(_mm512_loadu_ps(p->fy + j), oy);
-        __m512i jv = _mm512_add_epi32(_mm512_set1_epi32((int)j), iota);
-        for (size_t i = i0; i < i1; i++) {
-            __m512 dx = _mm512_sub_ps(xb, _mm512_set1_ps(p->fx[i]));
-            __m512 dy = _mm512_sub_ps(yb, _mm512_set1_ps(p->fy[i]));
+        __m512i jv = _mm512_add_epi32(_mm512_set1_epi32((int)(j - j0)), iota);
+        for (size_t i = 0; i < ni; i++) {
+            __m512 dx = _mm512_sub_ps(xb, _mm512_set1_ps(p->fx[i0 + i]));
+            __m512 dy = _mm512_sub_ps(yb, _mm512_set1_ps(p->fy[i0 + i]));
             __m512 d2 = _mm512_fmadd_ps(dx, dx, _mm512_mul_ps(dy, dy));
             __mmask16 in = _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[0], _CMP_GE_OQ), d2, hi[0], _CMP_LE_OQ);
             for (uint32_t k = 1; k < nk; k++)
                 in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
-            _mm512_storeu_si512(cj + n, _mm512_maskz_compress_epi32(in, jv));
-            _mm512_storeu_si512(ci + n, _mm512_set1_epi32((int)i));
+            /* candidate = i << 16 | j, both within their cell (cells hold < 2^16 points here) */
+            __m512i ij = _mm512_or_si512(jv, _mm512_set1_epi32((int)(i << 16)));
+            _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
     }
-    for (size_t t = 0; t < n; t++)
-        add_lane_pair(jb->L, acc, p, ci[t], cj[t], off->k0, nk);
+    add_candidates(jb->L, acc, p, i0, j0, cand, n, off->k0, nk);
 }
 
 #define LANE_FN(isa, n)                                                                                        \
@@ -345,9 +361,9 @@ LANE_TABLE(avx2)
 LANE_TABLE(avx512f)
 #endif
 
-/* The lane screen for this processor (and isa_limit) and npoints points: its functions per annulus count
- * and the padding of its cells. */
-static size_t pick_lanes(pair_job *jb, size_t npoints)
+/* The lane screen for this processor (and isa_limit) and cells of at most `most` points: its functions
+ * per annulus count and the padding of its cells. */
+static size_t pick_lanes(pair_job *jb, size_t most)
 {
     for (int k = 0; k <= FEW_MAX; k++)
         jb->lane[k] = lane_pair_generic;
@@ -355,8 +371,8 @@ static size_t pick_lanes(pair_job *jb, size_t npoints)
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
-    /* the float screen's candidate lists hold padded point indices as 32-bit integers */
-    if (isa_limit == ISA_BEST && npoints < ((size_t)1 << 30) && __builtin_cpu_supports("avx512f")) {
+    /* the float screen's candidates hold indices within cells of at most `most` points as 16 bits */
+    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 16) && __builtin_cpu_supports("avx512f")) {
         t = lanes_avx512f;
         pad = 16;
     } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
@@ -412,8 +428,7 @@ static void scratch_free(scratch *w, int nt)
     for (int t = 0; w != NULL && t < nt; t++) {
         free(w[t].d2);
         free(w[t].bin);
-        free(w[t].ci);
-        free(w[t].cj);
+        free(w[t].cand);
     }
     free(w);
 }
@@ -430,9 +445,8 @@ static scratch *scratch_new(int nt, size_t most, size_t lanes, pts_acc *part, si
         w[t].acc = part + (size_t)t * nlags;
         w[t].d2 = ft_malloc(most * sizeof *w[t].d2);
         w[t].bin = ft_malloc(most * sizeof *w[t].bin);
-        w[t].ci = ft_malloc(pairs * sizeof *w[t].ci);
-        w[t].cj = ft_malloc(pairs * sizeof *w[t].cj);
-        if (w[t].d2 == NULL || w[t].bin == NULL || w[t].ci == NULL || w[t].cj == NULL) {
+        w[t].cand = ft_malloc(pairs * sizeof *w[t].cand);
+        if (w[t].d2 == NULL || w[t].bin == NULL || w[t].cand == NULL) {
             scratch_free(w, nt);
             return NULL;
         }
@@ -446,7 +460,6 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     pts_offsets o = {NULL, NULL, 0};
     padded_cells pad = {0};
     pair_job jb = {0};
-    size_t lanes = pick_lanes(&jb, p->n);
     lane_offset *off = NULL;
     float *flo2 = NULL, *fhi2 = NULL;
     scratch *w = NULL;
@@ -461,6 +474,7 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     for (size_t c = 0; c < ncell; c++)
         if (g.start[c + 1] - g.start[c] > most)
             most = g.start[c + 1] - g.start[c];
+    size_t lanes = pick_lanes(&jb, most);
     rc = (w = scratch_new(nt, most, lanes, part, L->n)) != NULL ? pts_grid_offsets(&g, L, 1, &o) : FT_E_NOMEM;
     if (rc == FT_OK)
         rc = pad_cells(&g, lanes, &pad);
