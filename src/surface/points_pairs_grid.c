@@ -328,7 +328,7 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
             __mmask16 in = _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[0], _CMP_GE_OQ), d2, hi[0], _CMP_LE_OQ);
             for (uint32_t k = 1; k < nk; k++)
                 in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
-            /* candidate = i << 16 | j, both within their cell (cells hold < 2^16 points here) */
+            /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
             __m512i ij = _mm512_or_si512(jv, _mm512_set1_epi32((int)(i << 16)));
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
@@ -371,8 +371,8 @@ static size_t pick_lanes(pair_job *jb, size_t most)
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
-    /* the float screen's candidates hold indices within cells of at most `most` points as 16 bits */
-    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 16) && __builtin_cpu_supports("avx512f")) {
+    /* the float screen's candidates hold indices within cells of at most `most` points as 15 bits */
+    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f")) {
         t = lanes_avx512f;
         pad = 16;
     } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
