@@ -209,16 +209,23 @@ static inline __attribute__((always_inline)) void add_lane_pair(const pts_lags *
     }
 }
 
-/* The candidates cand[0..n) (i << 16 | j, within cells a and b) through the exact test, summed in local
- * counters (registers for few annuli: no chain through memory from one pair to the next), then added to
- * the thread's. */
-static inline __attribute__((always_inline)) void add_candidates(const pts_lags *L, pts_acc *acc,
-                                                                  const padded_cells *p, size_t i0, size_t j0,
-                                                                  const uint32_t *cand, size_t n, uint32_t k0,
-                                                                  const uint32_t nk)
+/* The float screen's candidates cand[0..n) (i << 16 | j, within cells a and b) through the exact test.
+ * Out of line and compiled for the base instruction set, not the screen's: some compilers take AVX-512 to
+ * imply FMA and would fuse dx * dx + dy * dy, changing the rounding of d². */
+#define ADD_CANDIDATES(m)                                                                                      \
+    for (size_t t = 0; t < n; t++)                                                                             \
+        add_lane_pair(L, acc + k0, p, i0 + (cand[t] >> 16), j0 + (cand[t] & 0xffffu), k0, m);                 \
+    return;
+__attribute__((noinline)) static void add_candidates(const pts_lags *L, pts_acc *acc, const padded_cells *p,
+                                                     size_t i0, size_t j0, const uint32_t *cand, size_t n,
+                                                     uint32_t k0, uint32_t nk)
 {
-    for (size_t t = 0; t < n; t++)
-        add_lane_pair(L, acc + k0, p, i0 + (cand[t] >> 16), j0 + (cand[t] & 0xffffu), k0, nk);
+    switch (nk) {
+    case 1: ADD_CANDIDATES(1)
+    case 2: ADD_CANDIDATES(2)
+    case 3: ADD_CANDIDATES(3)
+    default: ADD_CANDIDATES(nk)
+    }
 }
 
 /* One thread's counters and buffers. */
