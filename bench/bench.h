@@ -41,6 +41,8 @@ typedef struct ft_bench_case {
     int (*peer_prepare)(struct ft_bench_case *c);
     int (*peer_run)(struct ft_bench_case *c);
     const char *peer_label;
+    int min_repeat; /**< at least this many repetitions of ours and of the peer (0: the --repeat count),
+                         for a row whose spread matters (each row prints min, median and max) */
 } ft_bench_case;
 
 typedef struct {

@@ -656,6 +656,8 @@ static void run_workload(const ft_bench_workload *w, int repeat, int peers, cons
         free_case(&c);
         return;
     }
+    if (c.min_repeat > repeat) /* a row whose spread matters */
+        repeat = c.min_repeat < MAX_REPEAT ? c.min_repeat : MAX_REPEAT;
     if (w->run == NULL && c.argv[0] == NULL) {
         snprintf(res->err, sizeof res->err, "setup gave neither a run function nor a command");
     } else {
@@ -796,6 +798,22 @@ static void print_header(const header_info *h)
     fflush(stdout);
 }
 
+static double min_of(const double *v, int n)
+{
+    double m = v[0];
+    for (int i = 1; i < n; i++)
+        m = v[i] < m ? v[i] : m;
+    return m;
+}
+
+static double max_of(const double *v, int n)
+{
+    double m = v[0];
+    for (int i = 1; i < n; i++)
+        m = v[i] > m ? v[i] : m;
+    return m;
+}
+
 static void print_row(const wl_result *r)
 {
     char tp[64] = "";
@@ -812,6 +830,14 @@ static void print_row(const wl_result *r)
     else
         printf("%10s %10s %9s\n", "-", "-", "-");
     printf("    ours: %s\n", r->command[0] ? r->command : r->w->summary);
+    if (r->ok && r->ntimes > 1) {
+        printf("    spread: ours min %.3f, median %.3f, max %.3f s over %d runs", min_of(r->times, r->ntimes),
+               r->median_s, max_of(r->times, r->ntimes), r->ntimes);
+        if (r->peer == PEER_OK && r->npeer > 1)
+            printf("; peer min %.3f, median %.3f, max %.3f s", min_of(r->peer_times, r->npeer), r->peer_median_s,
+                   max_of(r->peer_times, r->npeer));
+        printf("\n");
+    }
     if (!r->ok)
         printf("    error: %s\n", r->err);
     switch (r->peer) {
@@ -877,6 +903,11 @@ static void print_json(const header_info *h, const wl_result *res, size_t n)
         json_object_object_add(o, "times_s", json_times(r->times, r->ntimes));
         if (r->ok) {
             json_object_object_add(o, "median_s", json_object_new_double(r->median_s));
+            if (r->ntimes > 0) {
+                json_object_object_add(o, "min_s", json_object_new_double(min_of(r->times, r->ntimes)));
+                json_object_object_add(o, "max_s", json_object_new_double(max_of(r->times, r->ntimes)));
+                json_object_object_add(o, "runs", json_object_new_int(r->ntimes));
+            }
             json_object_object_add(o, "throughput",
                                    json_object_new_double(r->median_s > 0 ? r->work / r->median_s : 0.0));
         }

@@ -111,6 +111,9 @@ void pts_offsets_free(pts_offsets *o);
 int pts_pairs_exact(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progress_fn fn, void *arg);
 /* Every pair within the largest annulus through the grid (points_pairs_grid.c). */
 int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progress_fn fn, void *arg);
+/* Tests only: the screens pts_pairs_grid may use: 0 any (AVX-512 float where the processor has it),
+ * 1 at most AVX2 (double), 2 none (plain C). */
+void pts_pairs_grid_isa(int limit);
 
 /* Weighted sums of sample mode, per lag (points_pairs_sample.c): with w = the candidate count of the
  * drawn pair's first point, a = |Δz|: Σw, Σw·a, Σw·a², Σw·d, and for the standard errors Σw²·a^k,

@@ -10,6 +10,15 @@
  * points within max lag + ε of a point. OpenMP over cells, one set of counters per thread, merged as
  * integers (order-free, so the result does not depend on the thread count).
  *
+ * Most pairs lie far apart, where an offset's range of separations meets one to three annuli (they are
+ * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
+ * annuli, four pairs per instruction: d² = dx² + dy² (rounded as the scalar code rounds it: no fused
+ * multiply-add), compared with each annulus' bounds; the few pairs inside one go through the scalar test
+ * and the integer sums. Cells are copied with their point counts padded to a multiple of four with NaN
+ * coordinates (a NaN d² lies in no annulus). Offsets near the origin, meeting more annuli, keep the
+ * lookup-table screen. A pair meets the same annuli whichever screen runs, so the counters do not depend
+ * on it (tests/unit/test_surface_points.c compares both with the exact enumeration).
+ *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include <math.h>
@@ -25,6 +34,127 @@
 #define CELLS_PER_LAG 16
 #define MIN_PER_CELL 16.0
 #define CHUNKS 64
+#define FEW_MAX 8 /* offsets meeting at most this many annuli take a lane screen (vector copies) */
+#define RANGE_SLACK 1e-9 /* relative widening of an offset's range when listing the annuli it meets */
+
+/* The grid's points again, each cell padded with NaN points to a multiple of the screen's lanes. */
+typedef struct {
+    size_t *start;  /* ncell + 1 offsets */
+    double *x, *y, *z;
+    float *fx, *fy; /* x, y less the cell's corner, as floats (the float screen only) */
+    size_t lanes;   /* cells padded to a multiple of this */
+} padded_cells;
+
+/* An offset with the consecutive annuli [k0, k0 + nk) its range of separations meets, and its
+ * displacement as floats. */
+typedef struct {
+    long ox, oy;
+    uint32_t k0, nk;
+    float fx, fy;
+} lane_offset;
+
+/* The screens this run may use (tests only: pts_pairs_grid_isa). */
+enum { ISA_BEST = 0, ISA_AVX2 = 1, ISA_GENERIC = 2 };
+static int isa_limit;
+
+void pts_pairs_grid_isa(int limit)
+{
+    isa_limit = limit;
+}
+
+static int pad_cells(const pts_grid *g, size_t lanes, padded_cells *p)
+{
+    size_t ncell = g->nx * g->ny;
+    p->lanes = lanes;
+    p->start = ft_malloc((ncell + 1) * sizeof *p->start);
+    if (p->start == NULL)
+        return FT_E_NOMEM;
+    p->start[0] = 0;
+    for (size_t c = 0; c < ncell; c++) {
+        size_t n = g->start[c + 1] - g->start[c];
+        p->start[c + 1] = p->start[c] + (n + lanes - 1) / lanes * lanes;
+    }
+    size_t total = p->start[ncell];
+    p->x = ft_malloc((total ? total : 1) * sizeof *p->x);
+    p->y = ft_malloc((total ? total : 1) * sizeof *p->y);
+    p->z = ft_malloc((total ? total : 1) * sizeof *p->z);
+    p->fx = ft_malloc((total ? total : 1) * sizeof *p->fx);
+    p->fy = ft_malloc((total ? total : 1) * sizeof *p->fy);
+    if (p->x == NULL || p->y == NULL || p->z == NULL || p->fx == NULL || p->fy == NULL)
+        return FT_E_NOMEM;
+    for (size_t c = 0; c < ncell; c++) {
+        size_t at = p->start[c];
+        double cx = g->x0 + (double)(c % g->nx) * g->cell, cy = g->y0 + (double)(c / g->nx) * g->cell;
+        for (size_t i = g->start[c]; i < g->start[c + 1]; i++, at++) {
+            p->x[at] = g->x[i];
+            p->y[at] = g->y[i];
+            p->z[at] = g->z[i];
+            p->fx[at] = (float)(g->x[i] - cx);
+            p->fy[at] = (float)(g->y[i] - cy);
+        }
+        for (; at < p->start[c + 1]; at++) {
+            p->x[at] = p->y[at] = p->z[at] = NAN;
+            p->fx[at] = p->fy[at] = NAN;
+        }
+    }
+    return FT_OK;
+}
+
+static void padded_free(padded_cells *p)
+{
+    free(p->start);
+    free(p->x);
+    free(p->y);
+    free(p->z);
+    free(p->fx);
+    free(p->fy);
+}
+
+/* The offsets of o with the annuli each meets. */
+static lane_offset *lane_offsets(const pts_grid *g, const pts_offsets *o, const pts_lags *L)
+{
+    lane_offset *lo = ft_malloc((o->n ? o->n : 1) * sizeof *lo);
+    if (lo == NULL)
+        return NULL;
+    for (size_t k = 0; k < o->n; k++) {
+        double dmin2, dmax2;
+        pts_grid_offset_range(g, o->ox[k], o->oy[k], &dmin2, &dmax2);
+        dmin2 *= 1.0 - RANGE_SLACK;
+        dmax2 *= 1.0 + RANGE_SLACK;
+        size_t first = 0;
+        while (first < L->n && L->hi2[first] < dmin2)
+            first++;
+        size_t end = first;
+        while (end < L->n && L->lo2[end] <= dmax2)
+            end++;
+        lo[k] = (lane_offset){o->ox[k], o->oy[k], (uint32_t)first, (uint32_t)(end - first),
+                              (float)((double)o->ox[k] * g->cell), (float)((double)o->oy[k] * g->cell)};
+    }
+    return lo;
+}
+
+/* The annuli widened for the float screen, whose d² (from coordinates relative to their cell's corner,
+ * rounded to float, and the offset's float displacement) is within e = 2^-19 (max lag + ε + 2 cells) of
+ * the true separation for any pair within max lag + ε (each of the half-dozen roundings is below 2^-24 of
+ * that), plus the double rounding of the cell corners, 2^-48 of the largest coordinate. A pair inside an
+ * annulus is therefore always inside its widened copy; the exact test follows. */
+static int float_annuli(const pts_grid *g, const pts_lags *L, float **lo2, float **hi2)
+{
+    double big = fmax(fmax(fabs(g->x0), fabs(g->y0)),
+                      fmax(fabs(g->x0 + (double)g->nx * g->cell), fabs(g->y0 + (double)g->ny * g->cell)));
+    double e = ldexp(L->rmax + 2.0 * g->cell, -19) + ldexp(big, -48);
+    *lo2 = ft_malloc(L->n * sizeof **lo2);
+    *hi2 = ft_malloc(L->n * sizeof **hi2);
+    if (*lo2 == NULL || *hi2 == NULL)
+        return FT_E_NOMEM;
+    for (size_t k = 0; k < L->n; k++) {
+        double lo = sqrt(L->lo2[k]) - e, hi = sqrt(L->hi2[k]) + e;
+        lo = lo > 0.0 ? lo : 0.0;
+        (*lo2)[k] = (float)(lo * lo * (1.0 - 0x1p-20));
+        (*hi2)[k] = (float)(hi * hi * (1.0 + 0x1p-20));
+    }
+    return FT_OK;
+}
 
 static void cell_self(const pts_grid *g, size_t c, const pts_lags *L, pts_acc *acc)
 {
@@ -57,19 +187,235 @@ static void cell_pair(const pts_grid *g, size_t a, size_t b, const pts_lags *L, 
     }
 }
 
-static void one_cell(const pts_grid *g, size_t c, const pts_offsets *o, const pts_lags *L, pts_acc *acc, double *d2,
-                     int32_t *bin)
+/* One pair of the lane screen that lies in an annulus of [k0, k0 + nk): the exact test of
+ * pts_add_binned over those annuli (they hold every annulus the pair can be in). Point i of cell a and
+ * point j of cell b, in the padded arrays. */
+static inline __attribute__((always_inline)) void add_lane_pair(const pts_lags *L, pts_acc *acc,
+                                                                 const padded_cells *p, size_t i, size_t j,
+                                                                 uint32_t k0, const uint32_t nk)
 {
+    double dx = p->x[j] - p->x[i], dy = p->y[j] - p->y[i], d2 = dx * dx + dy * dy, dz = p->z[j] - p->z[i];
+    double adz = dz < 0.0 ? -dz : dz;
+    int64_t ta = (int64_t)(adz * L->qa + 0.5), tb = (int64_t)(adz * adz * L->qb + 0.5);
+    int64_t ts = (int64_t)(sqrt(d2) * L->qs + 0.5);
+    /* the annulus (or annuli) holding the pair without a branch: its terms are added, others get 0 */
+    for (uint32_t k = 0; k < nk; k++) {
+        int64_t in = (d2 >= L->lo2[k0 + k]) & (d2 <= L->hi2[k0 + k]);
+        pts_acc *q = &acc[k];
+        q->a += (pts_i128)(ta & -in);
+        q->b += (pts_i128)(tb & -in);
+        q->s += (pts_i128)(ts & -in);
+        q->c += (uint64_t)in;
+    }
+}
+
+/* The float screen's candidates cand[0..n) (i << 16 | j, within cells a and b) through the exact test.
+ * Out of line and compiled for the base instruction set, not the screen's: some compilers take AVX-512 to
+ * imply FMA and would fuse dx * dx + dy * dy, changing the rounding of d². */
+#define ADD_CANDIDATES(m)                                                                                      \
+    for (size_t t = 0; t < n; t++)                                                                             \
+        add_lane_pair(L, acc + k0, p, i0 + (cand[t] >> 16), j0 + (cand[t] & 0xffffu), k0, m);                 \
+    return;
+__attribute__((noinline)) static void add_candidates(const pts_lags *L, pts_acc *acc, const padded_cells *p,
+                                                     size_t i0, size_t j0, const uint32_t *cand, size_t n,
+                                                     uint32_t k0, uint32_t nk)
+{
+    switch (nk) {
+    case 1: ADD_CANDIDATES(1)
+    case 2: ADD_CANDIDATES(2)
+    case 3: ADD_CANDIDATES(3)
+    default: ADD_CANDIDATES(nk)
+    }
+}
+
+/* One thread's counters and buffers. */
+typedef struct {
+    pts_acc *acc;
+    double *d2;     /* cell_pair: a row of squared separations */
+    int32_t *bin;   /* and their bins */
+    uint32_t *cand; /* the float screen's candidate pairs (i << 16 | j, indices within their cells) */
+} scratch;
+
+typedef struct pair_job pair_job;
+typedef void (*lane_fn)(const pair_job *, size_t, size_t, const lane_offset *, scratch *);
+
+struct pair_job {
+    const pts_grid *g;
+    const padded_cells *p;
+    const lane_offset *off;
+    size_t noff;
+    const pts_lags *L;
+    const float *flo2, *fhi2; /* the float screen's annuli */
+    uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
+    lane_fn lane[FEW_MAX + 1];
+};
+
+/* The real points of cell c in the padded arrays. */
+static inline size_t padded_end(const pair_job *jb, size_t c)
+{
+    return jb->p->start[c] + (jb->g->start[c + 1] - jb->g->start[c]);
+}
+
+/* The lane screen without vector instructions. */
+static void lane_pair_generic(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w)
+{
+    pts_acc *acc = w->acc;
+    const padded_cells *p = jb->p;
+    const double *lo2 = jb->L->lo2 + off->k0, *hi2 = jb->L->hi2 + off->k0;
+    for (size_t i = p->start[a]; i < padded_end(jb, a); i++)
+        for (size_t j = p->start[b]; j < padded_end(jb, b); j++) {
+            double dx = p->x[j] - p->x[i], dy = p->y[j] - p->y[i], d2 = dx * dx + dy * dy;
+            int in = 0;
+            for (uint32_t k = 0; k < off->nk; k++)
+                in |= (d2 >= lo2[k]) & (d2 <= hi2[k]);
+            if (in)
+                add_lane_pair(jb->L, acc + off->k0, p, i, j, off->k0, off->nk);
+        }
+}
+
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define HAVE_X86_COPIES 1
+#include <immintrin.h>
+
+/* The lane screen, four pairs per AVX2 instruction in double precision (no FMA: d² is rounded as in
+ * lane_pair_generic), nk annuli (a constant once inlined). */
+__attribute__((target("avx2"))) static inline __attribute__((always_inline)) void
+lane_body_avx2(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
+{
+    pts_acc *acc = w->acc;
+    const padded_cells *p = jb->p;
+    __m256d lo[FEW_MAX], hi[FEW_MAX];
+    for (uint32_t k = 0; k < nk; k++) {
+        lo[k] = _mm256_set1_pd(jb->L->lo2[off->k0 + k]);
+        hi[k] = _mm256_set1_pd(jb->L->hi2[off->k0 + k]);
+    }
+    size_t j0 = p->start[b], j1 = p->start[b + 1];
+    for (size_t i = p->start[a]; i < padded_end(jb, a); i++) {
+        __m256d vx = _mm256_set1_pd(p->x[i]), vy = _mm256_set1_pd(p->y[i]);
+        for (size_t j = j0; j < j1; j += 4) {
+            __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(p->x + j), vx);
+            __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(p->y + j), vy);
+            __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+            __m256d in = _mm256_and_pd(_mm256_cmp_pd(d2, lo[0], _CMP_GE_OQ), _mm256_cmp_pd(d2, hi[0], _CMP_LE_OQ));
+            for (uint32_t k = 1; k < nk; k++)
+                in = _mm256_or_pd(in, _mm256_and_pd(_mm256_cmp_pd(d2, lo[k], _CMP_GE_OQ),
+                                                    _mm256_cmp_pd(d2, hi[k], _CMP_LE_OQ)));
+            for (unsigned bits = (unsigned)_mm256_movemask_pd(in); bits; bits &= bits - 1)
+                add_lane_pair(jb->L, acc + off->k0, p, i, j + (unsigned)__builtin_ctz(bits), off->k0, nk);
+        }
+    }
+}
+
+/* The float screen, sixteen pairs per AVX-512 instruction, against the widened annuli (float_annuli):
+ * each sixteen points of cell b (moved by the offset) against every point of cell a in turn, the indices
+ * of the pairs it keeps packed into the thread's candidate list, which then goes through the exact test
+ * (no branch per pair in the screen). */
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) void
+lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
+{
+    pts_acc *acc = w->acc;
+    const padded_cells *p = jb->p;
+    __m512 lo[FEW_MAX], hi[FEW_MAX];
+    for (uint32_t k = 0; k < nk; k++) {
+        lo[k] = _mm512_set1_ps(jb->flo2[off->k0 + k]);
+        hi[k] = _mm512_set1_ps(jb->fhi2[off->k0 + k]);
+    }
+    const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512 ox = _mm512_set1_ps(off->fx), oy = _mm512_set1_ps(off->fy);
+    uint32_t *cand = w->cand;
+    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b];
+    for (size_t j = j0; j < p->start[b + 1]; j += 16) {
+        __m512 xb = _mm512_add_ps(_mm512_loadu_ps(p->fx + j), ox);
+        __m512 yb = _mm512_add_ps(_mm512_loadu_ps(p->fy + j), oy);
+        __m512i jv = _mm512_add_epi32(_mm512_set1_epi32((int)(j - j0)), iota);
+        for (size_t i = 0; i < ni; i++) {
+            __m512 dx = _mm512_sub_ps(xb, _mm512_set1_ps(p->fx[i0 + i]));
+            __m512 dy = _mm512_sub_ps(yb, _mm512_set1_ps(p->fy[i0 + i]));
+            __m512 d2 = _mm512_fmadd_ps(dx, dx, _mm512_mul_ps(dy, dy));
+            __mmask16 in = _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[0], _CMP_GE_OQ), d2, hi[0], _CMP_LE_OQ);
+            for (uint32_t k = 1; k < nk; k++)
+                in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
+            /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
+            __m512i ij = _mm512_or_si512(jv, _mm512_set1_epi32((int)(i << 16)));
+            _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
+            n += (size_t)__builtin_popcount(in);
+        }
+    }
+    add_candidates(jb->L, acc, p, i0, j0, cand, n, off->k0, nk);
+}
+
+#define LANE_FN(isa, n)                                                                                        \
+    __attribute__((target(#isa))) static void lane_pair_##isa##_##n(const pair_job *jb, size_t a, size_t b,   \
+                                                                    const lane_offset *off, scratch *w)         \
+    {                                                                                                          \
+        lane_body_##isa(jb, a, b, off, w, n);                                                                \
+    }
+#define LANE_TABLE(isa)                                                                                        \
+    LANE_FN(isa, 1)                                                                                            \
+    LANE_FN(isa, 2)                                                                                            \
+    LANE_FN(isa, 3)                                                                                            \
+    LANE_FN(isa, 4)                                                                                            \
+    LANE_FN(isa, 5)                                                                                            \
+    LANE_FN(isa, 6)                                                                                            \
+    LANE_FN(isa, 7)                                                                                            \
+    LANE_FN(isa, 8)                                                                                            \
+    static const lane_fn lanes_##isa[FEW_MAX + 1] = {NULL,                 lane_pair_##isa##_1,                \
+                                                     lane_pair_##isa##_2,  lane_pair_##isa##_3,                \
+                                                     lane_pair_##isa##_4,  lane_pair_##isa##_5,                \
+                                                     lane_pair_##isa##_6,  lane_pair_##isa##_7,                \
+                                                     lane_pair_##isa##_8};
+LANE_TABLE(avx2)
+LANE_TABLE(avx512f)
+#endif
+
+/* The lane screen for this processor (and isa_limit) and cells of at most `most` points: its functions
+ * per annulus count and the padding of its cells. */
+static size_t pick_lanes(pair_job *jb, size_t most)
+{
+    for (int k = 0; k <= FEW_MAX; k++)
+        jb->lane[k] = lane_pair_generic;
+    jb->few = 4;
+#ifdef HAVE_X86_COPIES
+    const lane_fn *t = NULL;
+    size_t pad = 1;
+    /* the float screen's candidates hold indices within cells of at most `most` points as 15 bits */
+    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f")) {
+        t = lanes_avx512f;
+        pad = 16;
+    } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
+        t = lanes_avx2;
+        pad = 4;
+    }
+    if (t != NULL) {
+        for (int k = 1; k <= FEW_MAX; k++)
+            jb->lane[k] = t[k];
+        jb->few = FEW_MAX;
+        return pad;
+    }
+#endif
+    return 1;
+}
+
+static void one_cell(const pair_job *jb, size_t c, scratch *w)
+{
+    const pts_grid *g = jb->g;
     if (g->start[c] == g->start[c + 1])
         return;
     long cx = (long)(c % g->nx), cy = (long)(c / g->nx);
-    if (pts_lags_meet(L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6)))
-        cell_self(g, c, L, acc);
-    for (size_t k = 0; k < o->n; k++) {
-        long bx = cx + o->ox[k], by = cy + o->oy[k];
+    if (pts_lags_meet(jb->L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6)))
+        cell_self(g, c, jb->L, w->acc);
+    for (size_t k = 0; k < jb->noff; k++) {
+        const lane_offset *off = &jb->off[k];
+        long bx = cx + off->ox, by = cy + off->oy;
         if (bx < 0 || by < 0 || bx >= (long)g->nx || by >= (long)g->ny)
             continue;
-        cell_pair(g, c, (size_t)by * g->nx + (size_t)bx, L, acc, d2, bin);
+        size_t b = (size_t)by * g->nx + (size_t)bx;
+        if (g->start[b] == g->start[b + 1])
+            continue;
+        if (off->nk <= jb->few)
+            jb->lane[off->nk](jb, c, b, off, w);
+        else
+            cell_pair(g, c, b, jb->L, w->acc, w->d2, w->bin);
     }
 }
 
@@ -84,10 +430,46 @@ static double cell_side(const ft_points *p, const pts_lags *L)
     return c > dense ? c : fmin(dense, L->rmax);
 }
 
+static void scratch_free(scratch *w, int nt)
+{
+    for (int t = 0; w != NULL && t < nt; t++) {
+        free(w[t].d2);
+        free(w[t].bin);
+        free(w[t].cand);
+    }
+    free(w);
+}
+
+/* nt threads' buffers: rows of `most` points, candidate lists of most x (most padded to `lanes`) pairs
+ * plus the sixteen a packed store may write past the last. */
+static scratch *scratch_new(int nt, size_t most, size_t lanes, pts_acc *part, size_t nlags)
+{
+    scratch *w = ft_calloc((size_t)nt, sizeof *w);
+    if (w == NULL)
+        return NULL;
+    size_t pairs = most * ((most + lanes - 1) / lanes * lanes) + 16;
+    for (int t = 0; t < nt; t++) {
+        w[t].acc = part + (size_t)t * nlags;
+        w[t].d2 = ft_malloc(most * sizeof *w[t].d2);
+        w[t].bin = ft_malloc(most * sizeof *w[t].bin);
+        w[t].cand = ft_malloc(pairs * sizeof *w[t].cand);
+        if (w[t].d2 == NULL || w[t].bin == NULL || w[t].cand == NULL) {
+            scratch_free(w, nt);
+            return NULL;
+        }
+    }
+    return w;
+}
+
 int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progress_fn fn, void *arg)
 {
     pts_grid g;
     pts_offsets o = {NULL, NULL, 0};
+    padded_cells pad = {0};
+    pair_job jb = {0};
+    lane_offset *off = NULL;
+    float *flo2 = NULL, *fhi2 = NULL;
+    scratch *w = NULL;
     int nt = omp_get_max_threads();
     pts_acc *part = ft_calloc((size_t)nt * L->n, sizeof *part);
     int rc = part ? pts_grid_build(&g, p, cell_side(p, L)) : FT_E_NOMEM;
@@ -99,23 +481,36 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     for (size_t c = 0; c < ncell; c++)
         if (g.start[c + 1] - g.start[c] > most)
             most = g.start[c + 1] - g.start[c];
-    double *buf = ft_malloc((size_t)nt * most * sizeof *buf);
-    int32_t *bins = ft_malloc((size_t)nt * most * sizeof *bins);
-    rc = buf && bins ? pts_grid_offsets(&g, L, 1, &o) : FT_E_NOMEM;
+    size_t lanes = pick_lanes(&jb, most);
+    rc = (w = scratch_new(nt, most, lanes, part, L->n)) != NULL ? pts_grid_offsets(&g, L, 1, &o) : FT_E_NOMEM;
+    if (rc == FT_OK)
+        rc = pad_cells(&g, lanes, &pad);
+    if (rc == FT_OK)
+        rc = float_annuli(&g, L, &flo2, &fhi2);
+    if (rc == FT_OK && (off = lane_offsets(&g, &o, L)) == NULL)
+        rc = FT_E_NOMEM;
+    jb.g = &g;
+    jb.p = &pad;
+    jb.off = off;
+    jb.noff = o.n;
+    jb.L = L;
+    jb.flo2 = flo2;
+    jb.fhi2 = fhi2;
     for (size_t chunk = 0; rc == FT_OK && chunk < CHUNKS; chunk++) {
         size_t c0 = ncell * chunk / CHUNKS, c1 = ncell * (chunk + 1) / CHUNKS;
 #pragma omp parallel for schedule(dynamic, 16)
-        for (size_t c = c0; c < c1; c++) {
-            size_t t = (size_t)omp_get_thread_num();
-            one_cell(&g, c, &o, L, part + t * L->n, buf + t * most, bins + t * most);
-        }
+        for (size_t c = c0; c < c1; c++)
+            one_cell(&jb, c, &w[omp_get_thread_num()]);
         rc = ft_progress(fn, arg, (double)(chunk + 1) / CHUNKS, "pairs");
     }
     for (int t = 0; rc == FT_OK && t < nt; t++)
         pts_acc_merge(acc, part + (size_t)t * L->n, L->n);
     pts_offsets_free(&o);
-    free(buf);
-    free(bins);
+    padded_free(&pad);
+    scratch_free(w, nt);
+    free(off);
+    free(flo2);
+    free(fhi2);
     free(part);
     pts_grid_free(&g);
     return rc;

@@ -1,6 +1,7 @@
 /* fracterra — unit tests of the scattered-point estimator (src/surface/points_*.c, Arakawa & Krotkov §2.4):
  * the grid and the exact O(N²) enumeration give bit-identical counters A, B, C on 20,000 irregular points,
- * and so do 1 and 2 threads; a plane gives D = 2 with both methods; hand-counted pairs on a small lattice;
+ * and so do 1 and 2 threads and each pair screen (AVX-512 floats, AVX2 doubles, plain C); a plane gives
+ * D = 2 with both methods; hand-counted pairs on a small lattice;
  * lags below min_pairs are dropped and reported (and too few lags is a clear error); sample mode is
  * reproducible per seed, differs between seeds and agrees with all pairs within its standard error; the
  * noise model moves D back towards the noise-free value; bad input is refused with the value named.
@@ -19,6 +20,7 @@
 #include "fracterra/surface.h"
 #include "fracterra/terrain.h"
 #include "ft_test_assert.h"
+#include "surface/points_internal.h"
 
 static void expect_ok(int rc)
 {
@@ -89,6 +91,26 @@ static void test_exact_equals_grid(void **state)
     omp_set_num_threads(nt);
     assert_same_counters(g, one);
     ft_points_counters_free(one);
+    /* the same through every pair screen this processor has: AVX2 doubles, plain C */
+    for (int isa = 1; isa <= 2; isa++) {
+        pts_pairs_grid_isa(isa);
+        ft_points_counters *s = counters(p, 0);
+        pts_pairs_grid_isa(0);
+        assert_same_counters(s, e);
+        ft_points_counters_free(s);
+    }
+    ft_points_counters_free(g);
+    ft_points_counters_free(e);
+    /* far from the origin (projected coordinates: the float screen works relative to each cell), on the
+     * first 6,000 points (a band) to keep the exact enumeration short */
+    p->n = 6000;
+    for (size_t i = 0; i < p->n; i++) {
+        p->x[i] += 500000.25;
+        p->y[i] += 5000000.125;
+    }
+    g = counters(p, 0);
+    e = counters(p, 1);
+    assert_same_counters(g, e);
     ft_points_counters_free(g);
     ft_points_counters_free(e);
     ft_points_free(p);
