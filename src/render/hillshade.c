@@ -100,8 +100,7 @@ static int gather(const ft_grid *g, size_t col, size_t row, double w[9])
 }
 
 typedef struct {
-    double ewres, nsres;     /* signed so that dx runs east and dy runs south */
-    double z_factor;
+    double kx, ky;           /* z_factor / (8 x cell size), signed so that x runs east and y runs south */
     double cos_zen, sin_zen; /* of the zenith angle */
     double cos_az, sin_az;   /* of the light direction counter-clockwise from east */
 } shade_params;
@@ -110,13 +109,34 @@ typedef struct {
  * and aspect = atan2(dz/dy, -dz/dx), cos(incidence) = cos(zen) cos(slope) + sin(zen) sin(slope)
  * cos(az - aspect) = (cos(zen) + sin(zen) (zy sin(az) - zx cos(az))) / sqrt(1 + zx^2 + zy^2), where
  * zx, zy are the gradient times z_factor: one square root per cell and no trigonometry. */
-static double shade_window(const double w[9], const shade_params *p)
+static inline double shade_window(const double w[9], const shade_params *p)
 {
-    double dzdx = ((w[2] + 2.0 * w[5] + w[8]) - (w[0] + 2.0 * w[3] + w[6])) / (8.0 * p->ewres);
-    double dzdy = ((w[6] + 2.0 * w[7] + w[8]) - (w[0] + 2.0 * w[1] + w[2])) / (8.0 * p->nsres);
-    double zx = p->z_factor * dzdx, zy = p->z_factor * dzdy;
+    double zx = ((w[2] + 2.0 * w[5] + w[8]) - (w[0] + 2.0 * w[3] + w[6])) * p->kx;
+    double zy = ((w[6] + 2.0 * w[7] + w[8]) - (w[0] + 2.0 * w[1] + w[2])) * p->ky;
     double v = (p->cos_zen + p->sin_zen * (zy * p->sin_az - zx * p->cos_az)) / sqrt(1.0 + zx * zx + zy * zy);
     return v > 0.0 ? 255.0 * v : 0.0;
+}
+
+/* The window of an inner cell of a grid without a mask, read straight from the rows above, at and below
+ * (the same values, and so the same shade, as gather gives). 0 if the centre is not finite. */
+static int gather_inner(const float *up, const float *mid, const float *dn, double w[9])
+{
+    w[0] = up[-1], w[1] = up[0], w[2] = up[1];
+    w[3] = mid[-1], w[4] = mid[0], w[5] = mid[1];
+    w[6] = dn[-1], w[7] = dn[0], w[8] = dn[1];
+    if (!isfinite(w[4]))
+        return 0;
+    for (int k = 0; k < 9; k++)
+        if (!isfinite(w[k]))
+            w[k] = w[4];
+    return 1;
+}
+
+static void put(ft_grid *hs, size_t k, double v)
+{
+    int ok = isfinite(v);
+    hs->mask[k] = (uint8_t)ok;
+    hs->z[k] = ok ? (float)v : (float)FT_HS_NODATA;
 }
 
 static void shade_params_init(const ft_grid *dem, const ft_hillshade_opts *o, shade_params *p)
@@ -125,13 +145,31 @@ static void shade_params_init(const ft_grid *dem, const ft_hillshade_opts *o, sh
     double zenith = (90.0 - o->altitude) * deg, az_math = (90.0 - o->azimuth) * deg;
     /* A positive gt[1] runs east and a negative gt[5] runs south (north-up): both are the usual case;
      * the signs flip the differences for grids stored the other way round. */
-    p->ewres = fabs(dem->gt[1]) * o->scale * (dem->gt[1] > 0.0 ? 1.0 : -1.0);
-    p->nsres = fabs(dem->gt[5]) * o->scale * (dem->gt[5] < 0.0 ? 1.0 : -1.0);
-    p->z_factor = o->z_factor;
+    double ewres = fabs(dem->gt[1]) * o->scale * (dem->gt[1] > 0.0 ? 1.0 : -1.0);
+    double nsres = fabs(dem->gt[5]) * o->scale * (dem->gt[5] < 0.0 ? 1.0 : -1.0);
+    p->kx = o->z_factor / (8.0 * ewres);
+    p->ky = o->z_factor / (8.0 * nsres);
     p->cos_zen = cos(zenith);
     p->sin_zen = sin(zenith);
     p->cos_az = cos(az_math);
     p->sin_az = sin(az_math);
+}
+
+/* One row of the shade: the inner cells of an inner row of a grid without a mask by direct reads, the
+ * others through gather (edges, masks). */
+static void shade_row(const ft_grid *dem, size_t row, const shade_params *p, ft_grid *hs)
+{
+    size_t nx = dem->nx, k0 = row * nx;
+    double w[9];
+    int fast = dem->mask == NULL && row > 0 && row + 1 < dem->ny;
+    for (size_t col = 0; col < nx; col++) {
+        if (fast && col > 0 && col + 1 < nx) {
+            const float *mid = dem->z + k0 + col;
+            put(hs, k0 + col, gather_inner(mid - nx, mid, mid + nx, w) ? shade_window(w, p) : NAN);
+        } else {
+            put(hs, k0 + col, gather(dem, col, row, w) ? shade_window(w, p) : NAN);
+        }
+    }
 }
 
 int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out)
@@ -169,16 +207,8 @@ int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_gr
     shade_params_init(dem, o, &p);
     const long ny = (long)dem->ny;
 #pragma omp parallel for schedule(static)
-    for (long row = 0; row < ny; row++) {
-        for (size_t col = 0; col < dem->nx; col++) {
-            size_t k = (size_t)row * dem->nx + col;
-            double w[9];
-            double v = gather(dem, col, (size_t)row, w) ? shade_window(w, &p) : NAN;
-            int ok = isfinite(v);
-            hs->mask[k] = (uint8_t)ok;
-            hs->z[k] = ok ? (float)v : (float)FT_HS_NODATA;
-        }
-    }
+    for (long row = 0; row < ny; row++)
+        shade_row(dem, (size_t)row, &p, hs);
     *out = hs;
     return FT_OK;
 }
