@@ -41,7 +41,14 @@ static int report(const cli_command *cmd, const hillshade_args *a, const char *i
     json_object_object_add(o, "azimuth", cli_json_double(a->ho.azimuth));
     json_object_object_add(o, "altitude", cli_json_double(a->ho.altitude));
     json_object_object_add(o, "z_factor", cli_json_double(a->ho.z_factor));
-    json_object_object_add(o, "scale", a->ho.scale > 0.0 ? cli_json_double(a->ho.scale) : json_object_new_string("auto"));
+    double scale = 0.0;
+    if (ft_io_hillshade_scale(in, &a->ho, &scale) != FT_OK) {
+        json_object_put(o);
+        return cli_fail(cmd);
+    }
+    json_object_object_add(o, "scale", cli_json_double(scale));
+    json_object_object_add(o, "scale_from", json_object_new_string(a->ho.scale > 0.0 ? "--scale" : "automatic"));
+    json_object_object_add(o, "band", json_object_new_int(a->ho.band));
     json_object_object_add(o, "color", json_object_new_boolean(a->ho.color));
     return cli_print_json(cmd, o);
 }
@@ -101,7 +108,8 @@ const cli_command cli_cmd_hillshade = {
     "                 at the centre for a DEM in degrees, else 1)\n"
     "  --color        multiply a hypsometric colour relief by the shade (RGBA output)\n"
     "  --band N       band of the DEM (default 1)\n"    "  --tile-rows N  shade N rows per stripe (default: whole DEM when it fits half of --max-memory)\n"
-    "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\", \"color\"}\n"
+    "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\" (the one\n"
+    "                 used), \"scale_from\", \"band\", \"color\"}\n"
     "  -h, --help     print this help\n\n"
     "Example:\n"
     "  fracterra hillshade dem.tif relief.png --z-factor 2 --color\n",

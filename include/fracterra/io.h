@@ -321,6 +321,11 @@ typedef struct {
  *  success. */
 FT_API int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
 
+/** The scale ft_io_hillshade and ft_io_hillshade_rows use for this DEM file and opts (NULL = defaults):
+ *  opts->scale when > 0, else the metres of a degree of latitude at the DEM's centre for a DEM in degrees,
+ *  else 1. Reads the file's header only. */
+FT_API int ft_io_hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale);
+
 /** The hillshade of rows [row0, row0 + nrows) of a DEM file, as ft_io_hillshade gives them on the whole DEM
  *  (the same engine, edges computed, 0 = nodata, the automatic scale of the whole DEM's centre), from those rows and
  *  one row above and below: cells 0 .. 255 as floats (has_nodata, nodata_value 0), georeferenced at row0.

@@ -381,6 +381,32 @@ int ft_io_crs_to_wkt(const char *user_input, char **wkt)
     return ft_io_leave(crs_to_wkt(user_input, wkt));
 }
 
+static int hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale)
+{
+    ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (FT_OPTS_TAKE(o, opts, ft_io_hillshade_opts) != FT_OK)
+        return FT_E_INVALID;
+    if (scale == NULL || dem_path == NULL)
+        return ft_error(FT_E_INVALID, "hillshade scale: no DEM path or output pointer given");
+    int rc = check_opts(&o);
+    if (rc != FT_OK)
+        return rc;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ro.band = o.band;
+    ft_grid_reader *r = NULL;
+    if ((rc = ft_io_grid_reader_open(dem_path, &ro, &r)) != FT_OK)
+        return rc;
+    *scale = effective_scale(ft_io_grid_reader_header(r), o.scale);
+    ft_io_grid_reader_close(r);
+    return FT_OK;
+}
+
+int ft_io_hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale)
+{
+    ft_io_enter();
+    return ft_io_leave(hillshade_scale(dem_path, opts, scale));
+}
+
 /* ---- rows of the hillshade: a stripe plus one row of halo above and below (docs/tiling.md) ---- */
 
 /* The shade of rows [row0, row0 + nrows) of the DEM of reader r (header h): rows y0 .. y1 - 1, the stripe

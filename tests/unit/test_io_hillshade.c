@@ -114,6 +114,17 @@ static void test_degrees(void **state)
     double per_lat = M_PI / 180.0 * a * (1.0 - e2) / pow(1.0 - e2 * s * s, 1.5);
     assert_true(per_lat > 111100.0 && per_lat < 111300.0);
     o.scale = 0.0;
+    double used = 0.0; /* the scale the CLI reports */
+    assert_int_equal(ft_io_hillshade_scale(LUX_DEGREES, &o, &used), FT_OK);
+    assert_true(fabs(used / per_lat - 1.0) < 1e-9);
+    assert_int_equal(ft_io_hillshade_scale(LUXEMBOURG, NULL, &used), FT_OK);
+    assert_true(used == 1.0);
+    ft_io_hillshade_opts given = o;
+    given.scale = 2.5;
+    assert_int_equal(ft_io_hillshade_scale(LUX_DEGREES, &given, &used), FT_OK);
+    assert_true(used == 2.5);
+    assert_int_equal(ft_io_hillshade_scale(FT_TEST_DATA "/no_such.tif", NULL, &used), FT_E_IO);
+    assert_non_null(strstr(ft_last_error(), "no_such.tif"));
     assert_true(compare_with_gdaldem(LUX_DEGREES, &o, per_lat) <= 1);
     /* the oracle can fail: 1 instead of the metres of a degree is another image */
     assert_true(compare_with_gdaldem(LUX_DEGREES, &o, 1.0) > 1);
