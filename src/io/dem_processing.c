@@ -268,15 +268,17 @@ static int read_shadeable(GDALDatasetH src, const char *path, int band, ft_grid 
     return FT_OK;
 }
 
-/* The shade of dem (read from src) as bytes, times the colour relief with o->color, written to out_path. */
-static int shade_and_write(GDALDatasetH src, const ft_grid *dem, const ft_io_hillshade_opts *o,
-                           const char *out_path, const vsimem_names *n)
+/* The shade of dem (read from src; freed as soon as it is shaded, to halve the peak memory) as bytes, times
+ * the colour relief with o->color, written to out_path. */
+static int shade_and_write(GDALDatasetH src, ft_grid *dem, const ft_io_hillshade_opts *o, const char *out_path,
+                           const vsimem_names *n)
 {
     ft_grid *sh = NULL;
+    size_t nx = dem->nx, ny = dem->ny, cells = nx * ny;
     int rc = shade_bytes(dem, o, effective_scale(dem, o->scale), &sh);
+    ft_grid_free(dem);
     if (rc != FT_OK)
         return rc;
-    size_t cells = dem->nx * dem->ny;
     unsigned char *px = ft_malloc(cells);
     GDALDatasetH cr = NULL, img = NULL;
     if (px == NULL)
@@ -287,7 +289,7 @@ static int shade_and_write(GDALDatasetH src, const ft_grid *dem, const ft_io_hil
     if (rc == FT_OK && o->color)
         rc = run_color(src, o, n, &cr);
     if (rc == FT_OK)
-        rc = o->color ? combine(src, px, cr, &img) : byte_image(src, (int)dem->nx, (int)dem->ny, 1, px, &img);
+        rc = o->color ? combine(src, px, cr, &img) : byte_image(src, (int)nx, (int)ny, 1, px, &img);
     if (rc == FT_OK)
         rc = write_copy(img, out_path);
     if (img)
@@ -312,10 +314,9 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
         if ((rc = read_shadeable(src, dem_path, o->band, &dem)) == FT_OK) {
             vsimem_names n;
             names_init(&n);
-            rc = shade_and_write(src, dem, o, out_path, &n);
+            rc = shade_and_write(src, dem, o, out_path, &n); /* frees dem */
             names_release(&n);
         }
-        ft_grid_free(dem);
     }
     GDALClose(src);
     return rc;
