@@ -11,6 +11,8 @@
  *  - cli.synth.fft.4096 / .2048 / .4096.envi, cli.synth.sra.4096: the whole `fracterra synth` process
  *    against the whole GRASS session running r.surf.fractal (spectral synthesis) at the same size, through
  *    `grass --tmp-location XY --exec` (GRASS 8.2 and 8.4 accept it) when grass is on PATH;
+ *  - cli.hillshade.4096: `fracterra hillshade` of a 4096² fft surface (10 m cells, made once, untimed) to a
+ *    GeoTIFF, whole process, against `gdaldem hillshade -compute_edges` of the same file (the engine's oracle);
  *  - surface.variogram.32k: ft_surface_dim_variogram with 32,000 random points (Mark & Aronson) on a 4096²
  *    fft surface prepared untimed (target: under 0.5 s).
  *
@@ -177,6 +179,43 @@ static int cli_synth_sra_4096(ft_bench_case *c)
     return cli_synth_setup(c, 4096, "tif", "GTiff", "sra");
 }
 
+/* cli.hillshade.4096: the DEM is written once, in a child (the harness stays small). */
+static int write_hillshade_dem(void *arg)
+{
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.dim = SYNTH_DIM;
+    o.seed = BENCH_SEED;
+    o.cell = 10.0;
+    o.sigma = 200.0;
+    ft_grid *g = NULL;
+    int rc = ft_terrain_synth(SYNTH_N, SYNTH_N, &o, &g);
+    if (rc == FT_OK)
+        rc = ft_io_write_grid(arg, g, NULL);
+    ft_grid_free(g);
+    return rc;
+}
+
+static int cli_hillshade_setup(ft_bench_case *c)
+{
+    const char *prog = ft_bench_fracterra_program();
+    if (prog == NULL)
+        return ft_error(FT_E_IO, "no fracterra program beside fracterra_bench (build the target fracterra_cli)");
+    char *dem = ft_bench_path("hillshade_dem.tif");
+    c->scratch = ft_bench_path("hillshade_out.tif");
+    int rc = dem && c->scratch ? ft_bench_in_child(write_hillshade_dem, dem) : ft_error(FT_E_NOMEM, "out of memory");
+    const char *args[] = {prog, "hillshade", dem, c->scratch};
+    const char *peer[] = {"gdaldem", "hillshade", "-q", "-compute_edges", dem, c->scratch};
+    for (size_t i = 0; rc == FT_OK && i < 4; i++)
+        if ((c->argv[i] = ft_bench_strdup(args[i])) == NULL)
+            rc = ft_error(FT_E_NOMEM, "out of memory");
+    for (size_t i = 0; rc == FT_OK && i < 6; i++)
+        if ((c->peer_argv[i] = ft_bench_strdup(peer[i])) == NULL)
+            rc = ft_error(FT_E_NOMEM, "out of memory");
+    free(dem);
+    c->work = (double)SYNTH_N * SYNTH_N;
+    return rc;
+}
+
 /* surface.variogram.32k */
 static int variogram_setup(ft_bench_case *c)
 {
@@ -224,6 +263,8 @@ static const ft_bench_workload terrain_workloads[] = {
      FT_BENCH_CELLS, cli_synth_sra_4096, NULL, NULL, NULL},
     {"cli.synth.fft.4096.envi", "fracterra synth out.envi -f ENVI, 4096x4096, whole process (raw, no compression)",
      FT_BENCH_CELLS, cli_synth_4096_envi, NULL, NULL, NULL},
+    {"cli.hillshade.4096", "fracterra hillshade of a 4096x4096 DEM to a GeoTIFF, whole process (peer: gdaldem "
+     "hillshade -compute_edges)", FT_BENCH_CELLS, cli_hillshade_setup, NULL, NULL, NULL},
     {"surface.variogram.32k", "variogram D of a 4096x4096 grid from 32,000 random points, lags 1-512 cells",
      FT_BENCH_CELLS, variogram_setup, variogram_prepare, variogram_run, NULL},
 };

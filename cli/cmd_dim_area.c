@@ -180,6 +180,7 @@ static int run_dim_area(const cli_command *cmd, int argc, char **argv)
     json_object_object_add(extra, "file", json_object_new_string(path));
     if (a.cls)
         json_object_object_add(extra, "class", json_object_new_string(a.cls));
+    json_object_object_add(extra, "offsets", json_object_new_int(a.box.dim.offsets));
     rc = c.rep ? measure_input(cmd, path, &a, &c, extra) : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK && cli_dim_report_count(c.rep) == 0) {
         cli_error(cmd, "nothing in '%s' could be measured", path);

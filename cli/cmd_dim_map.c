@@ -92,6 +92,11 @@ static int report(const cli_command *cmd, const map_args *a, const char *in, con
     json_object_object_add(o, "method", json_object_new_string(ft_surface_method_name(m)));
     json_object_object_add(o, "window", json_object_new_int(a->window));
     json_object_object_add(o, "step", json_object_new_int(a->step));
+    json_object_object_add(o, "pairs", json_object_new_int64(a->pairs > 0 ? (int64_t)a->pairs : 0));
+    if (a->pairs > 0) /* the seed draws the random points */
+        json_object_object_add(o, "seed", json_object_new_uint64(a->seed));
+    json_object_object_add(o, "min_valid", cli_json_double(a->min_valid));
+    json_object_object_add(o, "noise_model", json_object_new_string(a->noise_mode == 0 ? "auto" : "off"));
     json_object_object_add(o, "size", size);
     json_object_object_add(o, "bands", json_object_new_string("1: D, 2: r2"));
     json_object_object_add(o, "windows", json_object_new_int64((int64_t)(st->nox * st->noy)));

@@ -216,6 +216,7 @@ static json_object *extra_members(const char *path, const points_args *a)
         json_object_object_add(o, "noise_sigma", cli_json_double(a->est.noise_sigma));
     if (a->est.noise_sigma_xy > 0.0)
         json_object_object_add(o, "noise_sigma_xy", cli_json_double(a->est.noise_sigma_xy));
+    json_object_object_add(o, "noise_model", json_object_new_string(a->est.noise_mode == 0 ? "auto" : "off"));
     return o;
 }
 

@@ -113,6 +113,8 @@ static json_object *extra_members(const char *path, const profile_args *a, const
     }
     json_object_object_add(o, "samples", json_object_new_int64((int64_t)n));
     json_object_object_add(o, "spacing", cli_json_double(spacing));
+    if (strcmp(a->method, "both") == 0) /* one method: its result names it */
+        json_object_object_add(o, "method", json_object_new_string("both"));
     return o;
 }
 

@@ -130,6 +130,7 @@ static json_object *extra_members(const char *path, const surface_args *a, const
                            pairs ? json_object_new_int64((int64_t)pairs) : json_object_new_string("exhaustive"));
     if (pairs)
         json_object_object_add(o, "seed", json_object_new_int64((int64_t)a->seed));
+    json_object_object_add(o, "noise_model", json_object_new_string(a->noise.mode == 0 ? "auto" : "off"));
     return o;
 }
 

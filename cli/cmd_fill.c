@@ -188,6 +188,7 @@ static int report(const cli_command *cmd, const fill_args *a, const char *in, co
     if (a->max_void_ground)
         json_object_object_add(mv, "ground", cli_json_double(a->max_void));
     json_object_object_add(o, "max_void", mv);
+    json_object_object_add(o, "dim", a->fo.dim > 0.0 ? cli_json_double(a->fo.dim) : json_object_new_string("auto"));
     json_object_object_add(o, "seed", json_object_new_uint64(a->fo.seed));
     json_object_object_add(o, "realizations", json_object_new_int(a->fo.mean ? 0 : a->fo.realizations));
     json_object_object_add(o, "bands", json_object_new_string(a->fo.realizations > 1 ? "1: mean, 2: sd" : "1: z"));

@@ -1,5 +1,5 @@
-/* fracterra — cli/cmd_hillshade.c: `fracterra hillshade DEM OUT`: shaded relief through GDAL's own DEM
- * processing (GDALDEMProcessing, as gdaldem hillshade), optionally times a hypsometric colour relief.
+/* fracterra — cli/cmd_hillshade.c: `fracterra hillshade DEM OUT`: shaded relief by the library's engine
+ * (cell for cell gdaldem hillshade -compute_edges), optionally times a hypsometric colour relief.
  * The library side is ft_io_hillshade (src/io/dem_processing.c).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -41,7 +41,14 @@ static int report(const cli_command *cmd, const hillshade_args *a, const char *i
     json_object_object_add(o, "azimuth", cli_json_double(a->ho.azimuth));
     json_object_object_add(o, "altitude", cli_json_double(a->ho.altitude));
     json_object_object_add(o, "z_factor", cli_json_double(a->ho.z_factor));
-    json_object_object_add(o, "scale", a->ho.scale > 0.0 ? cli_json_double(a->ho.scale) : json_object_new_string("auto"));
+    double scale = 0.0;
+    if (ft_io_hillshade_scale(in, &a->ho, &scale) != FT_OK) {
+        json_object_put(o);
+        return cli_fail(cmd);
+    }
+    json_object_object_add(o, "scale", cli_json_double(scale));
+    json_object_object_add(o, "scale_from", json_object_new_string(a->ho.scale > 0.0 ? "--scale" : "automatic"));
+    json_object_object_add(o, "band", json_object_new_int(a->ho.band));
     json_object_object_add(o, "color", json_object_new_boolean(a->ho.color));
     return cli_print_json(cmd, o);
 }
@@ -79,13 +86,14 @@ static int run_hillshade(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cli_cmd_hillshade = {
     "hillshade",
-    "shaded relief of a DEM through GDAL's DEM processing, optionally with colour relief",
+    "shaded relief of a DEM (as gdaldem hillshade), optionally with colour relief",
     "fracterra hillshade DEM OUT.png|OUT.tif [--azimuth A] [--altitude H] [--z-factor Z] [--scale S]\n"
     "       [--color] [--band N] [--tile-rows N] [--json]\n"
     "       mpiexec -n N fracterra hillshade DEM OUT.tif [...]",
-    "Shades a DEM with GDAL's own DEM processing (gdaldem hillshade: Horn's slope, edges computed,\n"
-    "0 = nodata). With --color, a hypsometric colour relief (gdaldem color-relief, built-in ramp from\n"
-    "green lowlands to white summits, nodata transparent) is multiplied by the shade. The output format\n"
+    "Shades a DEM with the library's hillshade (Horn's slope, edges computed, 0 = nodata), written as\n"
+    "gdaldem hillshade -compute_edges writes it (within 1 grey level). With --color, a hypsometric\n"
+    "colour relief (gdaldem color-relief, built-in ramp from green lowlands to white summits, nodata\n"
+    "transparent) is multiplied by the shade. The output format\n"
     "follows the extension (PNG, GeoTIFF with the DEM's georeferencing, ...); it is written under a\n"
     "temporary name and renamed when complete.\n"
     "A DEM larger than half of --max-memory, or any DEM with --tile-rows, is shaded in stripes of rows\n"
@@ -95,11 +103,13 @@ const cli_command cli_cmd_hillshade = {
     "  --azimuth A    light direction, degrees clockwise from north, in [0,360] (default 315)\n"
     "  --altitude H   light elevation, degrees, in (0,90] (default 45)\n"
     "  --z-factor Z   vertical exaggeration, > 0 (default 1)\n"
-    "  --scale S      ground units per elevation unit (default: metres per degree of\n"
-    "                 latitude on the ellipsoid at the centre for a DEM in degrees, else 1)\n"
+    "  --scale S      ground units of the DEM's horizontal coordinates per elevation unit,\n"
+    "                 as gdaldem -s (default: metres per degree of latitude on the ellipsoid\n"
+    "                 at the centre for a DEM in degrees, else 1)\n"
     "  --color        multiply a hypsometric colour relief by the shade (RGBA output)\n"
     "  --band N       band of the DEM (default 1)\n"    "  --tile-rows N  shade N rows per stripe (default: whole DEM when it fits half of --max-memory)\n"
-    "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\", \"color\"}\n"
+    "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\" (the one\n"
+    "                 used), \"scale_from\", \"band\", \"color\"}\n"
     "  -h, --help     print this help\n\n"
     "Example:\n"
     "  fracterra hillshade dem.tif relief.png --z-factor 2 --color\n",

@@ -45,6 +45,8 @@ static int report(const cli_command *cmd, const render_args *a, const char *in, 
     json_object_object_add(o, "exaggeration",
                            a->po.exaggeration > 0.0 ? cli_json_double(a->po.exaggeration) : json_object_new_string("auto"));
     json_object_object_add(o, "width", json_object_new_int(a->po.width));
+    json_object_object_add(o, "light_azimuth", cli_json_double(a->po.light_azimuth));
+    json_object_object_add(o, "light_altitude", cli_json_double(a->po.light_altitude));
     return cli_print_json(cmd, o);
 }
 
@@ -97,7 +99,7 @@ const cli_command cli_cmd_render = {
     "                        ellipsoid at the centre for a DEM in degrees, else 1)\n"
     "  --no-sky              transparent background\n"
     "  -j, --json            print {\"input\", \"output\", \"view\", \"azimuth\", \"elevation\",\n"
-    "                        \"exaggeration\", \"width\"}\n"
+    "                        \"exaggeration\", \"width\", \"light_azimuth\", \"light_altitude\"}\n"
     "  -h, --help            print this help\n\n"
     "Example:\n"
     "  fracterra render dem.tif view.png --view perspective --azimuth 30 --elevation 30 --exaggeration 2\n",

@@ -97,6 +97,10 @@ static int report(const cli_command *cmd, const synth_args *a, const char *out, 
     json_object_object_add(o, "seed", json_object_new_uint64(a->so.seed));
     json_object_object_add(o, "sigma", cli_json_double(a->so.sigma));
     json_object_object_add(o, "cell", cli_json_double(a->so.cell));
+    json_object *origin = json_object_new_array();
+    json_object_array_add(origin, cli_json_double(a->so.origin_x));
+    json_object_array_add(origin, cli_json_double(a->so.origin_y));
+    json_object_object_add(o, "origin", origin);
     json_object_object_add(o, "periodic", json_object_new_boolean(a->so.periodic));
     terrain_add_grid_json(o, g);
     return cli_print_json(cmd, o);

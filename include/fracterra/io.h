@@ -295,7 +295,8 @@ FT_API int ft_io_atomic_write(const char *path, ft_io_write_fn fn, const void *a
 FT_API int ft_io_same_file(const char *a, const char *b);
 
 /* ------------------------------------------------------------------------------------------------
- * DEM processing through GDAL (GDALDEMProcessing) and CRS definitions
+ * The hillshade of a DEM file (the library's engine, ft_render_hillshade; colour relief through GDAL's
+ * DEMProcessing) and CRS definitions
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct {
@@ -303,9 +304,9 @@ typedef struct {
     double azimuth;   /**< light direction, degrees clockwise from north, [0, 360]; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees, (0, 90]; default 45 */
     double z_factor;  /**< vertical exaggeration, > 0; default 1 */
-    double scale;     /**< horizontal units per vertical unit; 0 (default) = metres per degree of latitude
-                           on the ellipsoid at the centre for a DEM in degrees,
-                           1 otherwise */
+    double scale;     /**< ft_hillshade_opts.scale (ground units of the horizontal coordinates per elevation
+                           unit); 0 (default) = the metres of a degree of latitude on the ellipsoid at the
+                           centre for a DEM in degrees, 1 otherwise */
     int color;        /**< 1: multiply a hypsometric colour relief (gdaldem color-relief) by the shade */
     int band;         /**< 1-based band of the DEM; default 1 */
 } ft_io_hillshade_opts;
@@ -313,13 +314,20 @@ typedef struct {
     {.struct_size = sizeof(ft_io_hillshade_opts), .azimuth = 315.0, .altitude = 45.0, .z_factor = 1.0, .scale = 0.0, \
      .color = 0, .band = 1}
 
-/** gdaldem's hillshade of a DEM file (edges computed, nodata 0), optionally times a colour relief (RGBA,
- *  nodata transparent), written through the driver of the output's extension (PNG, GeoTIFF, ...) under a
- *  temporary name renamed on success. */
+/** The hillshade of a DEM file by the library's engine (ft_render_hillshade), written as gdaldem hillshade
+ *  -compute_edges writes it (Byte 1 + 254 x shade / 255, 0 = nodata; within 1 grey level of gdaldem's
+ *  cells, tests/unit/test_io_hillshade.c), optionally times a colour relief (RGBA, nodata transparent),
+ *  through the driver of the output's extension (PNG, GeoTIFF, ...) under a temporary name renamed on
+ *  success. */
 FT_API int ft_io_hillshade(const char *dem_path, const char *out_path, const ft_io_hillshade_opts *opts);
 
+/** The scale ft_io_hillshade and ft_io_hillshade_rows use for this DEM file and opts (NULL = defaults):
+ *  opts->scale when > 0, else the metres of a degree of latitude at the DEM's centre for a DEM in degrees,
+ *  else 1. Reads the file's header only. */
+FT_API int ft_io_hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale);
+
 /** The hillshade of rows [row0, row0 + nrows) of a DEM file, as ft_io_hillshade gives them on the whole DEM
- *  (gdaldem, edges computed, 0 = nodata, the automatic scale of the whole DEM's centre), from those rows and
+ *  (the same engine, edges computed, 0 = nodata, the automatic scale of the whole DEM's centre), from those rows and
  *  one row above and below: cells 0 .. 255 as floats (has_nodata, nodata_value 0), georeferenced at row0.
  *  FT_E_UNSUPPORTED with opts->color (the colour ramp spans the whole DEM). docs/tiling.md. */
 FT_API int ft_io_hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts, size_t row0, size_t nrows,

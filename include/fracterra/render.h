@@ -16,13 +16,17 @@ typedef struct {
     double azimuth;   /**< light direction, degrees clockwise from north; default 315 */
     double altitude;  /**< light elevation above the horizon, degrees; default 45 */
     double z_factor;  /**< vertical exaggeration; default 1 */
-    double scale;     /**< horizontal units per vertical unit (e.g. metres per degree for a DEM in degrees); default 1 */
+    double scale;     /**< ground units of the horizontal coordinates per elevation unit: divides both cell sizes,
+                           as gdaldem's -s (1 when both are metres; the metres of a degree for a DEM in
+                           degrees, which ft_io_hillshade works out when given 0); > 0, default 1 */
 } ft_hillshade_opts;
 #define FT_HILLSHADE_OPTS_DEFAULT                                                                                    \
     {.struct_size = sizeof(ft_hillshade_opts), .azimuth = 315.0, .altitude = 45.0, .z_factor = 1.0, .scale = 1.0}
 
-/** Hillshade (Horn's 3x3 slope and aspect, as gdaldem) in [0, 255]; cells whose window touches
- *  nodata are nodata. The output keeps the input's geotransform and CRS. */
+/** Hillshade (Horn's 3x3 slope and aspect, as gdaldem hillshade -compute_edges) in [0, 255]: the library's
+ *  one hillshade engine (ft_io_hillshade and ft_io_hillshade_rows use it). Nodata cells stay nodata; a
+ *  nodata neighbour takes the centre's value and the edge cells are shaded from a linear extrapolation
+ *  (gdaldem's rule). At least 2 x 2 cells. The output keeps the input's geotransform and CRS. */
 FT_API int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out);
 
 typedef struct {

@@ -102,6 +102,7 @@ _PROTOTYPES = [
     ("ft_io_read_layer", _int, [_str, _P(S.ft_read_layer_opts), _P(_P(S.ft_layer))]),
     ("ft_io_read_points", _int, [_str, _P(S.ft_read_points_opts), _P(_P(S.ft_points))]),
     ("ft_io_hillshade", _int, [_str, _str, _P(S.ft_io_hillshade_opts)]),
+    ("ft_io_hillshade_scale", _int, [_str, _P(S.ft_io_hillshade_opts), _P(_dbl)]),
     ("ft_io_crs_to_wkt", _int, [_str, _P(_vp)]),
     ("ft_io_crs_info", _int, [_str, _P(S.ft_crs_info)]),
     ("ft_io_local_crs", _int, [_str, _int, _dbl, _dbl, _P(_vp)]),

@@ -176,8 +176,9 @@ def clarke_simulate(model, *, refine=1, extent=1, seed=1, progress=None, progres
 
 def hillshade(dem, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=1.0, geotransform=None):
     """The library's in-memory hillshade of a grid (ft_render_hillshade: Horn's 3x3 slope and aspect, as
-    gdaldem): a Grid of shades in [0, 255], nodata where a window touches nodata, with the input's
-    geotransform and CRS. `fracterra hillshade` (gdaldem on files) is hillshade_file."""
+    gdaldem -compute_edges): a Grid of shades in [0, 255], nodata only where the DEM is, with the input's
+    geotransform and CRS. scale: ground units of the horizontal coordinates per elevation unit (gdaldem's
+    -s). `fracterra hillshade` on files (same engine) is hillshade_file."""
     o = S.ft_hillshade_opts.default()
     o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
     cg = _CGrid(as_grid(dem, geotransform))
@@ -188,8 +189,9 @@ def hillshade(dem, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=1.0, geo
 
 def hillshade_file(dem_path, out_path, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=False,
                    band=1):
-    """gdaldem's hillshade of a DEM file written to out_path (PNG, GeoTIFF, ... by extension), exactly
-    `fracterra hillshade` (ft_io_hillshade). scale 0 = 111120 for a DEM in degrees, else 1."""
+    """The hillshade of a DEM file written to out_path (PNG, GeoTIFF, ... by extension) as gdaldem writes it,
+    exactly `fracterra hillshade` (ft_io_hillshade). scale 0 = the metres of a degree of latitude at the
+    DEM's centre for a DEM in degrees, else 1."""
     o = S.ft_io_hillshade_opts.default()
     o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
     o.color, o.band = 1 if color else 0, int(band)

@@ -1,15 +1,20 @@
-/* fracterra — io/dem_processing.c: hillshade and colour relief through GDAL's own DEM processing
- * (GDALDEMProcessing, the engine of gdaldem), and CRS strings to WKT (OSRSetFromUserInput).
+/* fracterra — io/dem_processing.c: the hillshade of a DEM file, optionally times a colour relief through
+ * GDAL's own DEM processing (GDALDEMProcessing color-relief, the engine of gdaldem), and CRS strings to WKT
+ * (OSRSetFromUserInput).
  *
- * The hillshade is gdaldem's (Horn's slope, -compute_edges so that the border cells get a value, 0 kept
- * for nodata). With colour, gdaldem's "color-relief" maps the DEM through a built-in hypsometric ramp
- * written to /vsimem (stops at fractions of the DEM's range, "nv" transparent), and each colour is
- * multiplied by 0.25 + 0.75 * shade / 255 (an ambient term keeps shadows readable). Intermediate
- * products live in /vsimem; the output (any GDAL raster driver that can CreateCopy, chosen by extension:
- * PNG, GeoTIFF, ...) is written under a temporary name and renamed when complete. A geographic DEM
- * (degrees) gets the ground metres of a degree of latitude at its centre (CRS service) unless the caller gives
- * a scale, as gdaldem's documentation advises (its 111120 is that figure at about 45 degrees). GDAL's
- * auxiliary .aux.xml files are off during the call: neither the input's folder nor the output's gets one.
+ * The shade is the library's one engine, ft_render_hillshade (Horn's slope, edges computed and nodata
+ * neighbours replaced by the centre, as gdaldem hillshade -compute_edges), written as gdaldem writes its
+ * Byte output: 1 + 254 x shade / 255 rounded, 0 = nodata. A stripe of rows (ft_io_hillshade_rows) is shaded
+ * by the same engine from the stripe plus one row above and below, so its cells are the whole run's.
+ * `scale` is the engine's (ground units of the horizontal coordinates per elevation unit); 0 asks for the
+ * metres of a degree of latitude on the DEM's ellipsoid at its centre for a DEM in degrees (CRS service),
+ * as gdaldem's documentation advises (its 111120 is that figure at about 45 degrees), else 1.
+ * With colour, gdaldem's "color-relief" maps the DEM through a built-in hypsometric ramp written to
+ * /vsimem (stops at fractions of the DEM's range, "nv" transparent), and each colour is multiplied by
+ * 0.25 + 0.75 * shade / 255 (an ambient term keeps shadows readable). The output (any GDAL raster driver
+ * that can CreateCopy, chosen by extension: PNG, GeoTIFF, ...) is written under a temporary name and
+ * renamed when complete. GDAL's auxiliary .aux.xml files are off during the call: neither the input's
+ * folder nor the output's gets one.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -25,6 +30,7 @@
 #include <cpl_vsi.h>
 #include <gdal_utils.h>
 
+#include "fracterra/render.h"
 #include "internal.h"
 #include "io/io_internal.h"
 
@@ -41,20 +47,18 @@ static const struct {
                   {0.70, 181, 138, 89},  {0.88, 140, 115, 102}, {1.00, 250, 250, 250}};
 
 typedef struct {
-    char hs[96], cr[96], ramp[96]; /* /vsimem names of this call */
+    char cr[96], ramp[96]; /* /vsimem names of this call */
 } vsimem_names;
 
 static void names_init(vsimem_names *n)
 {
     unsigned long id = atomic_fetch_add(&vsimem_counter, 1);
-    snprintf(n->hs, sizeof n->hs, "/vsimem/fracterra_hs_%p_%lu.tif", (void *)n, id);
     snprintf(n->cr, sizeof n->cr, "/vsimem/fracterra_cr_%p_%lu.tif", (void *)n, id);
     snprintf(n->ramp, sizeof n->ramp, "/vsimem/fracterra_ramp_%p_%lu.txt", (void *)n, id);
 }
 
 static void names_release(const vsimem_names *n)
 {
-    VSIUnlink(n->hs);
     VSIUnlink(n->cr);
     VSIUnlink(n->ramp);
 }
@@ -75,22 +79,40 @@ static int check_opts(const ft_io_hillshade_opts *o)
 }
 
 /* For a DEM in degrees (ft_io_crs_info), the ground metres of a degree of latitude on its ellipsoid at its
- * centre; 1 otherwise, unless the caller set a scale. gdaldem takes one scale for both axes, so the
- * shortening of a degree of longitude (cos latitude) is not applied. */
-static double effective_scale(GDALDatasetH ds, double scale)
+ * centre; 1 otherwise, unless the caller set a scale. The engine takes one scale for both axes (as gdaldem),
+ * so the shortening of a degree of longitude (cos latitude) is not applied. dem: the whole DEM's header. */
+static double effective_scale(const ft_grid *dem, double scale)
 {
     if (scale > 0.0)
         return scale;
     ft_crs_info crs;
-    if (ft_io_crs_info(GDALGetProjectionRef(ds), &crs) != FT_OK || !crs.geographic) {
+    if (dem->crs_wkt == NULL || ft_io_crs_info(dem->crs_wkt, &crs) != FT_OK || !crs.geographic) {
         ft_clear_error();
         return 1.0;
     }
-    double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0}, per_lat = 0.0;
-    GDALGetGeoTransform(ds, gt);
-    double lat = gt[3] + 0.5 * GDALGetRasterXSize(ds) * gt[4] + 0.5 * GDALGetRasterYSize(ds) * gt[5];
+    double per_lat = 0.0;
+    double lat = dem->gt[3] + 0.5 * (double)dem->nx * dem->gt[4] + 0.5 * (double)dem->ny * dem->gt[5];
     ft_ellipsoid_metres_per_degree(&crs.ellipsoid, fabs(lat) <= 90.0 ? lat : 0.0, NULL, &per_lat);
     return per_lat;
+}
+
+/* The engine's shade of dem with the options of o at the given scale, as gdaldem's Byte values in a float
+ * grid: 1 + 254 s / 255 rounded for a shade s in [0, 255], 0 (the grid's nodata value) for nodata. */
+static int shade_bytes(const ft_grid *dem, const ft_io_hillshade_opts *o, double scale, ft_grid **out)
+{
+    ft_hillshade_opts ro = FT_HILLSHADE_OPTS_DEFAULT;
+    ro.azimuth = o->azimuth;
+    ro.altitude = o->altitude;
+    ro.z_factor = o->z_factor;
+    ro.scale = scale;
+    int rc = ft_render_hillshade(dem, &ro, out);
+    if (rc != FT_OK)
+        return rc;
+    ft_grid *g = *out;
+    for (size_t k = 0; k < g->nx * g->ny; k++)
+        g->z[k] = g->mask[k] ? (float)floor(1.0 + 254.0 * (double)g->z[k] / 255.0 + 0.5) : 0.0f;
+    g->nodata_value = 0.0;
+    return FT_OK;
 }
 
 /* Runs GDALDEMProcessing(mode) from src to the /vsimem GeoTIFF dst; the result stays open in *out. */
@@ -107,18 +129,6 @@ static int dem_run(GDALDatasetH src, const char *mode, const char *dst, const ch
     if (*out == NULL)
         return ft_io_fail(FT_E_IO, "hillshade: GDAL's %s failed", mode);
     return FT_OK;
-}
-
-static int run_hillshade(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *dst, GDALDatasetH *out)
-{
-    char az[32], alt[32], z[32], s[32], band[16];
-    snprintf(az, sizeof az, "%.17g", o->azimuth);
-    snprintf(alt, sizeof alt, "%.17g", o->altitude);
-    snprintf(z, sizeof z, "%.17g", o->z_factor);
-    snprintf(s, sizeof s, "%.17g", effective_scale(src, o->scale));
-    snprintf(band, sizeof band, "%d", o->band);
-    char *argv[] = {"-q", "-of", "GTiff", "-b", band, "-az", az, "-alt", alt, "-z", z, "-s", s, "-compute_edges", NULL};
-    return dem_run(src, "hillshade", dst, NULL, argv, out);
 }
 
 /* The ramp at the DEM's own elevations (absolute values: no statistics pass, no message from GDAL). */
@@ -157,40 +167,50 @@ static int read_band(GDALDatasetH ds, int b, unsigned char *buf, int w, int h)
     return FT_OK;
 }
 
-/* RGBA = colour relief x shade, in a MEM dataset with the DEM's georeferencing. */
-static int combine(GDALDatasetH hs, GDALDatasetH cr, GDALDatasetH *out)
+/* A MEM Byte dataset of `bands` bands (1: the shade, 0 = nodata; 4: RGBA) holding px band after band, with
+ * the georeferencing of src. */
+static int byte_image(GDALDatasetH src, int w, int h, int bands, unsigned char *px, GDALDatasetH *out)
 {
-    int w = GDALGetRasterXSize(hs), h = GDALGetRasterYSize(hs);
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    *out = mem ? GDALCreate(mem, "", w, h, bands, GDT_Byte, NULL) : NULL;
+    if (*out == NULL)
+        return ft_io_fail(FT_E_NOMEM, "hillshade: cannot make a %d x %d image", w, h);
+    double gt[6];
+    if (GDALGetGeoTransform(src, gt) == CE_None)
+        GDALSetGeoTransform(*out, gt);
+    GDALSetProjection(*out, GDALGetProjectionRef(src));
+    if (bands == 1) {
+        GDALSetRasterNoDataValue(GDALGetRasterBand(*out, 1), 0.0);
+    } else {
+        static const GDALColorInterp ci[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand, GCI_AlphaBand};
+        for (int b = 0; b < 4; b++)
+            GDALSetRasterColorInterpretation(GDALGetRasterBand(*out, b + 1), ci[b]);
+    }
+    if (GDALDatasetRasterIO(*out, GF_Write, 0, 0, w, h, px, w, h, GDT_Byte, bands, NULL, 0, 0, 0) != CE_None)
+        return ft_io_fail(FT_E_IO, "hillshade: cannot fill the %d x %d image", w, h);
+    return FT_OK;
+}
+
+/* RGBA = colour relief (cr) x shade (w x h bytes, 0 = nodata), in a MEM dataset with src's georeferencing. */
+static int combine(GDALDatasetH src, const unsigned char *shade, GDALDatasetH cr, GDALDatasetH *out)
+{
+    int w = GDALGetRasterXSize(src), h = GDALGetRasterYSize(src);
     size_t n = (size_t)w * (size_t)h;
-    unsigned char *px = ft_malloc(5 * n);
+    unsigned char *px = ft_malloc(4 * n);
     if (px == NULL)
         return ft_last_error_code();
-    int rc = read_band(hs, 1, px + 4 * n, w, h);
+    int rc = FT_OK;
     for (int b = 1; b <= 4 && rc == FT_OK; b++)
         rc = read_band(cr, b, px + (size_t)(b - 1) * n, w, h);
     if (rc == FT_OK) {
         for (size_t i = 0; i < n; i++) {
-            double f = SHADE_AMBIENT + (1.0 - SHADE_AMBIENT) * px[4 * n + i] / 255.0;
+            double f = SHADE_AMBIENT + (1.0 - SHADE_AMBIENT) * shade[i] / 255.0;
             for (int b = 0; b < 3; b++)
                 px[(size_t)b * n + i] = (unsigned char)lround(px[(size_t)b * n + i] * f);
-            if (px[4 * n + i] == 0)
+            if (shade[i] == 0)
                 px[3 * n + i] = 0; /* nodata in the hillshade */
         }
-        GDALDriverH mem = GDALGetDriverByName("MEM");
-        *out = mem ? GDALCreate(mem, "", w, h, 4, GDT_Byte, NULL) : NULL;
-        if (*out == NULL)
-            rc = ft_io_fail(FT_E_NOMEM, "hillshade: cannot make a %d x %d RGBA image", w, h);
-    }
-    if (rc == FT_OK) {
-        double gt[6];
-        if (GDALGetGeoTransform(hs, gt) == CE_None)
-            GDALSetGeoTransform(*out, gt);
-        GDALSetProjection(*out, GDALGetProjectionRef(hs));
-        static const GDALColorInterp ci[] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand, GCI_AlphaBand};
-        for (int b = 0; b < 4; b++)
-            GDALSetRasterColorInterpretation(GDALGetRasterBand(*out, b + 1), ci[b]);
-        if (GDALDatasetRasterIO(*out, GF_Write, 0, 0, w, h, px, w, h, GDT_Byte, 4, NULL, 0, 0, 0) != CE_None)
-            rc = ft_io_fail(FT_E_IO, "hillshade: cannot fill the RGBA image");
+        rc = byte_image(src, w, h, 4, px, out);
     }
     free(px);
     return rc;
@@ -221,30 +241,10 @@ static int write_copy(GDALDatasetH ds, const char *path)
     return ok ? end : rc;
 }
 
-static int shade_and_write(GDALDatasetH src, const ft_io_hillshade_opts *o, const char *out_path,
-                           const vsimem_names *n)
-{
-    GDALDatasetH hs = NULL, cr = NULL, rgba = NULL;
-    int rc = run_hillshade(src, o, n->hs, &hs);
-    if (rc == FT_OK && o->color)
-        rc = run_color(src, o, n, &cr);
-    if (rc == FT_OK && o->color)
-        rc = combine(hs, cr, &rgba);
-    if (rc == FT_OK)
-        rc = write_copy(o->color ? rgba : hs, out_path);
-    if (rgba)
-        GDALClose(rgba);
-    if (cr)
-        GDALClose(cr);
-    if (hs)
-        GDALClose(hs);
-    return rc;
-}
-
-/* Reads the band through the grid reader first, so that a hillshade is refused where `render` refuses the
- * same DEM: a truncated file (a read error, not a grid of zeros), fewer than 2 x 2 cells, no valid cell, or
- * more cells than the memory bound allows. */
-static int check_shadeable(GDALDatasetH src, const char *path, int band)
+/* Reads the band through the grid reader, so that a hillshade is refused where `render` refuses the same
+ * DEM: a truncated file (a read error, not a grid of zeros), fewer than 2 x 2 cells, no valid cell, or more
+ * cells than the memory bound allows. */
+static int read_shadeable(GDALDatasetH src, const char *path, int band, ft_grid **out)
 {
     ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
     go.band = band;
@@ -260,7 +260,43 @@ static int check_shadeable(GDALDatasetH src, const char *path, int band)
     }
     if (rc == FT_OK && ft_grid_count_valid(g) == 0)
         rc = ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, g->nx * g->ny);
-    ft_grid_free(g);
+    if (rc != FT_OK) {
+        ft_grid_free(g);
+        return rc;
+    }
+    *out = g;
+    return FT_OK;
+}
+
+/* The shade of dem (read from src; freed as soon as it is shaded, to halve the peak memory) as bytes, times
+ * the colour relief with o->color, written to out_path. */
+static int shade_and_write(GDALDatasetH src, ft_grid *dem, const ft_io_hillshade_opts *o, const char *out_path,
+                           const vsimem_names *n)
+{
+    ft_grid *sh = NULL;
+    size_t nx = dem->nx, ny = dem->ny, cells = nx * ny;
+    int rc = shade_bytes(dem, o, effective_scale(dem, o->scale), &sh);
+    ft_grid_free(dem);
+    if (rc != FT_OK)
+        return rc;
+    unsigned char *px = ft_malloc(cells);
+    GDALDatasetH cr = NULL, img = NULL;
+    if (px == NULL)
+        rc = ft_last_error_code();
+    for (size_t k = 0; rc == FT_OK && k < cells; k++)
+        px[k] = (unsigned char)sh->z[k];
+    ft_grid_free(sh);
+    if (rc == FT_OK && o->color)
+        rc = run_color(src, o, n, &cr);
+    if (rc == FT_OK)
+        rc = o->color ? combine(src, px, cr, &img) : byte_image(src, (int)nx, (int)ny, 1, px, &img);
+    if (rc == FT_OK)
+        rc = write_copy(img, out_path);
+    if (img)
+        GDALClose(img);
+    if (cr)
+        GDALClose(cr);
+    free(px);
     return rc;
 }
 
@@ -273,11 +309,14 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
     if (o->band > GDALGetRasterCount(src)) {
         rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
                       o->band);
-    } else if ((rc = check_shadeable(src, dem_path, o->band)) == FT_OK) {
-        vsimem_names n;
-        names_init(&n);
-        rc = shade_and_write(src, o, out_path, &n);
-        names_release(&n);
+    } else {
+        ft_grid *dem = NULL;
+        if ((rc = read_shadeable(src, dem_path, o->band, &dem)) == FT_OK) {
+            vsimem_names n;
+            names_init(&n);
+            rc = shade_and_write(src, dem, o, out_path, &n); /* frees dem */
+            names_release(&n);
+        }
     }
     GDALClose(src);
     return rc;
@@ -343,63 +382,61 @@ int ft_io_crs_to_wkt(const char *user_input, char **wkt)
     return ft_io_leave(crs_to_wkt(user_input, wkt));
 }
 
-/* ---- rows of the hillshade: a stripe plus one row of halo above and below (docs/tiling.md) ---- */
-
-/* Rows [y0, y1) of band `band` of src as an in-memory VRT (GDALTranslate -srcwin): GDAL's DEM processing
- * then sees the window as a raster of its own. */
-static int window_vrt(GDALDatasetH src, size_t y0, size_t y1, GDALDatasetH *out)
+static int hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale)
 {
-    char yo[32], w[32], h[32];
-    snprintf(yo, sizeof yo, "%zu", y0);
-    snprintf(w, sizeof w, "%d", GDALGetRasterXSize(src));
-    snprintf(h, sizeof h, "%zu", y1 - y0);
-    char *argv[] = {"-q", "-of", "VRT", "-srcwin", "0", yo, w, h, NULL};
-    ft_io_gdal_reset();
-    GDALTranslateOptions *to = GDALTranslateOptionsNew(argv, NULL);
-    if (to == NULL)
-        return ft_io_fail(FT_E_INVALID, "hillshade: GDAL rejected the window options");
-    *out = GDALTranslate("", src, to, NULL);
-    GDALTranslateOptionsFree(to);
-    return *out != NULL ? FT_OK : ft_io_fail(FT_E_IO, "hillshade: cannot make a window of rows %zu-%zu", y0, y1 - 1);
+    ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT; /* FT_OPTS in core.h */
+    if (FT_OPTS_TAKE(o, opts, ft_io_hillshade_opts) != FT_OK)
+        return FT_E_INVALID;
+    if (scale == NULL || dem_path == NULL)
+        return ft_error(FT_E_INVALID, "hillshade scale: no DEM path or output pointer given");
+    int rc = check_opts(&o);
+    if (rc != FT_OK)
+        return rc;
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ro.band = o.band;
+    ft_grid_reader *r = NULL;
+    if ((rc = ft_io_grid_reader_open(dem_path, &ro, &r)) != FT_OK)
+        return rc;
+    *scale = effective_scale(ft_io_grid_reader_header(r), o.scale);
+    ft_io_grid_reader_close(r);
+    return FT_OK;
 }
 
-/* The shade of rows [row0, row0 + nrows) of src (rows y0 .. y1 - 1 shaded as a raster of their own). */
-static int shade_rows(GDALDatasetH src, const ft_io_hillshade_opts *o, size_t row0, size_t nrows, ft_grid **out)
+int ft_io_hillshade_scale(const char *dem_path, const ft_io_hillshade_opts *opts, double *scale)
 {
-    size_t nx = (size_t)GDALGetRasterXSize(src), ny = (size_t)GDALGetRasterYSize(src);
+    ft_io_enter();
+    return ft_io_leave(hillshade_scale(dem_path, opts, scale));
+}
+
+/* ---- rows of the hillshade: a stripe plus one row of halo above and below (docs/tiling.md) ---- */
+
+/* The shade of rows [row0, row0 + nrows) of the DEM of reader r (header h): rows y0 .. y1 - 1, the stripe
+ * and its halo, shaded by the engine at the whole DEM's scale; the engine's 3 x 3 window makes each output
+ * cell the whole run's. */
+static int shade_rows(ft_grid_reader *r, const ft_grid *h, const ft_io_hillshade_opts *o, size_t row0,
+                      size_t nrows, ft_grid **out)
+{
+    size_t nx = h->nx, ny = h->ny;
     size_t y0 = row0 > 0 ? row0 - 1 : 0, y1 = row0 + nrows + 1 < ny ? row0 + nrows + 1 : ny;
-    ft_io_hillshade_opts wo = *o;
-    wo.scale = effective_scale(src, o->scale); /* the whole DEM's centre, not the window's */
-    GDALDatasetH win = NULL, hs = NULL;
-    vsimem_names n;
-    names_init(&n);
-    int rc = window_vrt(src, y0, y1, &win);
+    ft_grid *win = NULL, *sh = NULL;
+    int rc = ft_io_grid_reader_read(r, 0, y0, nx, y1 - y0, &win);
     if (rc == FT_OK)
-        rc = run_hillshade(win, &wo, n.hs, &hs);
+        rc = shade_bytes(win, o, effective_scale(h, o->scale), &sh);
+    ft_grid_free(win);
     ft_grid *g = rc == FT_OK ? ft_grid_create(nx, nrows) : NULL;
-    if (rc == FT_OK && g == NULL)
+    if (rc == FT_OK && (g == NULL || ft_grid_ensure_mask(g) != FT_OK))
         rc = FT_E_NOMEM;
-    ft_io_gdal_reset();
-    if (rc == FT_OK && GDALRasterIO(GDALGetRasterBand(hs, 1), GF_Read, 0, (int)(row0 - y0), (int)nx, (int)nrows, g->z,
-                                    (int)nx, (int)nrows, GDT_Float32, 0, 0) != CE_None)
-        rc = ft_io_fail(FT_E_IO, "hillshade: cannot read the shade of rows %zu-%zu", row0, row0 + nrows - 1);
     if (rc == FT_OK) {
-        double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-        GDALGetGeoTransform(src, gt);
-        memcpy(g->gt, gt, sizeof gt);
-        g->gt[0] = gt[0] + (double)row0 * gt[2];
-        g->gt[3] = gt[3] + (double)row0 * gt[5];
+        memcpy(g->z, sh->z + (row0 - y0) * nx, nx * nrows * sizeof *g->z);
+        memcpy(g->mask, sh->mask + (row0 - y0) * nx, nx * nrows);
+        memcpy(g->gt, h->gt, sizeof g->gt);
+        g->gt[0] = h->gt[0] + (double)row0 * h->gt[2];
+        g->gt[3] = h->gt[3] + (double)row0 * h->gt[5];
         g->has_nodata = 1;
         g->nodata_value = 0.0; /* gdaldem's */
-        char *wkt = ft_io_srs_to_wkt(GDALGetSpatialRef(src));
-        rc = wkt ? ft_grid_set_crs(g, wkt) : FT_OK;
-        free(wkt);
+        rc = ft_grid_set_crs(g, h->crs_wkt);
     }
-    if (hs)
-        GDALClose(hs);
-    if (win)
-        GDALClose(win);
-    names_release(&n);
+    ft_grid_free(sh);
     if (rc != FT_OK) {
         ft_grid_free(g);
         return rc;
@@ -426,27 +463,21 @@ static int hillshade_rows(const char *dem_path, const ft_io_hillshade_opts *opts
     if (o->color)
         return ft_error(FT_E_UNSUPPORTED, "hillshade: a colour relief spans the whole DEM's elevation range and is "
                         "not made row by row; shade without colour");
-    GDALDatasetH src = NULL;
-    if ((rc = ft_io_open(dem_path, GDAL_OF_RASTER, &src)) != FT_OK)
+    ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
+    ro.band = o->band;
+    ft_grid_reader *r = NULL;
+    if ((rc = ft_io_grid_reader_open(dem_path, &ro, &r)) != FT_OK)
         return rc;
-    size_t nx = (size_t)GDALGetRasterXSize(src), ny = (size_t)GDALGetRasterYSize(src);
-    if (o->band > GDALGetRasterCount(src))
-        rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
-                      o->band);
-    else if (nx < 2 || ny < 2)
-        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", dem_path, nx, ny);
-    else if (nrows == 0 || row0 >= ny || nrows > ny - row0)
-        rc = ft_error(FT_E_INVALID, "hillshade: rows %zu-%zu leave the %zu rows of %s", row0, row0 + nrows - 1, ny,
-                      dem_path);
-    if (rc == FT_OK) {
-        const char *pam = CPLGetThreadLocalConfigOption("GDAL_PAM_ENABLED", NULL);
-        char *saved = pam ? CPLStrdup(pam) : NULL;
-        CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO");
-        rc = shade_rows(src, o, row0, nrows, out);
-        CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", saved);
-        CPLFree(saved);
-    }
-    GDALClose(src);
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    if (h->nx < 2 || h->ny < 2)
+        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", dem_path, h->nx,
+                      h->ny);
+    else if (nrows == 0 || row0 >= h->ny || nrows > h->ny - row0)
+        rc = ft_error(FT_E_INVALID, "hillshade: rows %zu-%zu leave the %zu rows of %s", row0, row0 + nrows - 1,
+                      h->ny, dem_path);
+    if (rc == FT_OK)
+        rc = shade_rows(r, h, o, row0, nrows, out);
+    ft_io_grid_reader_close(r);
     return rc;
 }
 

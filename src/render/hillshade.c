@@ -1,4 +1,5 @@
-/* fracterra — render/hillshade.c: analytical hillshading of a DEM, as gdaldem hillshade.
+/* fracterra — render/hillshade.c: analytical hillshading of a DEM, as gdaldem hillshade -compute_edges: the
+ * library's one hillshade engine (ft_io_hillshade and its stripes shade files with it).
  *
  * Slope and aspect come from Horn's 3x3 finite differences:
  *   Horn, B. K. P. (1981). Hill shading and the reflectance map. Proceedings of the IEEE 69(1), 14-47.
@@ -8,8 +9,12 @@
  * slope = atan(z_factor * |grad z|), aspect = atan2(dz/dy, -dz/dx) (ESRI convention), and the shade is
  *   255 * (cos(zenith) cos(slope) + sin(zenith) sin(slope) cos(azimuth_math - aspect)), clamped at 0,
  * where zenith = 90 - altitude and azimuth_math = 90 - azimuth (counter-clockwise from east). A flat cell
- * therefore gets 255 * sin(altitude). Cells on the grid's edge, and cells whose window touches nodata,
- * are nodata in the output.
+ * therefore gets 255 * sin(altitude). `scale` divides both cell sizes: ground units of the horizontal
+ * coordinates per elevation unit (1 when both are metres; the metres of a degree for a DEM in degrees).
+ * As gdaldem -compute_edges: a nodata cell stays nodata; a nodata neighbour takes the centre's value; a
+ * neighbour beyond the grid's edge is extrapolated linearly (2 z(edge) - z(next inside)), so the edge
+ * cells get a shade too; in the first and last rows only the rows are extrapolated and the columns are
+ * clamped (gdaldem's rule: the four corners see their own column repeated).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -31,8 +36,8 @@ static int check_opts(const ft_grid *dem, const ft_hillshade_opts *o)
         return ft_error(FT_E_INVALID, "hillshade z_factor must be > 0, got %g", o->z_factor);
     if (!isfinite(o->scale) || o->scale <= 0.0)
         return ft_error(FT_E_INVALID, "hillshade scale must be > 0, got %g", o->scale);
-    if (dem->nx < 3 || dem->ny < 3)
-        return ft_error(FT_E_INVALID, "hillshade needs a grid of at least 3 x 3 cells, got %zu x %zu", dem->nx,
+    if (dem->nx < 2 || dem->ny < 2)
+        return ft_error(FT_E_INVALID, "hillshade needs a grid of at least 2 x 2 cells, got %zu x %zu", dem->nx,
                         dem->ny);
     if (!isfinite(dem->gt[1]) || !isfinite(dem->gt[5]) || dem->gt[1] == 0.0 || dem->gt[5] == 0.0)
         return ft_error(FT_E_INVALID, "hillshade needs a non-zero cell size, got %g x %g", dem->gt[1],
@@ -40,55 +45,131 @@ static int check_opts(const ft_grid *dem, const ft_hillshade_opts *o)
     return FT_OK;
 }
 
-/* 1 if the 3x3 window centred on (col,row) is inside the grid and all valid. */
-static int window_valid(const ft_grid *g, size_t col, size_t row)
+/* z of cell (col, row) of the grid, NAN when it is nodata (masked or not finite). */
+static double cell(const ft_grid *g, size_t col, size_t row)
 {
-    if (col == 0 || row == 0 || col + 1 >= g->nx || row + 1 >= g->ny)
+    size_t k = row * g->nx + col;
+    if (g->mask != NULL && !g->mask[k])
+        return NAN;
+    return isfinite(g->z[k]) ? (double)g->z[k] : NAN;
+}
+
+/* z at column col of row `row` (inside the grid), where col may be one step outside: then the linear
+ * extrapolation 2 z(edge) - z(next inside), as gdaldem -compute_edges (NAN if either is nodata). */
+static double along_row(const ft_grid *g, long col, size_t row)
+{
+    long nx = (long)g->nx;
+    if (col < 0)
+        return 2.0 * cell(g, 0, row) - cell(g, 1, row);
+    if (col >= nx)
+        return 2.0 * cell(g, g->nx - 1, row) - cell(g, g->nx - 2, row);
+    return cell(g, (size_t)col, row);
+}
+
+/* z at (col, row), either of which may be one step outside the grid, for the window of a cell of row
+ * `centre_row`. As gdaldem -compute_edges: in the first and last rows the columns are clamped to the grid
+ * (the corner cells see their own column repeated) and the row beyond the edge is extrapolated from the
+ * edge row and the next; in the other rows a column beyond the edge is extrapolated along the row. */
+static double extended(const ft_grid *g, long col, long row, size_t centre_row)
+{
+    long nx = (long)g->nx, ny = (long)g->ny;
+    if (centre_row == 0 || centre_row + 1 == g->ny)
+        col = col < 0 ? 0 : col >= nx ? nx - 1 : col;
+    if (row < 0)
+        return 2.0 * cell(g, (size_t)col, 0) - cell(g, (size_t)col, 1);
+    if (row >= ny)
+        return 2.0 * cell(g, (size_t)col, g->ny - 1) - cell(g, (size_t)col, g->ny - 2);
+    return along_row(g, col, (size_t)row);
+}
+
+/* The 3x3 window a..i centred on (col, row) into w[0..8]; 0 if the centre is nodata. A neighbour that is
+ * nodata (or extrapolated from nodata) takes the centre's value, as gdaldem -compute_edges. */
+static int gather(const ft_grid *g, size_t col, size_t row, double w[9])
+{
+    double centre = cell(g, col, row);
+    if (isnan(centre))
         return 0;
-    if (g->mask == NULL)
-        return 1;
-    for (size_t r = row - 1; r <= row + 1; r++)
-        for (size_t c = col - 1; c <= col + 1; c++)
-            if (!g->mask[r * g->nx + c])
-                return 0;
+    int inside = col > 0 && row > 0 && col + 1 < g->nx && row + 1 < g->ny;
+    for (int dr = -1, k = 0; dr <= 1; dr++)
+        for (int dc = -1; dc <= 1; dc++, k++) {
+            double v = inside ? cell(g, (size_t)((long)col + dc), (size_t)((long)row + dr))
+                              : extended(g, (long)col + dc, (long)row + dr, row);
+            w[k] = isnan(v) ? centre : v;
+        }
     return 1;
 }
 
 typedef struct {
-    double ewres, nsres;     /* signed so that dx runs east and dy runs south */
-    double z_factor;
+    double kx, ky;           /* z_factor / (8 x cell size), signed so that x runs east and y runs south */
     double cos_zen, sin_zen; /* of the zenith angle */
-    double az_math;          /* light direction, radians counter-clockwise from east */
+    double cos_az, sin_az;   /* of the light direction counter-clockwise from east */
 } shade_params;
 
-static double shade_cell(const ft_grid *g, size_t col, size_t row, const shade_params *p)
+/* Horn's gradient of the window and the shade, 255 * max(0, cos(incidence)). With slope = atan(z |grad|)
+ * and aspect = atan2(dz/dy, -dz/dx), cos(incidence) = cos(zen) cos(slope) + sin(zen) sin(slope)
+ * cos(az - aspect) = (cos(zen) + sin(zen) (zy sin(az) - zx cos(az))) / sqrt(1 + zx^2 + zy^2), where
+ * zx, zy are the gradient times z_factor: one square root per cell and no trigonometry. */
+static inline double shade_window(const double w[9], const shade_params *p)
 {
-    const float *up = g->z + (row - 1) * g->nx + col;
-    const float *mid = up + g->nx;
-    const float *dn = mid + g->nx;
-    double a = up[-1], b = up[0], c = up[1];
-    double d = mid[-1], f = mid[1];
-    double gg = dn[-1], h = dn[0], i = dn[1];
-    double dzdx = ((c + 2.0 * f + i) - (a + 2.0 * d + gg)) / (8.0 * p->ewres);
-    double dzdy = ((gg + 2.0 * h + i) - (a + 2.0 * b + c)) / (8.0 * p->nsres);
-    double slope = atan(p->z_factor * sqrt(dzdx * dzdx + dzdy * dzdy));
-    double aspect = atan2(dzdy, -dzdx);
-    double v = p->cos_zen * cos(slope) + p->sin_zen * sin(slope) * cos(p->az_math - aspect);
+    double zx = ((w[2] + 2.0 * w[5] + w[8]) - (w[0] + 2.0 * w[3] + w[6])) * p->kx;
+    double zy = ((w[6] + 2.0 * w[7] + w[8]) - (w[0] + 2.0 * w[1] + w[2])) * p->ky;
+    double v = (p->cos_zen + p->sin_zen * (zy * p->sin_az - zx * p->cos_az)) / sqrt(1.0 + zx * zx + zy * zy);
     return v > 0.0 ? 255.0 * v : 0.0;
+}
+
+/* The window of an inner cell of a grid without a mask, read straight from the rows above, at and below
+ * (the same values, and so the same shade, as gather gives). 0 if the centre is not finite. */
+static int gather_inner(const float *up, const float *mid, const float *dn, double w[9])
+{
+    w[0] = up[-1], w[1] = up[0], w[2] = up[1];
+    w[3] = mid[-1], w[4] = mid[0], w[5] = mid[1];
+    w[6] = dn[-1], w[7] = dn[0], w[8] = dn[1];
+    if (!isfinite(w[4]))
+        return 0;
+    for (int k = 0; k < 9; k++)
+        if (!isfinite(w[k]))
+            w[k] = w[4];
+    return 1;
+}
+
+static void put(ft_grid *hs, size_t k, double v)
+{
+    int ok = isfinite(v);
+    hs->mask[k] = (uint8_t)ok;
+    hs->z[k] = ok ? (float)v : (float)FT_HS_NODATA;
 }
 
 static void shade_params_init(const ft_grid *dem, const ft_hillshade_opts *o, shade_params *p)
 {
     const double deg = M_PI / 180.0;
-    double zenith = (90.0 - o->altitude) * deg;
+    double zenith = (90.0 - o->altitude) * deg, az_math = (90.0 - o->azimuth) * deg;
     /* A positive gt[1] runs east and a negative gt[5] runs south (north-up): both are the usual case;
      * the signs flip the differences for grids stored the other way round. */
-    p->ewres = fabs(dem->gt[1]) * o->scale * (dem->gt[1] > 0.0 ? 1.0 : -1.0);
-    p->nsres = fabs(dem->gt[5]) * o->scale * (dem->gt[5] < 0.0 ? 1.0 : -1.0);
-    p->z_factor = o->z_factor;
+    double ewres = fabs(dem->gt[1]) * o->scale * (dem->gt[1] > 0.0 ? 1.0 : -1.0);
+    double nsres = fabs(dem->gt[5]) * o->scale * (dem->gt[5] < 0.0 ? 1.0 : -1.0);
+    p->kx = o->z_factor / (8.0 * ewres);
+    p->ky = o->z_factor / (8.0 * nsres);
     p->cos_zen = cos(zenith);
     p->sin_zen = sin(zenith);
-    p->az_math = (90.0 - o->azimuth) * deg;
+    p->cos_az = cos(az_math);
+    p->sin_az = sin(az_math);
+}
+
+/* One row of the shade: the inner cells of an inner row of a grid without a mask by direct reads, the
+ * others through gather (edges, masks). */
+static void shade_row(const ft_grid *dem, size_t row, const shade_params *p, ft_grid *hs)
+{
+    size_t nx = dem->nx, k0 = row * nx;
+    double w[9];
+    int fast = dem->mask == NULL && row > 0 && row + 1 < dem->ny;
+    for (size_t col = 0; col < nx; col++) {
+        if (fast && col > 0 && col + 1 < nx) {
+            const float *mid = dem->z + k0 + col;
+            put(hs, k0 + col, gather_inner(mid - nx, mid, mid + nx, w) ? shade_window(w, p) : NAN);
+        } else {
+            put(hs, k0 + col, gather(dem, col, row, w) ? shade_window(w, p) : NAN);
+        }
+    }
 }
 
 int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_grid **out)
@@ -126,15 +207,8 @@ int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_gr
     shade_params_init(dem, o, &p);
     const long ny = (long)dem->ny;
 #pragma omp parallel for schedule(static)
-    for (long row = 0; row < ny; row++) {
-        for (size_t col = 0; col < dem->nx; col++) {
-            size_t k = (size_t)row * dem->nx + col;
-            double v = window_valid(dem, col, (size_t)row) ? shade_cell(dem, col, (size_t)row, &p) : NAN;
-            int ok = isfinite(v); /* NaN cells left unmasked by the caller also give nodata */
-            hs->mask[k] = (uint8_t)ok;
-            hs->z[k] = ok ? (float)v : (float)FT_HS_NODATA;
-        }
-    }
+    for (long row = 0; row < ny; row++)
+        shade_row(dem, (size_t)row, &p, hs);
     *out = hs;
     return FT_OK;
 }

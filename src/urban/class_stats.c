@@ -22,8 +22,8 @@ int ft_urban_layer_stats(const ft_layer *l, const size_t *features, size_t nfeat
     if (out == NULL)
         return ft_error(FT_E_INVALID, "ft_urban_layer_stats: NULL out");
     *out = (ft_urban_stats){0};
-    ft_polyset s;
-    int rc = ft_polyset_collect(l, features, nfeatures, 0, &s);
+    ft_polygon_index s;
+    int rc = ft_polygon_index_collect(l, features, nfeatures, 0, &s);
     if (rc != FT_OK)
         return rc;
     out->nfeatures = s.nfeatures;
@@ -34,7 +34,7 @@ int ft_urban_layer_stats(const ft_layer *l, const size_t *features, size_t nfeat
         out->nholes += s.inner[r];
         out->npolygons += !s.inner[r];
     }
-    ft_polyset_clear(&s);
+    ft_polygon_index_clear(&s);
     return FT_OK;
 }
 

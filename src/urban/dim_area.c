@@ -54,7 +54,7 @@
 #define STRIPE_WORDS ((size_t)1 << 22)  /* 32 MB of fine rows rasterized at a time */
 
 typedef struct {
-    ft_polyset set;
+    ft_polygon_index set;
     double xmin, ymin, xmax, ymax;
     double *poly_ymin, *poly_ymax; /* per polygon */
     double median_seg;
@@ -232,7 +232,7 @@ static void sort_small(double *v, size_t n)
 
 /* The polygon's edges in fine units: (1) marks the cells they pass through; the non-horizontal ones are kept
  * for the scanline, sorted by their lower end. */
-static int load_edges(const fine *f, const ft_polyset *s, size_t poly, scan_buf *b)
+static int load_edges(const fine *f, const ft_polygon_index *s, size_t poly, scan_buf *b)
 {
     size_t need = 0;
     for (size_t r = s->poly_first[poly]; r < s->poly_first[poly + 1]; r++)
@@ -466,7 +466,7 @@ int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeature
     if (rc != FT_OK)
         return rc;
     polygons p = {0};
-    rc = ft_polyset_collect(l, features, nfeatures, 1, &p.set);
+    rc = ft_polygon_index_collect(l, features, nfeatures, 1, &p.set);
     if (rc != FT_OK)
         return rc;
     if (p.set.nrings == 0)
@@ -492,6 +492,6 @@ int ft_urban_dim_area(const ft_layer *l, const size_t *features, size_t nfeature
     free(sizes);
     free(p.poly_ymin);
     free(p.poly_ymax);
-    ft_polyset_clear(&p.set);
+    ft_polygon_index_clear(&p.set);
     return rc;
 }

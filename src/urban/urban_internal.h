@@ -28,9 +28,10 @@ int ft_urban_boundary_check(const ft_boundary_opts *o);
 int ft_urban_boundary_guarded(ft_layer *l, const ft_boundary_opts *o, double max, int coverage,
                               ft_line_guard_stats *stats);
 
-/* ---- polygon_set.c --------------------------------------------------------------------------------- */
+/* ---- polygon_index.c ------------------------------------------------------------------------------- */
 
-/** The rings of the selected polygon features of a layer, grouped by polygon. */
+/** The rings of the selected polygon features of a layer, grouped by polygon: a borrowed view of the
+ *  layer's parts (valid while the layer lives), not a copy. */
 typedef struct {
     const ft_chain **rings;   /**< every ring (outer and inner) of the selection, polygon by polygon */
     unsigned char *inner;     /**< per ring: 1 for an inner ring (hole) */
@@ -38,13 +39,13 @@ typedef struct {
     size_t *poly_first;       /**< polygon p holds rings[poly_first[p] .. poly_first[p + 1]) */
     size_t npolys;
     size_t nfeatures;         /**< polygon features selected */
-} ft_polyset;
+} ft_polygon_index;
 
 /** Collects the rings of features[0 .. nfeatures) (NULL = every feature). Features without geometry are
  *  skipped; with strict, a line feature is an error naming it (else it is skipped); every coordinate must
  *  be finite. An empty result is not an error here. */
-int ft_polyset_collect(const ft_layer *l, const size_t *features, size_t nfeatures, int strict, ft_polyset *s);
-void ft_polyset_clear(ft_polyset *s);
+int ft_polygon_index_collect(const ft_layer *l, const size_t *features, size_t nfeatures, int strict, ft_polygon_index *s);
+void ft_polygon_index_clear(ft_polygon_index *s);
 
 /* ---- row_bits.c ------------------------------------------------------------------------------------ */
 

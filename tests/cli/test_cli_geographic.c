@@ -44,22 +44,34 @@ static double row_value(json_object *o, double s)
     return v;
 }
 
+/* `dim KIND FILE --min-scale MIN --max-scale MAX --json [--method METHOD]` on a lon/lat file (*g) and on its
+ * projected twin (*p): the lon/lat report is in metres; returns |D(lon/lat) - D(projected)|. */
+static double twin_d(const char *kind, const char *method, const char *lonlat, const char *projected,
+                     const char *min, const char *max, json_object **g, json_object **p)
+{
+    const char *files[2] = {lonlat, projected};
+    json_object **out[2] = {g, p};
+    for (int k = 0; k < 2; k++) {
+        const char *argv[] = {"dim", kind, files[k], "--min-scale", min, "--max-scale", max, "--json",
+                              method ? "--method" : NULL, method, NULL};
+        *out[k] = ft_test_run_json(argv);
+    }
+    assert_string_equal(ft_test_json_str(*g, "units"), "m");
+    return fabs(ft_test_json_num(*g, "D") - ft_test_json_num(*p, "D"));
+}
+
 /* Newfoundland (47-52 N) in lon/lat and in UTM 21N: divider D over 1-100 km within 0.01, the walked length
  * at a 1 km ruler within 0.5%; scales in metres. */
 static void test_dim_line_twin(void **state)
 {
     (void)state;
-    json_object *g = FT_TEST_RUN_JSON("dim", "line", NF_LONLAT, "--min-scale", "1000", "--max-scale", "100000",
-                                      "--json");
-    json_object *p = FT_TEST_RUN_JSON("dim", "line", NF_UTM, "--min-scale", "1000", "--max-scale", "100000",
-                                      "--json");
-    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    json_object *g = NULL, *p = NULL;
+    double dd = twin_d("line", NULL, NF_LONLAT, NF_UTM, "1000", "100000", &g, &p);
     double lg = row_value(g, 1000.0), lp = row_value(p, 1000.0);
-    print_message("  D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.3f%%)\n", dg, dp, lg, lp,
-                  100.0 * (lg / lp - 1.0));
-    assert_true(fabs(dg - dp) < 0.01);
+    print_message("  D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.3f%%)\n", ft_test_json_num(g, "D"),
+                  ft_test_json_num(p, "D"), lg, lp, 100.0 * (lg / lp - 1.0));
+    assert_true(dd < 0.01);
     assert_true(fabs(lg / lp - 1.0) < 0.005);
-    assert_string_equal(ft_test_json_str(g, "units"), "m");
     assert_string_equal(ft_test_json_str(p, "units"), "m");
     json_object *geo = ft_test_json_key(g, "geographic");
     assert_string_equal(ft_test_json_str(geo, "ellipsoid"), "WGS 84");
@@ -73,15 +85,12 @@ static void test_dim_line_twin(void **state)
 static void test_dim_line_native_lonlat(void **state)
 {
     (void)state;
-    json_object *g = FT_TEST_RUN_JSON("dim", "line", SKYE_LONLAT, "--min-scale", "500", "--max-scale", "10000",
-                                      "--json");
-    json_object *p = FT_TEST_RUN_JSON("dim", "line", SKYE_UTM, "--min-scale", "500", "--max-scale", "10000",
-                                      "--json");
-    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
+    json_object *g = NULL, *p = NULL;
+    double dd = twin_d("line", NULL, SKYE_LONLAT, SKYE_UTM, "500", "10000", &g, &p);
     double lg = row_value(g, 1000.0), lp = row_value(p, 1000.0);
-    print_message("  Skye: D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.4f%%)\n", dg, dp, lg, lp,
-                  100.0 * (lg / lp - 1.0));
-    assert_true(fabs(dg - dp) < 0.01);
+    print_message("  Skye: D lon/lat %.4f, UTM %.4f; L(1 km) %.0f m, %.0f m (%+.4f%%)\n", ft_test_json_num(g, "D"),
+                  ft_test_json_num(p, "D"), lg, lp, 100.0 * (lg / lp - 1.0));
+    assert_true(dd < 0.01);
     assert_true(fabs(lg / lp - 1.0) < 0.005);
     assert_true(lg > 400e3 && lg < 600e3); /* metres: Skye's shore is some 500 km at this ruler, not degrees */
     assert_string_equal(ft_test_json_str(g, "units"), "m");
@@ -166,16 +175,12 @@ static void test_antimeridian(void **state)
 static void test_dim_line_box_projection(void **state)
 {
     (void)state;
-    json_object *g = FT_TEST_RUN_JSON("dim", "line", US_LONLAT, "--method", "box", "--min-scale", "2000",
-                                      "--max-scale", "50000", "--json");
-    json_object *p = FT_TEST_RUN_JSON("dim", "line", US_ALBERS, "--method", "box", "--min-scale", "2000",
-                                      "--max-scale", "50000", "--json");
+    json_object *g = NULL, *p = NULL;
+    double dd = twin_d("line", "box", US_LONLAT, US_ALBERS, "2000", "50000", &g, &p);
     const char *proj = ft_test_json_str(ft_test_json_key(g, "geographic"), "projection");
     assert_non_null(strstr(proj, "Lambert azimuthal equal-area centred on"));
-    assert_string_equal(ft_test_json_str(g, "units"), "m");
-    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
-    print_message("  box D lon/lat (LAEA) %.4f, Albers %.4f\n", dg, dp);
-    assert_true(fabs(dg - dp) < 0.02);
+    print_message("  box D lon/lat (LAEA) %.4f, Albers %.4f\n", ft_test_json_num(g, "D"), ft_test_json_num(p, "D"));
+    assert_true(dd < 0.02);
     json_object_put(g);
     json_object_put(p);
 }
@@ -215,14 +220,10 @@ static void test_dim_area_twin(void **state)
 static void test_dim_surface_twin(void **state)
 {
     (void)state;
-    json_object *g = FT_TEST_RUN_JSON("dim", "surface", LUX_LONLAT, "--min-scale", "1500", "--max-scale", "12000",
-                                      "--json");
-    json_object *p = FT_TEST_RUN_JSON("dim", "surface", LUX_UTM, "--min-scale", "1500", "--max-scale", "12000",
-                                      "--json");
-    double dg = ft_test_json_num(g, "D"), dp = ft_test_json_num(p, "D");
-    print_message("  variogram D lon/lat %.4f, UTM %.4f\n", dg, dp);
-    assert_true(fabs(dg - dp) < 0.02);
-    assert_string_equal(ft_test_json_str(g, "units"), "m");
+    json_object *g = NULL, *p = NULL;
+    double dd = twin_d("surface", NULL, LUX_LONLAT, LUX_UTM, "1500", "12000", &g, &p);
+    print_message("  variogram D lon/lat %.4f, UTM %.4f\n", ft_test_json_num(g, "D"), ft_test_json_num(p, "D"));
+    assert_true(dd < 0.02);
     assert_non_null(strstr(ft_test_json_str(ft_test_json_key(g, "geographic"), "projection"), "Transverse Mercator"));
     json_object_put(g);
     json_object_put(p);

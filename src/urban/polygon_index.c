@@ -1,8 +1,9 @@
-/* fracterra — src/urban/polygon_set.c: the polygons of a land-use layer (or of one class of it) that the box
- * counter and the class statistics measure (Zhang, Yu & Fan 2008, §1.2: residential,
- * industrial, vegetation and water layers as polygons). A polygon is an outer ring followed by its inner
- * rings with the same polygon index (core.h); the set keeps them grouped so that the interior of each
- * polygon is decided by the even-odd rule over its own rings.
+/* fracterra — src/urban/polygon_index.c: an index of the polygons of a land-use layer (or of one class of
+ * it) that the box counter and the class statistics measure (Zhang, Yu & Fan 2008, §1.2: residential,
+ * industrial, vegetation and water layers as polygons). Not a polygon model of its own: the polygons are
+ * the layer's (ft_layer parts: an outer ring followed by its inner rings with the same polygon index,
+ * core.h); the index borrows their rings, copies nothing, and groups them by polygon so that the interior
+ * of each polygon is decided by the even-odd rule over its own rings (docs/architecture.md, "Polygons").
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -13,12 +14,12 @@
 #include "internal.h"
 #include "urban/urban_internal.h"
 
-void ft_polyset_clear(ft_polyset *s)
+void ft_polygon_index_clear(ft_polygon_index *s)
 {
     free(s->rings);
     free(s->inner);
     free(s->poly_first);
-    *s = (ft_polyset){0};
+    *s = (ft_polygon_index){0};
 }
 
 static int check_feature(const ft_layer *l, size_t f, int strict, int *use)
@@ -46,7 +47,7 @@ static int check_feature(const ft_layer *l, size_t f, int strict, int *use)
     return FT_OK;
 }
 
-static void add_feature(const ft_layer *l, size_t f, ft_polyset *s)
+static void add_feature(const ft_layer *l, size_t f, ft_polygon_index *s)
 {
     const ft_feature *ft = &l->features[f];
     int last_polygon = -1;
@@ -63,9 +64,9 @@ static void add_feature(const ft_layer *l, size_t f, ft_polyset *s)
     s->nfeatures++;
 }
 
-int ft_polyset_collect(const ft_layer *l, const size_t *features, size_t nfeatures, int strict, ft_polyset *s)
+int ft_polygon_index_collect(const ft_layer *l, const size_t *features, size_t nfeatures, int strict, ft_polygon_index *s)
 {
-    *s = (ft_polyset){0};
+    *s = (ft_polygon_index){0};
     if (l == NULL)
         return ft_error(FT_E_INVALID, "polygons: NULL layer");
     size_t nf = features != NULL ? nfeatures : l->nfeatures, cap = 0;
@@ -81,7 +82,7 @@ int ft_polyset_collect(const ft_layer *l, const size_t *features, size_t nfeatur
     s->inner = ft_malloc(cap ? cap : 1);
     s->poly_first = ft_malloc((cap + 1) * sizeof *s->poly_first);
     if (s->rings == NULL || s->inner == NULL || s->poly_first == NULL) {
-        ft_polyset_clear(s);
+        ft_polygon_index_clear(s);
         return FT_E_NOMEM;
     }
     for (size_t i = 0; i < nf; i++) {
