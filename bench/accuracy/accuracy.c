@@ -6,13 +6,15 @@
  * SNR = 20 log10(σ_S / σ_N) dB, σ_S the largest of the standard deviations of x, y and z.
  *
  *   fracterra_accuracy [--surfaces N] [--size N] [--fraction F] [--synth stein,exact,sra,fft] [--dims LIST]
- *                      [--snr LIST] [--z-only] [--jitter] [--method yokoya|pentland] [--min-lag K] [--max-lag K]
- *                      [--nlags N] [--eps E] [--fit-auto] [--noise-model] [--no-nugget] [--zsd S] [--seed N]
+ *                      [--snr LIST] [--noisy-only] [--z-only] [--jitter] [--method yokoya|pentland]
+ *                      [--min-lag K] [--max-lag K] [--nlags N] [--eps E] [--fit-auto] [--noise-model]
+ *                      [--no-nugget] [--zsd S] [--seed N]
  *
  * --synth stein (the default) is Stein's exact circulant embedding written here (fbm_circulant.c),
- * independent of fracterra's synthesis; --z-only puts the noise on z alone; --noise-model gives the
- * estimator the true σ (x, y and z); --no-nugget turns its noise model off. A row beats the paper when
- * |mean error| minus one standard error of the mean is below the paper's.
+ * independent of fracterra's synthesis; --noisy-only skips the no-noise table; --z-only puts the noise
+ * on z alone; --noise-model gives the estimator the true σ (x, y and z); --no-nugget turns its noise
+ * model off. A row beats the paper when |mean error| minus one standard error of the mean is below the
+ * paper's.
  *
  * Lags are given in multiples of the mean point spacing (the library's default unit); surfaces are
  * generated with standard deviation --zsd in cell units (default: size / sqrt(12), the standard deviation
@@ -48,7 +50,7 @@ static const double paper_snr[3][8] = {
 #define SYNTH_STEIN ((ft_synth_method)-1)
 
 typedef struct {
-    int surfaces, size, jitter, nlags, fit_auto, noise_model, z_only, no_nugget;
+    int surfaces, size, jitter, nlags, fit_auto, noise_model, z_only, no_nugget, noisy_only;
     double fraction, min_lag, max_lag, eps, zsd;
     uint64_t seed;
     ft_points_method method;
@@ -62,7 +64,7 @@ typedef struct {
 
 static int parse_args(int argc, char **argv, args *a)
 {
-    *a = (args){100, 512, 0, 0, 0, 0, 0, 0, 0.05, 0.0, 0.0, 0.0, 0.0, 1, FT_POINTS_YOKOYA, {SYNTH_STEIN}, 1,
+    *a = (args){100, 512, 0, 0, 0, 0, 0, 0, 0, 0.05, 0.0, 0.0, 0.0, 0.0, 1, FT_POINTS_YOKOYA, {SYNTH_STEIN}, 1,
                 {2.1, 2.2, 2.3, 2.4, 2.5, 2.6, 2.7, 2.8}, 8, {0}, 0};
     for (int i = 1; i < argc; i++) {
         const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -75,6 +77,9 @@ static int parse_args(int argc, char **argv, args *a)
             takes = 0;
         } else if (strcmp(o, "--no-nugget") == 0) {
             a->no_nugget = 1;
+            takes = 0;
+        } else if (strcmp(o, "--noisy-only") == 0) {
+            a->noisy_only = 1;
             takes = 0;
         } else if (strcmp(o, "--z-only") == 0) {
             a->z_only = 1;
@@ -349,7 +354,8 @@ int main(int argc, char **argv)
            "the paper's errors are magnitudes). Lags %g..%g x mean spacing (0 = library default), %s fit, %d threads\n",
            ft_version(), a.min_lag, a.max_lag, a.fit_auto ? "ILS" : "whole-range", omp_get_max_threads());
     for (int m = 0; m < a.nsynth; m++) {
-        run_table(&a, a.synth[m], 0.0, -1);
+        if (!a.noisy_only || a.nsnr == 0)
+            run_table(&a, a.synth[m], 0.0, -1);
         for (int k = 0; k < a.nsnr; k++) {
             int idx = a.snr[k] == 30.0 ? 0 : a.snr[k] == 25.0 ? 1 : a.snr[k] == 20.0 ? 2 : -3;
             run_table(&a, a.synth[m], a.snr[k], idx < 0 ? 2 : idx);

@@ -110,8 +110,8 @@ int ft_surface_fit_table(const ft_loglog *t, int whole, const ft_loglog_opts *fi
  * RSS with *c0 and *a, or INFINITY (outputs untouched) when a is not > 0. */
 double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n, double c0_fixed, double *c0,
                      double *a);
-/* q = c0 + a exp(e lr) fitted with weights w (ft_nugget_wls), profiling e over [emin, emax] (a grid of 0.01,
- * then golden section); scratch holds n values. Returns the weighted RSS (INFINITY: no a > 0 anywhere). */
+/* q = c0 + a exp(e lr) fitted with weights w (ft_nugget_wls), profiling e over [emin, emax] (a grid of 0.1,
+ * then golden section); scratch holds 2 n values. Returns the weighted RSS (INFINITY: no a > 0 anywhere). */
 double ft_nugget_profile(const double *lr, const double *q, const double *w, size_t n, double c0_fixed, double emin,
                          double emax, double *scratch, double *e, double *c0, double *a);
 /* The spectrum's fit with a white-noise floor, P(f) = N0 + A f^-beta (spectrum_floor.c): N0 detected (or

@@ -11,7 +11,7 @@
  *
  * i.e. q(r) = value^power = c0 + a r^(2H) with power 1 or 2: a constant (the nugget c0) plus a power
  * law. On the log-log plot the noise flattens the curve toward the small lags and pushes D up, most at
- * low D. The fit profiles the exponent e = 2H over [0.01, 2] (a grid of 0.01, then golden section):
+ * low D. The fit profiles the exponent e = 2H over [0.01, 2] (a grid of 0.1, then golden section):
  * for each e, c0 >= 0 and a > 0 by weighted linear least squares with weights 1/q² (equal relative
  * errors, what a log-log fit assumes); the pure power law (c0 = 0) is profiled the same way and the F
  * statistic of the extra parameter, F = (RSS0 - RSS1) / (RSS1 / (n - 3)), with the share of c0 in the
@@ -36,7 +36,7 @@
 
 #define E_MIN 0.01
 #define E_MAX 2.0
-#define E_STEP 0.01
+#define E_STEP 0.1
 #define DETECT_P 0.05     /* level of the F test of the nugget against the pure power law, F(1, n - 3) */
 #define DETECT_SHARE 0.05 /* and c0 at least this share of q at the smallest lag */
 #define FLOOR_RATIO 1.0  /* the fit starts where a r^(2H) >= FLOOR_RATIO c0 */
@@ -54,7 +54,7 @@ typedef struct {
     const double *lr, *q, *w; /* log scale, q, weight */
     size_t n;
     double c0_fixed;          /* >= 0: c0 held at this value; < 0: fitted (>= 0) */
-    double *x;                /* scratch: r^e per row */
+    double *x;                /* scratch: r^e per row, then the grid step r^E_STEP per row */
     double emin, emax;        /* the exponents searched */
 } profile_data;
 
@@ -102,15 +102,28 @@ static double rss_at(const profile_data *p, double e, double *c0_out, double *a_
     return ft_nugget_wls(p->x, p->q, p->w, p->n, p->c0_fixed, c0_out, a_out);
 }
 
-/* The exponent e minimising the RSS: a grid, then golden section around the best grid point. */
+/* The exponent e minimising the RSS: a grid, then golden section around the best grid point. On the
+ * grid r^e is stepped by a product (r^(e + E_STEP) = r^e r^E_STEP; n exp calls per profile instead of one
+ * per row and exponent), the golden section stops at a bracket of GOLDEN_TOL in e and ends with one
+ * parabolic step (Brent 1973, ch. 5). */
+#define GOLDEN_TOL 1e-4
 static double profile(const profile_data *p, double *e_out, double *c0, double *a)
 {
     double best = INFINITY, eb = NAN, cc, aa;
-    for (double e = p->emin; e <= p->emax + 1e-9; e += E_STEP) {
-        double r = rss_at(p, e, &cc, &aa);
+    double *x = p->x, *step = p->x + p->n;
+    for (size_t i = 0; i < p->n; i++) {
+        x[i] = exp(p->emin * p->lr[i]);
+        step[i] = exp(E_STEP * p->lr[i]);
+    }
+    int ne = (int)floor((p->emax - p->emin) / E_STEP + 1e-9);
+    for (int j = 0; j <= ne; j++) {
+        if (j > 0)
+            for (size_t i = 0; i < p->n; i++)
+                x[i] *= step[i];
+        double r = ft_nugget_wls(x, p->q, p->w, p->n, p->c0_fixed, &cc, &aa);
         if (r < best) {
             best = r;
-            eb = e;
+            eb = p->emin + (double)j * E_STEP;
         }
     }
     if (!isfinite(best))
@@ -118,7 +131,7 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
     double lo = fmax(p->emin, eb - E_STEP), hi = fmin(p->emax, eb + E_STEP), g = 0.5 * (sqrt(5.0) - 1.0);
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     double f1 = rss_at(p, x1, &cc, &aa), f2 = rss_at(p, x2, &cc, &aa);
-    for (int it = 0; it < 40; it++) {
+    while (hi - lo > GOLDEN_TOL) {
         if (f1 < f2) {
             hi = x2;
             x2 = x1;
@@ -134,6 +147,20 @@ static double profile(const profile_data *p, double *e_out, double *c0, double *
         }
     }
     double e = 0.5 * (lo + hi), r = rss_at(p, e, &cc, &aa);
+    /* one parabolic step through (x1, f1), (e, r), (x2, f2): the RSS is quadratic near its minimum */
+    double u = (e - x1) * (r - f2), v = (e - x2) * (r - f1), den = u - v;
+    if (den != 0.0) {
+        double xp = e - 0.5 * ((e - x1) * u - (e - x2) * v) / den;
+        if (xp > lo && xp < hi) {
+            double rp = rss_at(p, xp, &cc, &aa);
+            if (rp < r) {
+                e = xp;
+                r = rp;
+            } else {
+                rss_at(p, e, &cc, &aa);
+            }
+        }
+    }
     if (!(r <= best)) {
         e = eb;
         r = rss_at(p, e, &cc, &aa);
@@ -164,7 +191,7 @@ int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft
     size_t need = sigma_z > 0.0 ? 3 : 4;
     if (t->n < need)
         return ft_error(FT_E_EMPTY, "nugget fit: needs at least %zu rows, got %zu", need, t->n);
-    double *buf = ft_malloc(4 * t->n * sizeof *buf);
+    double *buf = ft_malloc(5 * t->n * sizeof *buf);
     if (buf == NULL)
         return FT_E_NOMEM;
     profile_data p = {buf, buf + t->n, buf + 2 * t->n, t->n, -1.0, buf + 3 * t->n, E_MIN, E_MAX};
@@ -179,7 +206,8 @@ int ft_nugget_fit(const ft_loglog *t, ft_structure_stat stat, double sigma_z, ft
         p.c0_fixed = k * sigma_z * sigma_z;
     double rss1 = profile(&p, &e1, &c0, &a);
     double F = 0.0;
-    if (sigma_z == 0.0 && isfinite(rss1)) {
+    /* With c0 held at its bound 0 at the free optimum the pure power law fits as well: F = 0, no profile. */
+    if (sigma_z == 0.0 && isfinite(rss1) && c0 > 0.0) {
         double e0, c00, a0;
         p.c0_fixed = 0.0;
         double rss0 = profile(&p, &e0, &c00, &a0);

@@ -47,7 +47,7 @@ static int fit_floor(const ft_loglog *t, double sigma_z, ft_noise_model *m, size
     while (first > 0 && t->rows[first - 1].scale * HEAD_SPAN >= t->rows[t->n - 1].scale)
         first--;
     size_t n = t->n - first;
-    double *buf = ft_malloc(4 * n * sizeof *buf);
+    double *buf = ft_malloc(5 * n * sizeof *buf);
     if (buf == NULL)
         return FT_E_NOMEM;
     double *lr = buf, *q = buf + n, *w = buf + 2 * n, *scratch = buf + 3 * n;
