@@ -56,6 +56,11 @@ int ft_geos_append_to_set(ft_geos *g, const GEOSGeometry *geom, double min_area,
 
 /* ---- checks shared by the contour functions (polygon_set.c) ----------------------------------- */
 
+/* The number of rings of a set (outer rings and their holes; 0 for NULL). */
+size_t ft_polygon_set_ring_count(const ft_polygon_set *s);
+/* Ring k of a set in set order (outer rings and their holes, polygon by polygon); NULL past the end. */
+const ft_chain *ft_polygon_set_ring(const ft_polygon_set *s, size_t k);
+
 /* A copy of layer part p as a ring (closing vertex dropped, closed = 1). FT_E_FORMAT naming the feature
  * and part for an open line, no vertex or a non-finite coordinate; a ring of fewer than 3 vertices is
  * FT_E_FORMAT too unless degenerate_ok, which then gives FT_OK with *out = NULL (also for zero area). */

@@ -19,27 +19,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-static size_t below_rings(const ft_polygon_set *s)
-{
-    size_t n = 0;
-    for (size_t i = 0; s != NULL && i < s->n; i++)
-        n += 1 + s->polys[i].nholes;
-    return n;
-}
-
-/* Ring k of the set in set order (outer rings and their holes, polygon by polygon). */
-static const ft_chain *below_ring(const ft_polygon_set *s, size_t k)
-{
-    for (size_t i = 0; i < s->n; i++) {
-        if (k == 0)
-            return s->polys[i].outer;
-        if (k <= s->polys[i].nholes)
-            return s->polys[i].holes[k - 1];
-        k -= 1 + s->polys[i].nholes;
-    }
-    return NULL;
-}
-
 /* The displaced ring's base for the crossing guard: ring with every vertex the displacement added put back
  * on the segment of ring it was drawn from, at its fraction of the displaced piece's length (so the base is
  * ring itself with collinear vertices added, and every added vertex moves from there to its displaced
@@ -84,7 +63,7 @@ int ft_contour_guard_displaced(ft_chain **rings, const ft_chain *const *used, si
 {
     if ((rings == NULL || used == NULL) && nr > 0)
         return ft_error(FT_E_INVALID, "guarded displacement: NULL rings");
-    size_t nb = below_rings(below), n = nr + nb;
+    size_t nb = ft_polygon_set_ring_count(below), n = nr + nb;
     ft_chain **base = ft_calloc(n + 1, sizeof *base);
     const ft_chain **raw = ft_calloc(n + 1, sizeof *raw);
     int rc = base != NULL && raw != NULL ? FT_OK : FT_E_NOMEM;
@@ -95,7 +74,7 @@ int ft_contour_guard_displaced(ft_chain **rings, const ft_chain *const *used, si
         raw[k] = rings[k];
     }
     for (size_t k = 0; rc == FT_OK && k < nb; k++) {
-        raw[nr + k] = below_ring(below, k);
+        raw[nr + k] = ft_polygon_set_ring(below, k);
         if ((base[nr + k] = ft_chain_copy(raw[nr + k])) == NULL)
             rc = FT_E_NOMEM;
     }

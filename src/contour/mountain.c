@@ -159,27 +159,6 @@ static void rings_free(rings *r)
     r->n = 0;
 }
 
-static size_t set_rings(const ft_polygon_set *s)
-{
-    size_t n = 0;
-    for (size_t i = 0; i < s->n; i++)
-        n += 1 + s->polys[i].nholes;
-    return n;
-}
-
-/* The ring of index k in set order (outer rings and their holes, polygon by polygon). */
-static const ft_chain *ring_at(const ft_polygon_set *s, size_t k)
-{
-    for (size_t i = 0; i < s->n; i++) {
-        if (k == 0)
-            return s->polys[i].outer;
-        if (k <= s->polys[i].nholes)
-            return s->polys[i].holes[k - 1];
-        k -= 1 + s->polys[i].nholes;
-    }
-    return NULL;
-}
-
 /* The region the rings wind around positively, small faces dropped: the loop removal of §4.4. */
 static int clean_rings(generator *gen, rings *r, ft_polygon_set **out)
 {
@@ -291,7 +270,7 @@ static int displace_ring(generator *gen, const ft_chain *ring, uint64_t stream, 
 static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_set *below, int level, int thin,
                      ft_polygon_set **out)
 {
-    size_t nr = set_rings(p);
+    size_t nr = ft_polygon_set_ring_count(p);
     rings r = {ft_calloc(nr + 1, sizeof(ft_chain *)), 0};
     ft_chain **used = ft_calloc(nr + 1, sizeof *used); /* the rings displaced: thinned copies or NULL */
     if (r.c == NULL || used == NULL) {
@@ -301,7 +280,7 @@ static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_s
     }
     int rc = FT_OK;
     for (size_t k = 0; rc == FT_OK && k < nr; k++) {
-        const ft_chain *ring = ring_at(p, k);
+        const ft_chain *ring = ft_polygon_set_ring(p, k);
         if (thin && (rc = ft_line_simplify(ring, gen->simplify, &used[k])) == FT_OK)
             ring = used[k];
         if (rc == FT_OK)
@@ -313,7 +292,7 @@ static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_s
         if (ring == NULL)
             rc = FT_E_NOMEM;
         for (size_t k = 0; rc == FT_OK && k < nr; k++)
-            ring[k] = used[k] != NULL ? used[k] : ring_at(p, k);
+            ring[k] = used[k] != NULL ? used[k] : ft_polygon_set_ring(p, k);
         if (rc == FT_OK)
             rc = ft_contour_guard_displaced(r.c, ring, r.n, below, NULL);
         free(ring);
@@ -374,14 +353,14 @@ static int collinear_removed(generator *gen, const ft_chain *f, ft_chain **out)
 /* Phase randomization of every ring of S (§4.2), then collinear removal (§4.3, improved), cleaned. */
 static int randomized(generator *gen, const ft_polygon_set *s, int level, ft_polygon_set **out)
 {
-    size_t nr = set_rings(s);
+    size_t nr = ft_polygon_set_ring_count(s);
     rings r = {ft_calloc(nr + 1, sizeof(ft_chain *)), 0};
     if (r.c == NULL)
         return FT_E_NOMEM;
     int rc = FT_OK;
     for (size_t k = 0; rc == FT_OK && k < nr; k++) {
         ft_chain *f = NULL;
-        rc = ft_contour_fourier_randomize(ring_at(s, k), &gen->fourier, gen->seed, stream_id(level, k, OP_FOURIER),
+        rc = ft_contour_fourier_randomize(ft_polygon_set_ring(s, k), &gen->fourier, gen->seed, stream_id(level, k, OP_FOURIER),
                                           &f);
         if (rc == FT_OK && gen->method == FT_MOUNTAIN_IMPROVED) {
             ft_chain *c = NULL;
@@ -586,8 +565,8 @@ static double mean_segment(const ft_polygon_set *s)
 {
     double len = 0.0;
     size_t nseg = 0;
-    for (size_t k = 0, nr = set_rings(s); k < nr; k++) {
-        const ft_chain *c = ring_at(s, k);
+    for (size_t k = 0, nr = ft_polygon_set_ring_count(s); k < nr; k++) {
+        const ft_chain *c = ft_polygon_set_ring(s, k);
         len += ft_chain_length(c);
         nseg += ft_chain_segments(c);
     }
@@ -670,12 +649,12 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
         lo.max_scale = MATCH_RULERS * lo.min_scale;
         lo.fit_whole_range = 1;
         gen.dim_opts = lo;
-        size_t nr = set_rings(seed);
+        size_t nr = ft_polygon_set_ring_count(seed);
         const ft_chain **rs = ft_calloc(nr, sizeof *rs);
         if (rs == NULL)
             return FT_E_NOMEM;
         for (size_t k = 0; k < nr; k++)
-            rs[k] = ring_at(seed, k);
+            rs[k] = ft_polygon_set_ring(seed, k);
         gen.dim_target = rings_dim(&gen, rs, nr);
         free(rs);
         gen.match = !isnan(gen.dim_target); /* a seed too short for the rulers: theta as given */

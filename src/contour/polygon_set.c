@@ -38,6 +38,26 @@ void ft_polygon_set_free(ft_polygon_set *s)
     free(s);
 }
 
+size_t ft_polygon_set_ring_count(const ft_polygon_set *s)
+{
+    size_t n = 0;
+    for (size_t i = 0; s != NULL && i < s->n; i++)
+        n += 1 + s->polys[i].nholes;
+    return n;
+}
+
+const ft_chain *ft_polygon_set_ring(const ft_polygon_set *s, size_t k)
+{
+    for (size_t i = 0; s != NULL && i < s->n; i++) {
+        if (k == 0)
+            return s->polys[i].outer;
+        if (k <= s->polys[i].nholes)
+            return s->polys[i].holes[k - 1];
+        k -= 1 + s->polys[i].nholes;
+    }
+    return NULL;
+}
+
 ft_polygon_set *ft_polygon_set_copy(const ft_polygon_set *s)
 {
     if (s == NULL) {
