@@ -50,10 +50,12 @@ FT_API int ft_polygon_set_from_layer(const ft_layer *l, ft_polygon_set **out);
 
 /** 1 if every ring is simple (no self-intersection), outer rings are counter-clockwise with a positive
  *  area, holes clockwise inside their outer ring, and no two polygons overlap (GEOS validity);
- *  0 otherwise, with the reason in *why (static text, may be NULL). */
+ *  0 otherwise, with the reason in *why (thread-local text, may be NULL); 2 if the question could not be
+ *  decided (NULL set, GEOS context or check failure: ft_last_error() says why), as GEOS's predicates. */
 FT_API int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why);
 
-/** 1 if every polygon of inner lies inside outer (GEOS covers), 0 otherwise. */
+/** 1 if every polygon of inner lies inside outer (GEOS covers), 0 otherwise, 2 if it could not be decided
+ *  (NULL set, rings GEOS rejects, GEOS failure: ft_last_error() says why), as GEOS's predicates. */
 FT_API int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *outer);
 
 /* ------------------------------------------------------------------------------------------------

@@ -554,7 +554,10 @@ static int check_seed(const ft_polygon_set *seed)
             return rc;
     }
     const char *why = NULL;
-    if (!ft_polygon_set_is_valid(seed, &why))
+    int valid = ft_polygon_set_is_valid(seed, &why);
+    if (valid == 2)
+        return ft_last_error_code();
+    if (valid == 0)
         return ft_error(FT_E_INVALID, "the seed contours are not a valid polygon set (%s); ft_contour_clean repairs it",
                         why ? why : "invalid");
     return FT_OK;

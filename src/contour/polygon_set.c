@@ -373,8 +373,10 @@ int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why)
 {
     if (why != NULL)
         *why = NULL;
-    if (s == NULL)
-        return invalid(why, "NULL polygon set");
+    if (s == NULL) {
+        ft_error(FT_E_INVALID, "ft_polygon_set_is_valid: NULL polygon set");
+        return 2;
+    }
     if (s->n > 0 && s->polys == NULL)
         return invalid(why, "%zu polygons but no polygon array", s->n);
     if (!check_orientation(s, why))
@@ -383,7 +385,7 @@ int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why)
         return 1;
     ft_geos g;
     if (ft_geos_open(&g) != FT_OK)
-        return invalid(why, "cannot create a GEOS context");
+        return 2;
     int ok = 0;
     GEOSGeometry *mp = ft_geos_from_set(&g, s);
     if (mp == NULL) {
@@ -402,12 +404,14 @@ int ft_polygon_set_is_valid(const ft_polygon_set *s, const char **why)
                 GEOSGeomGetX_r(g.h, where, &x);
                 GEOSGeomGetY_r(g.h, where, &y);
             }
-            if (v == 0)
+            if (v == 0) {
                 snprintf(tl_why, sizeof tl_why, "%s at (%.17g, %.17g)", reason ? reason : "invalid", x, y);
-            else
-                snprintf(tl_why, sizeof tl_why, "GEOS validity check failed: %.200s", g.msg);
-            if (why != NULL)
-                *why = tl_why;
+                if (why != NULL)
+                    *why = tl_why;
+            } else {
+                ft_geos_fail(&g, "ft_polygon_set_is_valid");
+                ok = 2;
+            }
         }
         if (reason != NULL)
             GEOSFree_r(g.h, reason);
@@ -423,7 +427,7 @@ int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *out
 {
     if (inner == NULL || outer == NULL) {
         ft_error(FT_E_INVALID, "ft_polygon_set_within: NULL %s set", inner == NULL ? "inner" : "outer");
-        return 0;
+        return 2;
     }
     if (inner->n == 0)
         return 1;
@@ -431,15 +435,15 @@ int ft_polygon_set_within(const ft_polygon_set *inner, const ft_polygon_set *out
         return 0;
     ft_geos g;
     if (ft_geos_open(&g) != FT_OK)
-        return 0;
-    int result = 0;
+        return 2;
+    int result = 2; /* GEOS rejecting either set's rings leaves the question undecided (error set) */
     GEOSGeometry *a = ft_geos_from_set(&g, outer);
     GEOSGeometry *b = a ? ft_geos_from_set(&g, inner) : NULL;
     if (a != NULL && b != NULL) {
         char c = GEOSCovers_r(g.h, a, b);
         if (c == 2)
             ft_geos_fail(&g, "ft_polygon_set_within");
-        result = c == 1;
+        result = c == 2 ? 2 : c == 1;
     }
     if (a != NULL)
         GEOSGeom_destroy_r(g.h, a);

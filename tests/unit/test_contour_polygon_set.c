@@ -107,25 +107,25 @@ static void test_validity_names_the_fault(void **state)
     (void)state;
     const char *why = NULL;
     ft_polygon_set *s = ft_polygon_set_create();
-    assert_true(ft_polygon_set_is_valid(s, &why)); /* empty is valid */
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 1); /* empty is valid */
     assert_int_equal(ft_polygon_set_add(s, ring_of(square10_cw, 4), one_hole(hole_ccw, 4), 1), FT_OK);
-    assert_true(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 1);
     assert_null(why);
 
     /* orientation broken by hand */
     ft_chain_reverse(s->polys[0].outer);
-    assert_false(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 0);
     assert_non_null(strstr(why, "polygon 0: outer ring is not counter-clockwise"));
     ft_chain_reverse(s->polys[0].outer);
     ft_chain_reverse(s->polys[0].holes[0]);
-    assert_false(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 0);
     assert_non_null(strstr(why, "polygon 0 hole 0: not clockwise"));
     ft_chain_reverse(s->polys[0].holes[0]);
 
     /* a hole outside its shell */
     s->polys[0].holes[0]->x[0] += 20, s->polys[0].holes[0]->x[1] += 20;
     s->polys[0].holes[0]->x[2] += 20, s->polys[0].holes[0]->x[3] += 20;
-    assert_false(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 0);
     assert_non_null(strstr(why, "Hole lies outside shell"));
     ft_polygon_set_free(s);
 
@@ -133,9 +133,9 @@ static void test_validity_names_the_fault(void **state)
     const double bow[] = {0, -2, 3, 1, 3, -1, 0, 2};
     s = ft_polygon_set_create();
     assert_int_equal(ft_polygon_set_add(s, ring_of(bow, 4), NULL, 0), FT_OK);
-    assert_false(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 0);
     assert_non_null(strstr(why, "elf-intersection"));
-    assert_false(ft_polygon_set_is_valid(s, NULL));
+    assert_int_equal(ft_polygon_set_is_valid(s, NULL), 0);
     ft_polygon_set_free(s);
 
     /* two overlapping polygons; two that touch at a corner are valid */
@@ -143,14 +143,15 @@ static void test_validity_names_the_fault(void **state)
     s = ft_polygon_set_create();
     assert_int_equal(ft_polygon_set_add(s, ring_of(a, 4), NULL, 0), FT_OK);
     assert_int_equal(ft_polygon_set_add(s, ring_of(c, 4), NULL, 0), FT_OK);
-    assert_true(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 1);
     assert_int_equal(ft_polygon_set_add(s, ring_of(b, 4), NULL, 0), FT_OK);
-    assert_false(ft_polygon_set_is_valid(s, &why));
+    assert_int_equal(ft_polygon_set_is_valid(s, &why), 0);
     assert_non_null(why);
     ft_polygon_set_free(s);
 
-    assert_false(ft_polygon_set_is_valid(NULL, &why));
-    assert_non_null(strstr(why, "NULL"));
+    why = NULL;
+    assert_error_names(ft_polygon_set_is_valid(NULL, &why), 2, "NULL polygon set"); /* undecided */
+    assert_null(why);
 }
 
 static void test_within(void **state)
@@ -164,18 +165,20 @@ static void test_within(void **state)
     assert_int_equal(ft_polygon_set_add(S, ring_of(small, 4), NULL, 0), FT_OK);
     assert_int_equal(ft_polygon_set_add(E, ring_of(edge, 4), NULL, 0), FT_OK);
     assert_int_equal(ft_polygon_set_add(O, ring_of(out, 4), NULL, 0), FT_OK);
-    assert_true(ft_polygon_set_within(S, B));
-    assert_false(ft_polygon_set_within(B, S));
-    assert_true(ft_polygon_set_within(E, B)); /* covers: sharing the boundary counts */
-    assert_false(ft_polygon_set_within(O, B));
-    assert_true(ft_polygon_set_within(empty, B));
-    assert_false(ft_polygon_set_within(S, empty));
+    assert_int_equal(ft_polygon_set_within(S, B), 1);
+    assert_int_equal(ft_polygon_set_within(B, S), 0);
+    assert_int_equal(ft_polygon_set_within(E, B), 1); /* covers: sharing the boundary counts */
+    assert_int_equal(ft_polygon_set_within(O, B), 0);
+    assert_int_equal(ft_polygon_set_within(empty, B), 1);
+    assert_int_equal(ft_polygon_set_within(S, empty), 0);
     /* inside the hole is not inside */
     ft_polygon_set *H = ft_polygon_set_create();
     const double hole[] = {0.5, 0.5, 3.5, 0.5, 3.5, 3.5, 0.5, 3.5};
     assert_int_equal(ft_polygon_set_add(H, ring_of(big, 4), one_hole(hole, 4), 1), FT_OK);
-    assert_false(ft_polygon_set_within(S, H));
-    assert_false(ft_polygon_set_within(NULL, B));
+    assert_int_equal(ft_polygon_set_within(S, H), 0);
+    /* undecided, as GEOS's predicates: 2 with the error set */
+    assert_error_names(ft_polygon_set_within(NULL, B), 2, "NULL inner set");
+    assert_error_names(ft_polygon_set_within(S, NULL), 2, "NULL outer set");
     assert_int_equal(ft_last_error_code(), FT_E_INVALID);
     ft_polygon_set_free(H);
     ft_polygon_set_free(B);
@@ -222,7 +225,7 @@ static void test_from_polygon_layer(void **state)
     assert_near(ft_polygon_set_area(s), 96.0 + 6.0 + 6.0, 1e-12);
     assert_true(ft_chain_signed_area(s->polys[0].outer) > 0);
     assert_true(ft_chain_signed_area(s->polys[0].holes[0]) < 0);
-    assert_true(ft_polygon_set_is_valid(s, NULL));
+    assert_int_equal(ft_polygon_set_is_valid(s, NULL), 1);
     /* the layer is untouched (copies were made) */
     assert_true(ft_chain_signed_area(l->parts[0].chain) < 0);
     ft_polygon_set_free(s);
