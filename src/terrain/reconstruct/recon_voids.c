@@ -232,16 +232,5 @@ int ft_reconstruct_voids(const ft_grid *dem, const ft_recon_opts *opts, ft_grid 
     free(comps);
     if (rc == FT_OK)
         rc = ft_progress(o.progress, o.progress_arg, 1.0, "reconstruct: done");
-    if (rc != FT_OK) {
-        ft_grid_free(*out);
-        *out = NULL;
-        if (sd_out) {
-            ft_grid_free(*sd_out);
-            *sd_out = NULL;
-        }
-        return rc;
-    }
-    if (info)
-        *info = inf;
-    return FT_OK;
+    return ft_recon_end(rc, &inf, info, out, sd_out);
 }

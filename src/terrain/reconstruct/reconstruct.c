@@ -340,6 +340,22 @@ int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *i
     return check_opts(o);
 }
 
+int ft_recon_end(int rc, const ft_recon_info *inf, ft_recon_info *info, ft_grid **out, ft_grid **sd_out)
+{
+    if (rc != FT_OK) {
+        ft_grid_free(*out);
+        *out = NULL;
+        if (sd_out) {
+            ft_grid_free(*sd_out);
+            *sd_out = NULL;
+        }
+        return rc;
+    }
+    if (info)
+        *info = *inf;
+    return FT_OK;
+}
+
 int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_recon_opts *opts, ft_grid **out,
                           ft_grid **sd_out, ft_recon_info *info)
 {
@@ -387,16 +403,5 @@ int ft_reconstruct_points(const ft_points *p, const ft_grid *target, const ft_re
         rc = ft_progress(o.progress, o.progress_arg, 1.0, "reconstruct: done");
     }
     ft_recon_problem_free(pr);
-    if (rc != FT_OK) {
-        ft_grid_free(*out);
-        *out = NULL;
-        if (sd_out) {
-            ft_grid_free(*sd_out);
-            *sd_out = NULL;
-        }
-        return rc;
-    }
-    if (info)
-        *info = inf;
-    return FT_OK;
+    return ft_recon_end(rc, &inf, info, out, sd_out);
 }

@@ -215,6 +215,9 @@ int ft_recon_begin(const ft_recon_opts *opts, ft_recon_opts *o, ft_recon_info *i
  *  dim_estimated, sigma0, k, temperature. */
 int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_grid *dem,
                         const ft_recon_problem *bound, double cell, ft_recon_params *par, ft_recon_info *info);
+/** The end of a job begun by ft_recon_begin: on success (rc == FT_OK) hands *inf to info (may be NULL);
+ *  otherwise frees and clears the outputs. Returns rc. */
+int ft_recon_end(int rc, const ft_recon_info *inf, ft_recon_info *info, ft_grid **out, ft_grid **sd_out);
 /** New output grids shaped like `like` (size, geotransform, CRS, no mask); sd_out only if want_sd. */
 int ft_recon_outputs(const ft_grid *like, int want_sd, ft_grid **out, ft_grid **sd_out);
 
