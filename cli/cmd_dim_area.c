@@ -181,6 +181,7 @@ static int run_dim_area(const cli_command *cmd, int argc, char **argv)
     if (a.cls)
         json_object_object_add(extra, "class", json_object_new_string(a.cls));
     json_object_object_add(extra, "offsets", json_object_new_int(a.box.dim.offsets));
+    json_object_object_add(extra, "fewest_boxes", json_object_new_boolean(a.box.dim.fewest));
     rc = c.rep ? measure_input(cmd, path, &a, &c, extra) : (ft_error(FT_E_NOMEM, "out of memory"), cli_fail(cmd));
     if (rc == CLI_OK && cli_dim_report_count(c.rep) == 0) {
         cli_error(cmd, "nothing in '%s' could be measured", path);
@@ -202,9 +203,9 @@ const cli_command cli_cmd_dim_area = {
     "Measures the box-counting dimension D of the polygons of INPUT, N(r) ~ r^-D (Zhang, Yu & Fan 2008,\n"
     "Eqs. 1-4), counting boxes exactly from the vector geometry: with --what boundary the boxes a ring passes\n"
     "through, with --what area the boxes touching the polygons' interior (a filled square gives 2, its\n"
-    "outline 1). At each box side the count is the fewest over K x K shifted grid origins. D is read from the\n"
-    "straightest run of the log-log plot (docs/loglog.md) and the whole table is reported, as `dim line`\n"
-    "does. Method: docs/urban-boxcount.md.\n\n"
+    "outline 1). At each box side the count is the mean over K x K shifted grid origins (--fewest-boxes: the\n"
+    "fewest, the literature's). D is read from the straightest run of the log-log plot (docs/loglog.md) and\n"
+    "the whole table is reported, as `dim line` does. Method: docs/urban-boxcount.md.\n\n"
     "INPUT is an OGR polygon layer, or a classified raster (one class per cell value: land use coded 1, 2,\n"
     "3...), measured value by value on its cells (box sides rounded to whole cells).\n\n"
     "Options:\n"

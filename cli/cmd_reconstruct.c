@@ -266,6 +266,7 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
     json_object *o = terrain_report_start(1, in, out);
     json_object_object_add(o, "input_kind", json_object_new_string(kind == FT_KIND_GRID ? "grid" : "points"));
     json_object_object_add(o, "method", json_object_new_string(ft_recon_method_name(a->ro.method)));
+    json_object_object_add(o, "dim", a->ro.dim > 0.0 ? cli_json_double(a->ro.dim) : json_object_new_string("auto"));
     json_object_object_add(o, "D", have_dim ? cli_json_double(info->dim) : NULL);
     json_object_object_add(o, "D_estimated", json_object_new_boolean(info->dim_estimated));
     json_object_object_add(o, "sigma0", have_sigma0 ? cli_json_double(info->sigma0) : NULL);
@@ -276,6 +277,7 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
     json_object_object_add(o, "data_outside", json_object_new_int64((int64_t)info->data_outside));
     json_object_object_add(o, "filled", json_object_new_int64((int64_t)info->filled));
     json_object_object_add(o, "data_rms", cli_json_double(info->data_rms));
+    json_object_object_add(o, "sigma", cli_json_double(a->ro.sigma));
     json_object_object_add(o, "lambda", cli_json_double(info->lambda));
     json_object_object_add(o, "tension", cli_json_double(info->tension));
     json_object_object_add(o, "realizations", json_object_new_int(a->ro.realizations));
@@ -469,9 +471,9 @@ const cli_command cli_cmd_reconstruct = {
     "      --layer NAME     OGR layer (default: the first); --zfield NAME: z from this field\n"
     "      --band N         band of a raster INPUT (default 1)\n"
     "  -f, --format DRIVER  GDAL driver of OUT (default: from the extension, GeoTIFF)\n"
-    "  -j, --json           print {\"input\", \"output\", \"input_kind\", \"method\", \"D\", \"D_estimated\",\n"
-    "                       \"sigma0\", \"k\", \"temperature\", \"levels\", \"data_used\", \"data_outside\",\n"
-    "                       \"filled\", \"data_rms\", \"lambda\", \"tension\", \"realizations\", \"seed\", \"bands\",\n"
+    "  -j, --json           print {\"input\", \"output\", \"input_kind\", \"method\", \"dim\" (as given or \"auto\"),\n"
+    "                       \"D\" (used), \"D_estimated\", \"sigma0\", \"k\", \"temperature\", \"levels\", \"data_used\",\n"
+    "                       \"data_outside\", \"filled\", \"data_rms\", \"sigma\", \"lambda\", \"tension\", \"realizations\", \"seed\", \"bands\",\n"
     "                       \"nx\", \"ny\", \"cell\", \"geotransform\", \"crs\",\n"
     "                       \"grid\": {\"size\", \"mean\", \"sd\", \"min\", \"max\"}}\n"
     "  -h, --help           print this help\n\n"

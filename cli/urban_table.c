@@ -271,6 +271,8 @@ static json_object *tab_json(const urban_tab *t, const table_args *a)
     json_object *o = json_object_new_object(), *classes = json_object_new_array(), *rows = json_object_new_array();
     json_object_object_add(o, "class", json_object_new_string(a->cls));
     json_object_object_add(o, "what", json_object_new_string(ft_area_what_name(a->box.dim.what)));
+    json_object_object_add(o, "offsets", json_object_new_int(a->box.dim.offsets));
+    json_object_object_add(o, "fewest_boxes", json_object_new_boolean(a->box.dim.fewest));
     for (size_t k = 0; k < t->nclasses; k++)
         json_object_array_add(classes, json_object_new_string(t->classes[k]));
     json_object_object_add(o, "classes", classes);

@@ -7,6 +7,7 @@ under its name (dashes as underscores, or the alias below) with that value. An o
 parameters of the computation (input selection, output format, threads, stripes) are listed in NOT_REPORTED
 with the reason.
 """
+import csv
 import math
 import re
 
@@ -35,6 +36,7 @@ CONDITIONAL = {  # {command: {option: the option without which it does not act}}
     ("dim", "surface"): {"--seed": "--pairs"},
     ("dim", "map"): {"--seed": "--pairs"},
     ("dim", "points"): {"--seed": "--sample"},
+    ("mountain",): {"--summit": "--dem"},
 }
 
 # Each command: argv after the command (data file names resolved) and JSON key aliases {option: key}
@@ -57,6 +59,10 @@ COMMANDS = [
     (["dim", "map"], ["@" + VOLCANO, "{tmp}/dm2.tif", "--window", "16", "--pairs", "200"], {}),
     (["dim", "profile"], ["@" + VOLCANO, "--row", "40"], {}),
     (["fill"], ["@" + LUX, "{tmp}/fi.tif"], {}),
+    (["mountain"], ["@" + SEED, "{tmp}/mm.geojson", "--method", "midpoint"], {}),
+    (["mountain"], ["@" + SEED, "{tmp}/mf.geojson", "--method", "fourier"], {}),
+    (["reconstruct"], ["@" + LUX, "{tmp}/re.tif"], {}),  # the voids of a DEM: D and sigma0 from its cells
+    (["urban", "table"], ["@" + STATES, "--class", "code"], {}),
     (["model", "fit"], ["@" + VOLCANO, "-o", "{tmp}/model.json"],
      {"--cutoff": "harmonics.cutoff", "--min-wavelength": "regression.min_wavelength_cells"}),
 ]
@@ -90,7 +96,32 @@ def literal_default(text):
     m = re.search(r"default:\s+(\w+)\)", text)
     if m:
         return m.group(1)
+    m = re.search(r"; default (\w+)$", text.strip())
+    if m:
+        return m.group(1)
     return None
+
+
+def method_default(text, method):
+    """The default a help text states for one method ("3 for improved, 1.4 for midpoint and fourier"), or None."""
+    m = re.search(r"(" + NUMBER + r") for (?:\w+ and )?" + re.escape(method) + r"\b", text)
+    return m.group(1) if m else None
+
+
+def acts_with_method(text, method_help, args):
+    """False when an option's help begins with the methods it acts with ("fourier, improved: ...") and the run's
+    --method (or the default method, when none is given) is not one of them. The words count as methods only
+    when --method's own help names each of them."""
+    m = re.match(r"\s*(?:\S+\s{2,})?((?:\w+, )*\w+): ", text)  # after the metavar, if any
+    if not m:
+        return True
+    methods = m.group(1).split(", ")
+    if not all(re.search(r"\b%s\b" % w, method_help) for w in methods):
+        return True
+    if "--method" in args:
+        return args[args.index("--method") + 1] in methods
+    d = re.search(r"(\w+) \(default\)", method_help)
+    return d is None or d.group(1) in methods
 
 
 def same(reported, documented):
@@ -113,12 +144,16 @@ def test_json_reports_the_documented_defaults(cli, data, tmp_path, words, args, 
     argv = [data(a[1:]) if a.startswith("@") else a.format(tmp=tmp_path) for a in args]
     report = cli(*words, *argv)
     checked, drifts = 0, []
-    for opt, text in option_blocks(help_text).items():
-        doc = literal_default(text)
+    blocks = option_blocks(help_text)
+    for opt, text in blocks.items():
+        doc = (method_default(text, args[args.index("--method") + 1]) if "--method" in args else None) \
+            or literal_default(text)
         if doc is None or opt in NOT_REPORTED or opt in ("--help", "--json") or opt in args:
             continue
         needs = CONDITIONAL.get(tuple(words), {}).get(opt)
         if needs is not None and needs not in args:
+            continue
+        if not acts_with_method(text, blocks.get("--method", ""), args):
             continue
         key = aliases.get(opt, opt.lstrip("-").replace("-", "_"))
         checked += 1
@@ -142,6 +177,20 @@ def test_model_simulate(cli, data, tmp_path):
                                               [str(tmp_path / "m.json"), "{tmp}/sim.tif"], {})
 
 
+def test_urban_regress(cli, data, tmp_path):
+    """urban regress needs a table: made by urban table first, then regressed with the defaults."""
+    t = tmp_path / "t.csv"
+    cli("urban", "table", data(STATES), data(STATES), data(STATES), "--class", "code", "--label", "1",
+        "--label", "2", "--label", "3", "-o", t)
+    rows = list(csv.reader(t.read_text().splitlines()))  # the three years made different: a line can be fitted
+    d, area = rows[0].index("D"), rows[0].index("area")
+    for i, row in enumerate(rows[1:]):
+        row[d], row[area] = "%.3f" % (1.1 + 0.1 * i), "%.1f" % (1000.0 * (i + 1) ** 2)
+    t.write_text("\n".join(",".join(r) for r in rows) + "\n")
+    test_json_reports_the_documented_defaults(cli, data, tmp_path, ["urban", "regress"],
+                                              [str(tmp_path / "t.csv")], {})
+
+
 def test_parser_finds_the_defaults():
     """The help parser itself: literal defaults found, prose defaults not taken for literals."""
     assert literal_default("light direction (default 315)") == "315"
@@ -152,4 +201,15 @@ def test_parser_finds_the_defaults():
     assert literal_default("the vector layer to read (default: the first)") is None
     assert literal_default("largest scale; default: from the extent") is None
     assert literal_default("(default W / 4)") is None
+    assert method_default("d' = K d (default 3 for improved, 1.4 for midpoint and fourier, 1.2 for simple)",
+                          "fourier") == "1.4"
+    assert method_default("(default 3 for improved, 1.4 for midpoint and fourier)", "improved") == "3"
+    assert method_default("(default 3)", "improved") is None
+    mh = "simple: shrink; midpoint: displace; improved (default): both"
+    assert literal_default("the explanatory column; default D") == "D"
+    assert not acts_with_method(" K   midpoint, improved: angles", mh, ["--method", "simple"])
+    assert not acts_with_method(" midpoint, improved: angles", mh, ["--method", "simple"])
+    assert acts_with_method(" midpoint, improved: angles", mh, ["--method", "midpoint"])
+    assert acts_with_method(" midpoint, improved: angles", mh, [])
+    assert acts_with_method(" alone: the bounding box", mh, ["--method", "simple"])
     assert same(315.0, "315") and not same(1.4, "1.2") and same([20.0, 40.0], "20,40") and same(None, "inf")
