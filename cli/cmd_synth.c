@@ -152,11 +152,11 @@ static int synthesize_ranks(const cli_command *cmd, synth_args *a, const char *o
         return a->crs && wkt == NULL ? CLI_USAGE : CLI_FAIL;
     }
     ft_grid_stats st;
-    int rc = tile_synth(cmd, a->nx, a->ny, &a->so, wkt, out, &st);
+    int rc = tile_synth(cmd, a->nx, a->ny, &a->so, wkt, out, a->json ? &st : NULL);
     if (rc == CLI_OK && cli_rank() == 0) {
         ft_grid hdr = {.nx = a->nx, .ny = a->ny, .crs_wkt = wkt,
                        .gt = {a->so.origin_x, a->so.cell, 0.0, a->so.origin_y, 0.0, -a->so.cell}};
-        rc = report(cmd, a, out, &hdr, &st);
+        rc = report(cmd, a, out, &hdr, a->json ? &st : NULL);
     }
     free(wkt);
     return rc;
@@ -216,7 +216,10 @@ const cli_command cli_cmd_synth = {
     "       [--json]",
     "Writes a fractional Brownian surface of dimension D = 3 - H as a one-band Float32 raster (GeoTIFF\n"
     "unless the extension or -f says otherwise), north-up with the given cell size, origin and CRS.\n"
-    "The same options and seed give identical cells on any machine and thread count.\n\n"
+    "The same options and seed give identical cells on any machine and thread count.\n"
+    "Under mpiexec -n N (built with FFTW's MPI transforms) --method fft runs on the N ranks, each holding\n"
+    "about 1/N of the padded grid; rank 0 writes one GeoTIFF, the cells of the one-process run to the\n"
+    "transform's rounding (docs/tiling.md).\n\n"
     "Options:\n"
     "  --dim D          fractal dimension, in (2,3) (required)\n"
     "  --size NxM       columns x rows (required), each up to 65536\n"

@@ -73,7 +73,7 @@ int tile_output_stats(const cli_command *cmd, const char *path, size_t rows, ft_
 #ifdef FT_HAVE_FFTW_MPI
 /** `synth --method fft` on the MPI ranks with FFTW's distributed c2r (tile_synth.c): the nx x ny surface of so
  *  (wkt: its CRS or NULL) into OUT (GeoTIFF), rank 0 writing. On rank 0, CLI_OK with *st (the output's
- *  figures); or CLI_FAIL (printed). Collective: every rank calls it. */
+ *  figures, read back from OUT; st may be NULL); or CLI_FAIL (printed). Collective: every rank calls it. */
 int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts *so, const char *wkt,
                const char *out, ft_grid_stats *st);
 #endif

@@ -167,7 +167,7 @@ int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts
     free(sums);
     fftwf_mpi_cleanup();
     rc = cli_ranks_all_ok(rc == CLI_OK) ? CLI_OK : CLI_FAIL;
-    if (rc == CLI_OK && cli_rank() == 0)
+    if (rc == CLI_OK && cli_rank() == 0 && st != NULL)
         rc = tile_output_stats(cmd, out, 1024, st);
     return rc;
 }
