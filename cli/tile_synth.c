@@ -74,7 +74,7 @@ static int gather_sums(synth_slab *s, double *sums)
     long long mine[2] = {(long long)(s->nout ? (size_t)s->s0 : 0), (long long)s->nout}, *all = NULL;
     all = malloc((size_t)nr * sizeof mine);
     int rc = CLI_FAIL;
-    if (count && displ && all && MPI_Allgather(mine, 2, MPI_LONG_LONG, all, 2, MPI_LONG_LONG, MPI_COMM_WORLD) ==
+    if (cli_ranks_all_ok(count && displ && all) && MPI_Allgather(mine, 2, MPI_LONG_LONG, all, 2, MPI_LONG_LONG, MPI_COMM_WORLD) ==
                                      MPI_SUCCESS) {
         for (int k = 0; k < nr; k++) {
             displ[k] = (int)(2 * all[2 * k]);
@@ -119,12 +119,14 @@ static int send_idle(int to, const void *buf, size_t n)
 }
 
 /* Rank 0: its rows, then each other rank's (row0, rows) and cells, written in rank order into w. The cells
- * come into rank 0's own slab (FFTW's first block is the largest) or, should one not fit, a buffer of theirs. */
+ * come into rank 0's own slab (FFTW's first block is the largest) or, should one not fit, a buffer of theirs.
+ * After a failed write the other ranks' rows are still taken (and dropped), so that no rank waits forever. */
 static int write_slabs(synth_slab *s, ft_grid_writer *w)
 {
     ft_grid piece = {.nx = s->nx, .ny = s->nout, .z = (float *)s->buf, .gt = {0, 1, 0, 0, 0, 1}};
+    int rc = CLI_OK;
     if (s->nout > 0 && ft_io_grid_writer_write(w, 1, &piece, 0, (size_t)s->s0) != FT_OK)
-        return cli_fail(s->cmd);
+        rc = cli_fail(s->cmd);
     for (int k = 1; k < cli_nranks(); k++) {
         uint64_t hdr[2];
         if (cli_ranks_recv(k, hdr, sizeof hdr) != 0) {
@@ -133,8 +135,11 @@ static int write_slabs(synth_slab *s, ft_grid_writer *w)
         }
         size_t n = (size_t)hdr[1] * s->nx;
         float *own = n <= 2 * s->alloc ? (float *)s->buf : NULL, *cells = own ? own : malloc(n * sizeof *cells);
-        int rc = cells != NULL ? CLI_OK : (cli_error(s->cmd, "out of memory for rank %d's rows", k), CLI_FAIL);
-        if (rc == CLI_OK && n > 0 && cli_ranks_recv(k, cells, n * sizeof(float)) != 0) {
+        if (cells == NULL) {
+            cli_error(s->cmd, "out of memory for rank %d's rows", k);
+            return CLI_FAIL;
+        }
+        if (n > 0 && cli_ranks_recv(k, cells, n * sizeof(float)) != 0) {
             cli_error(s->cmd, "cannot receive the surface's rows from rank %d", k);
             rc = CLI_FAIL;
         }
@@ -144,10 +149,8 @@ static int write_slabs(synth_slab *s, ft_grid_writer *w)
             rc = cli_fail(s->cmd);
         if (cells != own)
             free(cells);
-        if (rc != CLI_OK)
-            return rc;
     }
-    return CLI_OK;
+    return rc;
 }
 
 int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts *so, const char *wkt,
