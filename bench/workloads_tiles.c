@@ -10,6 +10,8 @@
  *  - tiles.dim_map.2ranks / tiles.dim_surface.2ranks: `mpiexec -n 2` against `mpiexec -n 1`, one OpenMP
  *    thread per rank (-x OMP_NUM_THREADS=1): parallel efficiency = 1 / (2 x ratio) (target >= 80% on an idle
  *    2-core machine). dim surface is the exhaustive variogram (--pairs 0).
+ *  - tiles.synth_fft.2ranks: `mpiexec -n 2 synth --method fft` (FFTW's distributed transform, rank 0 writing)
+ *    against `mpiexec -n 1`, one thread a rank, on an N x N surface (target: 2 ranks >= 1.6x the 1-rank speed).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -143,6 +145,20 @@ static int surface_ranks_setup(ft_bench_case *c)
     return rc == FT_OK ? command(c->peer_argv, 1, args, sizeof args / sizeof args[0]) : rc;
 }
 
+static int synth_ranks_setup(ft_bench_case *c)
+{
+    size_t n = tiles_size();
+    c->work = (double)n * (double)n;
+    c->scratch = ft_bench_path("tiles_synth.tif");
+    if (c->scratch == NULL)
+        return FT_E_NOMEM;
+    char size[64];
+    snprintf(size, sizeof size, "%zux%zu", n, n);
+    const char *args[] = {"synth", c->scratch, "--dim", "2.3", "--size", size, "--seed", "3"};
+    int rc = command(c->argv, 2, args, sizeof args / sizeof args[0]);
+    return rc == FT_OK ? command(c->peer_argv, 1, args, sizeof args / sizeof args[0]) : rc;
+}
+
 static void tiles_teardown(ft_bench_case *c)
 {
     (void)c; /* the DEM stays for the next workload; the harness removes it at exit */
@@ -155,6 +171,8 @@ static const ft_bench_workload tiles_workloads[] = {
      map_ranks_setup, NULL, NULL, tiles_teardown},
     {"tiles.dim_surface.2ranks", "dim surface, exhaustive variogram, on 2 MPI ranks, 1 thread each (peer: 1 rank)",
      FT_BENCH_CELLS, surface_ranks_setup, NULL, NULL, tiles_teardown},
+    {"tiles.synth_fft.2ranks", "synth --method fft (FFTW MPI) on 2 MPI ranks, 1 thread each (peer: 1 rank)",
+     FT_BENCH_CELLS, synth_ranks_setup, NULL, NULL, tiles_teardown},
 };
 
 const ft_bench_suite ft_bench_suite_tiles = {"tiles", tiles_workloads,

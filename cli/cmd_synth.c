@@ -6,10 +6,14 @@
  */
 #include "terrain_cli.h"
 
+#include "cli_ranks.h"
+#include "tile_cli.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #define SYNTH_MAX_SIDE 65536
 
@@ -82,7 +86,9 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     }
 }
 
-static int report(const cli_command *cmd, const synth_args *a, const char *out, const ft_grid *g)
+/* g: the grid (its figures computed here), or with st the header of a surface written by the ranks. */
+static int report(const cli_command *cmd, const synth_args *a, const char *out, const ft_grid *g,
+                  const ft_grid_stats *st)
 {
     if (!a->json) {
         printf("wrote %s: %zu x %zu cells, D = %g (%s), seed %llu\n", out, a->nx, a->ny, a->so.dim,
@@ -102,7 +108,10 @@ static int report(const cli_command *cmd, const synth_args *a, const char *out, 
     json_object_array_add(origin, cli_json_double(a->so.origin_y));
     json_object_object_add(o, "origin", origin);
     json_object_object_add(o, "periodic", json_object_new_boolean(a->so.periodic));
-    terrain_add_grid_json(o, g);
+    if (st != NULL)
+        terrain_add_grid_json_of(o, g, st);
+    else
+        terrain_add_grid_json(o, g);
     return cli_print_json(cmd, o);
 }
 
@@ -127,10 +136,36 @@ static int synthesize(const cli_command *cmd, synth_args *a, const char *out)
     if (rc == FT_OK)
         rc = ft_io_write_grid(out, g, &wo);
     free(wkt);
-    int status = rc == FT_OK ? report(cmd, a, out, g) : cli_fail(cmd);
+    int status = rc == FT_OK ? report(cmd, a, out, g, NULL) : cli_fail(cmd);
     ft_grid_free(g);
     return status;
 }
+
+#ifdef FT_HAVE_FFTW_MPI
+/* Under mpiexec: the fft surface on the ranks (tile_synth.c), rank 0 writing one GeoTIFF. */
+static int synthesize_ranks(const cli_command *cmd, synth_args *a, const char *out)
+{
+    char *wkt = NULL;
+    int ok = !a->crs || ft_io_crs_to_wkt(a->crs, &wkt) == FT_OK;
+    if (!ok)
+        cli_error(cmd, "--crs: %s", ft_last_error());
+    else if (cli_rank() == 0 && ft_io_check_writable(out) != FT_OK)
+        ok = (cli_fail(cmd), 0);
+    if (!cli_ranks_all_ok(ok)) {
+        free(wkt);
+        return a->crs && wkt == NULL ? CLI_USAGE : CLI_FAIL;
+    }
+    ft_grid_stats st;
+    int rc = tile_synth(cmd, a->nx, a->ny, &a->so, wkt, out, a->json ? &st : NULL);
+    if (rc == CLI_OK && cli_rank() == 0) {
+        ft_grid hdr = {.nx = a->nx, .ny = a->ny, .crs_wkt = wkt,
+                       .gt = {a->so.origin_x, a->so.cell, 0.0, a->so.origin_y, 0.0, -a->so.cell}};
+        rc = report(cmd, a, out, &hdr, a->json ? &st : NULL);
+    }
+    free(wkt);
+    return rc;
+}
+#endif
 
 static int run_synth(const cli_command *cmd, int argc, char **argv)
 {
@@ -156,15 +191,24 @@ static int run_synth(const cli_command *cmd, int argc, char **argv)
     if (rc == CLI_CONTINUE && a.so.periodic && a.so.method != FT_SYNTH_FFT)
         rc = cli_usage_error(cmd, "--periodic is for --method fft (only its tile wraps), got --method %s",
                              ft_synth_method_name(a.so.method));
+    if (rc == CLI_CONTINUE && cli_ranks_joined() && a.so.method != FT_SYNTH_FFT)
+        rc = cli_usage_error(cmd, "under mpiexec only --method fft runs (on FFTW's distributed transform), got "
+                             "--method %s", ft_synth_method_name(a.so.method));
+    if (rc == CLI_CONTINUE && cli_ranks_joined() && a.driver && strcasecmp(a.driver, "GTiff") != 0)
+        rc = cli_usage_error(cmd, "under mpiexec the surface is written as one GeoTIFF, got -f %s", a.driver);
     if (rc != CLI_CONTINUE)
         return rc;
     /* float output, a padded FFT grid of doubles and its complex spectrum: about 32 bytes a cell */
-    double cells = (double)a.nx * (double)a.ny;
+    double cells = (double)a.nx * (double)a.ny / (double)cli_nranks(); /* each rank holds a slab */
     char what[96];
     snprintf(what, sizeof what, "--size %zux%zu (%.3g cells)", a.nx, a.ny, cells);
     if (ft_check_memory(32.0 * cells, what) != FT_OK ||
         ft_check_work(cells * fmax(1.0, log2(fmax((double)a.nx, (double)a.ny))), what) != FT_OK)
         return cli_fail(cmd);
+#ifdef FT_HAVE_FFTW_MPI
+    if (cli_ranks_joined())
+        return synthesize_ranks(cmd, &a, argv[first]);
+#endif
     return synthesize(cmd, &a, argv[first]);
 }
 
@@ -176,7 +220,10 @@ const cli_command cli_cmd_synth = {
     "       [--json]",
     "Writes a fractional Brownian surface of dimension D = 3 - H as a one-band Float32 raster (GeoTIFF\n"
     "unless the extension or -f says otherwise), north-up with the given cell size, origin and CRS.\n"
-    "The same options and seed give identical cells on any machine and thread count.\n\n"
+    "The same options and seed give identical cells on any machine and thread count.\n"
+    "Under mpiexec -n N (built with FFTW's MPI transforms) --method fft runs on the N ranks, each holding\n"
+    "about 1/N of the padded grid; rank 0 writes one GeoTIFF, the cells of the one-process run to the\n"
+    "transform's rounding (docs/tiling.md).\n\n"
     "Options:\n"
     "  --dim D          fractal dimension, in (2,3) (required)\n"
     "  --size NxM       columns x rows (required), each up to 65536\n"

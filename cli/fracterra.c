@@ -175,6 +175,10 @@ static int runs_on_ranks(const cli_command *cmd, int argc, char **argv)
 {
     if (cli_nranks() == 1 || cmd == &cli_cmd_hillshade || cmd == &cli_cmd_fill)
         return 1;
+#ifdef FT_HAVE_FFTW_MPI
+    if (cmd == &cli_cmd_synth) /* --method fft only: cmd_synth.c says so */
+        return 1;
+#endif
     if (cmd == &cli_cmd_dim && argc > 1 && (strcmp(argv[1], "map") == 0 || strcmp(argv[1], "surface") == 0))
         return 1;
     return 0;
@@ -209,8 +213,14 @@ static int fracterra_main(int argc, char **argv)
         return unknown_command(arg);
     if (!runs_on_ranks(cmd, argc - 1, argv + 1)) {
         if (cli_rank() == 0)
-            fprintf(stderr, "fracterra: %s: does not run on several MPI ranks; only dim map, dim surface and hillshade do "
-                    "(docs/tiling.md)\n", cmd->name);
+            fprintf(stderr, "fracterra: %s: does not run on several MPI ranks; only dim map, dim surface, hillshade, "
+                    "fill%s do (docs/tiling.md)\n", cmd->name,
+#ifdef FT_HAVE_FFTW_MPI
+                    " and synth --method fft"
+#else
+                    " (and synth --method fft when built with FFTW's MPI transforms)"
+#endif
+                    );
         return CLI_USAGE;
     }
     return run_command(cmd, argc - 1, argv + 1);

@@ -66,4 +66,16 @@ typedef struct {
  *  (the output's band 1 figures, as ft_grid_compute_stats gives them); or CLI_FAIL (printed). */
 int tile_fill(const cli_command *cmd, const tile_fill_job *job, ft_fill_result *res, ft_grid_stats *st);
 
+/** The figures of band 1 of the raster at path, read `rows` rows at a time and summed in row order as
+ *  ft_grid_compute_stats sums a whole grid (tile_fill.c). CLI_OK or CLI_FAIL (printed). */
+int tile_output_stats(const cli_command *cmd, const char *path, size_t rows, ft_grid_stats *st);
+
+#ifdef FT_HAVE_FFTW_MPI
+/** `synth --method fft` on the MPI ranks with FFTW's distributed c2r (tile_synth.c): the nx x ny surface of so
+ *  (wkt: its CRS or NULL) into OUT (GeoTIFF), rank 0 writing. On rank 0, CLI_OK with *st (the output's
+ *  figures, read back from OUT; st may be NULL); or CLI_FAIL (printed). Collective: every rank calls it. */
+int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts *so, const char *wkt,
+               const char *out, ft_grid_stats *st);
+#endif
+
 #endif /* FRACTERRA_CLI_TILE_H */

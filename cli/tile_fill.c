@@ -255,7 +255,7 @@ static int fill_send(fill_run *f)
 
 /* The figures of band 1 of the written file, summed in row order in two passes as ft_grid_compute_stats sums
  * the whole run's output (the same doubles in the same order). */
-static int output_stats(const cli_command *cmd, const char *path, size_t rows, ft_grid_stats *st)
+int tile_output_stats(const cli_command *cmd, const char *path, size_t rows, ft_grid_stats *st)
 {
     ft_read_grid_opts ro = FT_READ_GRID_OPTS_DEFAULT;
     ft_grid_reader *r = NULL;
@@ -341,7 +341,7 @@ int tile_fill(const cli_command *cmd, const tile_fill_job *job, ft_fill_result *
         rc = rc == CLI_OK && ft_io_grid_writer_commit(f.w) != FT_OK ? cli_fail(cmd) : rc;
         f.w = NULL; /* commit frees it whatever the outcome */
         if (rc == CLI_OK)
-            rc = output_stats(cmd, job->out, 1024, st);
+            rc = tile_output_stats(cmd, job->out, 1024, st);
     } else if (ok) {
         rc = fill_send(&f);
     }

@@ -29,6 +29,7 @@ packages=(
   libproj-dev                 # PROJ geodesic.h: reference ellipsoidal lengths in the tests (pulled in by GDAL too)
   clang libclang-rt-dev libomp-dev  # make fuzz: libFuzzer harnesses (clang's runtime, OpenMP for clang)
   libopenmpi-dev openmpi-bin  # MPI: mpiexec -n N fracterra dim map|dim surface (docs/tiling.md), its tests
+  libfftw3-mpi-dev            # FFTW MPI transforms: mpiexec -n N fracterra synth --method fft (docs/tiling.md)
 )
 if [ "$peers" -eq 1 ]; then
   packages+=(

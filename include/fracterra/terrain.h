@@ -59,6 +59,28 @@ FT_API int ft_synth_method_parse(const char *name, ft_synth_method *m);
  *  src/terrain/synth/synth_calibration.c); D itself for the other methods. */
 FT_API double ft_synth_raw_dim(ft_synth_method m, double D, size_t nx, size_t ny);
 
+/* Distributed fft synthesis (docs/tiling.md): ft_terrain_synth's method fft in slabs of rows for a caller that
+ * runs the 2-D inverse transform across processes (FFTW's MPI c2r, as `mpiexec -n N fracterra synth` does).
+ * Steps: ft_synth_fft_grid_size; on each slab ft_synth_fft_spectrum_rows, the distributed c2r (unnormalised,
+ * in place, row stride 2 * (px/2 + 1) floats), ft_synth_fft_surface_rows; the rows' sums of every slab put
+ * together in row order; ft_synth_rescale_rows. The cells are ft_terrain_synth's up to the transform's
+ * rounding. opts->method must be FT_SYNTH_FFT. */
+/** The padded py x px synthesis grid of an nx x ny fft surface (px = nx, py = ny with opts->periodic). */
+FT_API int ft_synth_fft_grid_size(size_t nx, size_t ny, const ft_synth_opts *opts, size_t *px, size_t *py);
+/** Rows [row0, row0 + nrows) of the py x (px/2 + 1) half-spectrum, complex as interleaved floats (re, im),
+ *  Hermitian on the self-paired columns: the values ft_terrain_synth transforms, bit for bit. */
+FT_API int ft_synth_fft_spectrum_rows(size_t nx, size_t ny, const ft_synth_opts *opts, size_t row0, size_t nrows,
+                                      float *spec);
+/** rows: the transformed grid rows [row0, row0 + nrows) (row stride 2 * (px/2 + 1) floats). Its rows below ny
+ *  become output rows in place (stride nx: cropped to nx columns, the random plane added); row_sums (may be
+ *  NULL) gets the sum and sum of squares of each, 2 doubles a row. Rows at or beyond ny are left alone. */
+FT_API int ft_synth_fft_surface_rows(size_t nx, size_t ny, const ft_synth_opts *opts, size_t row0, size_t nrows,
+                                     float *rows, double *row_sums);
+/** Rescales nrows output rows (stride nx) to the whole surface's mean 0 and standard deviation opts->sigma
+ *  from row_sums, the 2 * ny sums of all the surface's rows in row order (no-op for sigma 0). */
+FT_API int ft_synth_rescale_rows(size_t nx, size_t ny, const ft_synth_opts *opts, const double *row_sums,
+                                 size_t nrows, float *rows);
+
 
 /* ------------------------------------------------------------------------------------------------
  * Clarke's scale-based model z = T + cF + H (Clarke 1987, eqs. vi, ix-xv; docs/terrain-clarke.md).

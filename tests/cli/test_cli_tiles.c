@@ -375,14 +375,19 @@ static void test_fill_rows_errors(void **state)
 /* ---- MPI ---- */
 
 #if defined(FT_TEST_MPIEXEC) && !defined(FT_TEST_SANITIZE)
-/* Runs `mpiexec -n 2 FT_BIN args` with stdout into out_path; returns the exit status. */
-static int mpirun2(const char *out_path, const char *args)
+/* Runs `mpiexec -n n FT_BIN args` with stdout into out_path; returns the exit status. */
+static int mpirun_n(int n, const char *out_path, const char *args)
 {
     char cmd[4096];
-    snprintf(cmd, sizeof cmd, "%s -n 2 --oversubscribe %s %s %s > %s 2> %s.err", FT_TEST_MPIEXEC,
+    snprintf(cmd, sizeof cmd, "%s -n %d --oversubscribe %s %s %s > %s 2> %s.err", FT_TEST_MPIEXEC, n,
              geteuid() == 0 ? "--allow-run-as-root" : "", FT_BIN, args, out_path, out_path);
     int rc = system(cmd);
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+static int mpirun2(const char *out_path, const char *args)
+{
+    return mpirun_n(2, out_path, args);
 }
 
 static char *slurp(const char *path)
@@ -449,15 +454,100 @@ static void test_mpi_two_ranks_equal_whole(void **state)
     free(a);
     free(b);
     /* a command that does not decompose is refused on every rank, nothing written */
+    snprintf(args, sizeof args, "mountain %s --dim 2.3", ft_test_tmp("s.tif"));
+    assert_int_equal(mpirun2(ft_test_tmp("mountain.out"), args), 2);
+    char *err = slurp(ft_test_tmp("mountain.out.err"));
+    assert_non_null(strstr(err, "fracterra: mountain: does not run on several MPI ranks"));
+    free(err);
+    assert_int_equal(access(ft_test_tmp("s.tif"), F_OK), -1);
+#ifndef FT_TEST_FFTW_MPI
+    /* without FFTW's MPI transforms synth keeps its refusal */
     snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64", ft_test_tmp("s.tif"));
     assert_int_equal(mpirun2(ft_test_tmp("synth.out"), args), 2);
-    char *err = slurp(ft_test_tmp("synth.out.err"));
+    err = slurp(ft_test_tmp("synth.out.err"));
     assert_non_null(strstr(err, "fracterra: synth: does not run on several MPI ranks"));
     free(err);
     assert_int_equal(access(ft_test_tmp("s.tif"), F_OK), -1);
+#endif
     free(dem);
 #else
     skip(); /* built without MPI, or under the sanitizers */
+#endif
+}
+
+#if defined(FT_TEST_MPIEXEC) && defined(FT_TEST_FFTW_MPI) && !defined(FT_TEST_SANITIZE)
+/* max |a - b| over the cells of two one-band rasters of the same size, georeferencing and CRS; *sd: a's sd. */
+static double max_abs_diff(const char *a, const char *b, double *sd)
+{
+    ft_grid *x = NULL, *y = NULL;
+    assert_int_equal(ft_io_read_grid(a, NULL, &x), FT_OK);
+    assert_int_equal(ft_io_read_grid(b, NULL, &y), FT_OK);
+    assert_int_equal(x->nx, y->nx);
+    assert_int_equal(x->ny, y->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true(x->gt[k] == y->gt[k]);
+    if (x->crs_wkt != NULL || y->crs_wkt != NULL)
+        ft_test_assert_same_crs(x->crs_wkt, y->crs_wkt);
+    ft_grid_stats st;
+    ft_grid_compute_stats(x, &st);
+    assert_int_equal(st.n, x->nx * x->ny); /* every cell written */
+    *sd = st.sd;
+    double d = 0.0;
+    for (size_t i = 0; i < x->nx * x->ny; i++) {
+        assert_true(y->mask == NULL || y->mask[i]);
+        d = fmax(d, fabs((double)x->z[i] - (double)y->z[i]));
+    }
+    ft_grid_free(x);
+    ft_grid_free(y);
+    return d;
+}
+#endif
+
+/* `mpiexec -n 1|2|3 synth --method fft` (FFTW's distributed c2r) gives the one-process surface to FFT rounding:
+ * max |delta| <= 1e-4 of its sd (issue 20), on odd and even sizes, padded and periodic, sigma 0 (raw scale). */
+static void test_mpi_synth_fft_equals_serial(void **state)
+{
+    (void)state;
+#if defined(FT_TEST_MPIEXEC) && defined(FT_TEST_FFTW_MPI) && !defined(FT_TEST_SANITIZE)
+    static const char *const cases[] = {
+        "--dim 2.3 --size 203x157 --seed 11 --sigma 2 --cell 30 --origin 500000,4600000 --crs EPSG:32632",
+        "--dim 2.7 --size 96x64 --seed 4 --periodic --sigma 0",
+        "--dim 2.15 --size 41x250 --seed 9",
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char *serial = strdup(ft_test_tmp("synth_serial.tif")), args[1024];
+        snprintf(args, sizeof args, "%s synth %s %s", FT_BIN, serial, cases[c]);
+        assert_int_equal(system(args), 0);
+        for (int n = 1; n <= 3; n++) {
+            const char *ranks = ft_test_tmp("synth_ranks.tif");
+            unlink(ranks);
+            snprintf(args, sizeof args, "synth %s %s --json", ranks, cases[c]);
+            assert_int_equal(mpirun_n(n, ft_test_tmp("synth_ranks.out"), args), 0);
+            double sd = 0.0, d = max_abs_diff(serial, ft_test_tmp("synth_ranks.tif"), &sd);
+            assert_true(sd > 0.0);
+            if (!(d <= 1e-4 * sd))
+                print_error("%s on %d ranks: max |delta| %g, sd %g\n", cases[c], n, d, sd);
+            assert_true(d <= 1e-4 * sd);
+            char *rep = slurp(ft_test_tmp("synth_ranks.out")); /* one report, rank 0's */
+            assert_non_null(strstr(rep, "\"grid\""));
+            assert_null(strstr(strstr(rep, "\"grid\"") + 1, "\"grid\""));
+            free(rep);
+        }
+        free(serial);
+    }
+    /* only fft runs on ranks, GeoTIFF only: usage errors, nothing written */
+    const char *bad = ft_test_tmp("synth_bad.tif");
+    char args[1024];
+    snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64 --method sra", bad);
+    assert_int_equal(mpirun2(ft_test_tmp("synth_bad.out"), args), 2);
+    char *err = slurp(ft_test_tmp("synth_bad.out.err"));
+    assert_non_null(strstr(err, "under mpiexec only --method fft runs"));
+    free(err);
+    snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64 -f AAIGrid", bad);
+    assert_int_equal(mpirun2(ft_test_tmp("synth_bad.out"), args), 2);
+    assert_int_equal(access(bad, F_OK), -1);
+#else
+    skip(); /* built without MPI or FFTW's MPI transforms, or under the sanitizers */
 #endif
 }
 
@@ -472,6 +562,7 @@ int main(void)
         cmocka_unit_test(test_fill_tiled_equals_whole),
         cmocka_unit_test(test_fill_rows_errors),
         cmocka_unit_test(test_mpi_two_ranks_equal_whole),
+        cmocka_unit_test(test_mpi_synth_fft_equals_serial),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

@@ -382,3 +382,67 @@ int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, fl
     *z = cells != NULL ? cells : (float *)spec;
     return FT_OK;
 }
+
+/* ---- Slabs of rows for the distributed run (synth_fft_rows.c; docs/tiling.md). Same helpers, same
+ * expressions as above, so a slab's spectrum rows are the bits fill_spectrum gives them. ---- */
+
+size_t ft_synth_fft_padded(size_t n, int periodic)
+{
+    return padded_size(n, periodic);
+}
+
+int ft_synth_fft_fill_rows(size_t py, size_t px, double H, uint64_t seed, size_t row0, size_t nrows,
+                           fftwf_complex *rows)
+{
+    size_t ncx = px / 2 + 1;
+    fft_amp_ctx *ctx = ft_malloc(sizeof *ctx);
+    if (ctx == NULL)
+        return FT_E_NOMEM;
+    ctx->py = py;
+    ctx->px = px;
+    ctx->expo = -(H + 1.0) / 2.0;
+    alias_table(ctx, H);
+    int failed = 0;
+#pragma omp parallel reduction(| : failed)
+    {
+        float *amp = malloc(ncx * sizeof *amp);
+        fftwf_complex *partner = malloc(ncx * sizeof *partner);
+        failed |= amp == NULL || partner == NULL;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < nrows; i++) {
+            if (amp == NULL || partner == NULL)
+                continue;
+            size_t r = row0 + i, ky = r <= py / 2 ? r : py - r; /* ky: the row whose amplitudes r shares */
+            fftwf_complex *row = rows + i * ncx;
+            fft_amp_row(ctx, ky, amp);
+            fill_row(row, amp, ncx, seed, FT_SYNTH_STREAM_FFT + r);
+            if (ky == r && (py - r) % py == r)
+                pair_columns(row, row, px);
+            else if (ky != r) { /* the conjugate of row ky on its self-paired columns: ky's stream again */
+                fill_row(partner, amp, ncx, seed, FT_SYNTH_STREAM_FFT + ky);
+                pair_columns(partner, row, px);
+            }
+        }
+        free(partner);
+        free(amp);
+    }
+    free(ctx);
+    if (failed)
+        return ft_error(FT_E_NOMEM, "synth: out of memory filling %zu rows of a %zu x %zu spectrum", nrows, py, px);
+    return FT_OK;
+}
+
+int ft_synth_fft_plane(size_t px, size_t py, double H, const ft_synth_opts *o, double *ax, double *ay)
+{
+    *ax = *ay = 0.0;
+    if (o->periodic)
+        return FT_OK;
+    ft_rng *r = ft_rng_create(o->seed, FT_SYNTH_STREAM_FFT - 1);
+    if (r == NULL)
+        return FT_E_NOMEM;
+    double sd = dc_plane_sd(px, py, H);
+    *ax = ft_rng_gaussian(r, sd);
+    *ay = ft_rng_gaussian(r, sd);
+    ft_rng_free(r);
+    return FT_OK;
+}

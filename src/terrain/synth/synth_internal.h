@@ -26,6 +26,14 @@
 
 /** The fft surface's nx x ny cells in *z (malloc'd: the spectrum's own memory, cropped in place). */
 int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z);
+/** For the distributed run (synth_fft_rows.c): the padded synthesis grid's side for an output side n; rows
+ *  [row0, row0 + nrows) of the py x (px/2+1) half-spectrum (Hermitian included), the bits
+ *  ft_synth_fft_make gives them; the random plane (ax, ay) added to the non-periodic output (0 if
+ *  periodic). */
+size_t ft_synth_fft_padded(size_t n, int periodic);
+int ft_synth_fft_fill_rows(size_t py, size_t px, double H, uint64_t seed, size_t row0, size_t nrows,
+                           fftwf_complex *rows);
+int ft_synth_fft_plane(size_t px, size_t py, double H, const ft_synth_opts *o, double *ax, double *ay);
 int ft_synth_sra_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
 int ft_synth_midpoint_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
 int ft_synth_exact_fill(size_t nx, size_t ny, double H, const ft_synth_opts *o, float *z);
