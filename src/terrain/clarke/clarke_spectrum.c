@@ -3,7 +3,7 @@
  *
  * Clarke (1987, eqs. ix-xv) gives F one power law, the log-log regression of harmonic power on wavelength.
  * Real DEMs bend: on the 3" Jacksboro DEM one law gives D = 1.85 while the DEM's variogram reads 2.21 at 1-8
- * cells and 2.53 at 4-32 (issue 14), so a simulation from the one law has the wrong roughness at both
+ * cells and 2.53 at 4-32, so a simulation from the one law has the wrong roughness at both
  * scales. Here F keeps the spectrum it was measured with:
  *  - every wave of the (tapered, normalised) periodogram of z - T - H (clarke_fit.c removes H's grid modes
  *    before the taper, so the strong waves' leakage does not count as noise) is put in a ring of a quarter octave of frequency (rings from the grid's longest wavelength down);
