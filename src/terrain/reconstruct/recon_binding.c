@@ -44,20 +44,23 @@ ft_recon_problem *ft_recon_problem_create(size_t nx, size_t ny, int nthreads)
     return p;
 }
 
+void ft_recon_level_free_arrays(ft_recon_level *L)
+{
+    free(L->c);
+    free(L->fixed);
+    free(L->x);
+    free(L->b);
+    free(L->r);
+    free(L->chol);
+    free(L->chol_idx);
+}
+
 void ft_recon_problem_free(ft_recon_problem *p)
 {
     if (p == NULL)
         return;
-    for (int l = 0; p->lev && l < p->nlev; l++) {
-        ft_recon_level *L = &p->lev[l];
-        free(L->c);
-        free(L->fixed);
-        free(L->x);
-        free(L->b);
-        free(L->r);
-        free(L->chol);
-        free(L->chol_idx);
-    }
+    for (int l = 0; p->lev && l < p->nlev; l++)
+        ft_recon_level_free_arrays(&p->lev[l]);
     free(p->lev);
     free(p->d);
     free(p);

@@ -171,16 +171,8 @@ static void solve_coarsest(const ft_recon_level *L, const float *b, float *x)
 
 int ft_recon_hierarchy(ft_recon_problem *p, double lambda, double tension)
 {
-    for (int l = 1; l < p->nlev; l++) {
-        ft_recon_level *L = &p->lev[l];
-        free(L->c);
-        free(L->fixed);
-        free(L->x);
-        free(L->b);
-        free(L->r);
-        free(L->chol);
-        free(L->chol_idx);
-    }
+    for (int l = 1; l < p->nlev; l++)
+        ft_recon_level_free_arrays(&p->lev[l]);
     free(p->lev[0].chol);
     free(p->lev[0].chol_idx);
     p->lev[0].chol = NULL;

@@ -81,6 +81,8 @@ static inline int ft_recon_report(const ft_recon_progress *p, double f, const ch
 /* ---- recon_binding.c ---- */
 /** Allocates a problem of nx x ny nodes (data arrays zeroed, no hierarchy yet). NULL if out of memory. */
 ft_recon_problem *ft_recon_problem_create(size_t nx, size_t ny, int nthreads);
+/** Frees the arrays one level owns (not the level itself; pointers left dangling: the caller resets them). */
+void ft_recon_level_free_arrays(ft_recon_level *L);
 void ft_recon_problem_free(ft_recon_problem *p);
 /** Binds each point to its nearest node of target (cell centres; several points on one node: their
  *  confidence-weighted mean, confidences added). Fixed nodes when sigma == 0 and p has no weights,
