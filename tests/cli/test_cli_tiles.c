@@ -83,19 +83,27 @@ static char *run_out(const char *const *argv)
 }
 #define RUN_OUT(...) run_out((const char *const[]){__VA_ARGS__, NULL})
 
+/* Band `band` (0: the first) of two rasters into *x and *y, asserting the same size and geotransform. */
+static void read_same_frame(const char *a, const char *b, int band, ft_grid **x, ft_grid **y)
+{
+    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
+    if (band > 0)
+        o.band = band;
+    *x = *y = NULL;
+    assert_int_equal(ft_io_read_grid(a, &o, x), FT_OK);
+    assert_int_equal(ft_io_read_grid(b, &o, y), FT_OK);
+    assert_int_equal((*x)->nx, (*y)->nx);
+    assert_int_equal((*x)->ny, (*y)->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true((*x)->gt[k] == (*y)->gt[k]);
+}
+
 /* Band `band` of two rasters, cell for cell (nodata where the other has nodata), and their georeferencing;
  * returns the number of valid cells compared (*cells, if not NULL: all cells). */
 static size_t assert_same_band_cells(const char *a, const char *b, int band, size_t *cells)
 {
-    ft_read_grid_opts o = FT_READ_GRID_OPTS_DEFAULT;
-    o.band = band;
-    ft_grid *x = NULL, *y = NULL;
-    assert_int_equal(ft_io_read_grid(a, &o, &x), FT_OK);
-    assert_int_equal(ft_io_read_grid(b, &o, &y), FT_OK);
-    assert_int_equal(x->nx, y->nx);
-    assert_int_equal(x->ny, y->ny);
-    for (int k = 0; k < 6; k++)
-        assert_true(x->gt[k] == y->gt[k]);
+    ft_grid *x, *y;
+    read_same_frame(a, b, band, &x, &y);
     ft_test_assert_same_crs(x->crs_wkt, y->crs_wkt);
     size_t valid = 0;
     for (size_t i = 0; i < x->nx * x->ny; i++) {
@@ -229,13 +237,8 @@ static void test_dim_map_noise_count(void **state)
 /* Byte cells of two hillshades, every one, and their georeferencing. */
 static void assert_same_shade(const char *a, const char *b)
 {
-    ft_grid *x = NULL, *y = NULL;
-    assert_int_equal(ft_io_read_grid(a, NULL, &x), FT_OK);
-    assert_int_equal(ft_io_read_grid(b, NULL, &y), FT_OK);
-    assert_int_equal(x->nx, y->nx);
-    assert_int_equal(x->ny, y->ny);
-    for (int k = 0; k < 6; k++)
-        assert_true(x->gt[k] == y->gt[k]);
+    ft_grid *x, *y;
+    read_same_frame(a, b, 0, &x, &y);
     size_t lit = 0;
     for (size_t i = 0; i < x->nx * x->ny; i++) {
         float vx = x->mask == NULL || x->mask[i] ? x->z[i] : 0.0f, vy = y->mask == NULL || y->mask[i] ? y->z[i] : 0.0f;
@@ -472,13 +475,8 @@ static void test_mpi_two_ranks_equal_whole(void **state)
 /* max |a - b| over the cells of two one-band rasters of the same size, georeferencing and CRS; *sd: a's sd. */
 static double max_abs_diff(const char *a, const char *b, double *sd)
 {
-    ft_grid *x = NULL, *y = NULL;
-    assert_int_equal(ft_io_read_grid(a, NULL, &x), FT_OK);
-    assert_int_equal(ft_io_read_grid(b, NULL, &y), FT_OK);
-    assert_int_equal(x->nx, y->nx);
-    assert_int_equal(x->ny, y->ny);
-    for (int k = 0; k < 6; k++)
-        assert_true(x->gt[k] == y->gt[k]);
+    ft_grid *x, *y;
+    read_same_frame(a, b, 0, &x, &y);
     if (x->crs_wkt != NULL || y->crs_wkt != NULL)
         ft_test_assert_same_crs(x->crs_wkt, y->crs_wkt);
     ft_grid_stats st;
