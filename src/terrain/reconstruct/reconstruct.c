@@ -124,7 +124,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
                                             t_smooth + (1.0 - t_smooth) * (r + 1) / nr);
         uint64_t seed = par->seed + (uint64_t)r;
         if (par->method == FT_RECON_FRACTAL)
-            rc = ft_recon_fractal(p, ustar, par->T0, par->H, par->sweeps, seed, u, &rp);
+            rc = ft_recon_fractal(p, ustar, par->T0, seed, u, &rp);
         else if (par->method == FT_RECON_CONDITIONAL)
             rc = ft_recon_conditional(p, ustar, par->H, par->amp, par->nugget, seed, u, &rp);
         if (stochastic)
@@ -302,11 +302,8 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
     }
     info->dim = D;
     par->H = 3.0 - D;
-    /* the fractal method's temperature law (k) was calibrated with the fixed blend; its Gibbs sweeps with
-     * the eq. 7 blend put 15-45 % too much roughness at D >= 2.6 (docs/terrain-reconstruct.md) */
     if (tension_from_dim)
-        par->tension = info->tension = o->method == FT_RECON_FRACTAL ? FT_RECON_FRACTAL_TENSION
-                                                                     : ft_recon_tension_for_dim(D);
+        par->tension = info->tension = ft_recon_tension_for_dim(D);
     if (o->method == FT_RECON_CONDITIONAL) {
         return conditional_small_scales(&yk, bound, dem, cell, par);
     }
@@ -318,7 +315,7 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
         if (rc != FT_OK)
             return rc;
         info->sigma0 = ft_recon_line_at(&pe, cell);
-        par->T0 = ft_recon_temperature0(info->k, par->H, info->sigma0);
+        par->T0 = ft_recon_temperature0(info->k, info->sigma0);
     }
     info->temperature = par->T0;
     return FT_OK;

@@ -45,6 +45,9 @@ static inline int ft_recon_threads(int nthreads, size_t nodes)
 /** Stream ids of the random numbers (mixed with the seed by ft_rng_fast_init). */
 #define FT_RECON_STREAM_GIBBS UINT64_C(0x7265630000000000)
 #define FT_RECON_STREAM_WHITE UINT64_C(0x7265637700000000)
+#define FT_RECON_STREAM_PERTURB UINT64_C(0x7265637000000000)
+/** The fractal sample's solve stops when its residual norm falls below this fraction of the initial one. */
+#define FT_RECON_SAMPLE_TOL 1e-4
 
 /** One level of the hierarchy: nodes at spacing 2^l fine nodes. */
 typedef struct {
@@ -162,10 +165,8 @@ int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t 
                           double *nugget);
 #define FT_RECON_PAIR_MIN 64
 #define FT_RECON_NUGGET_MAX 0.9
-/** T_0 = k g(H) sigma0² (eq. 13 with the SRA factor g, docs/terrain-reconstruct.md). */
-double ft_recon_temperature0(double k, double H, double sigma0);
-/** T_l = T_0 2^(2 H l) (eq. 12: the SRA variance ratio of level l). */
-double ft_recon_temperature_level(double T0, double H, int level);
+/** The fractal method's temperature, T = k sigma0² (eq. 13 at the finest level; one k for every D). */
+double ft_recon_temperature0(double k, double sigma0);
 /** The prior's blend for dimension D (Szeliski's eq. 7 crossover, Arakawa & Krotkov): the tension tau
  *  whose spline-under-tension spectrum has the fBm's log-log slope -(8 - 2D) at a wavelength of
  *  FT_RECON_TENSION_WAVELENGTH cells, tau / (1 - tau) = M (1 - H) / H, M = 2 - 2 cos(2 pi / wavelength). */
@@ -174,12 +175,12 @@ double ft_recon_tension_for_dim(double D);
 /** The blend the fractal method's k was calibrated with (its tension when opts->tension is from D). */
 #define FT_RECON_FRACTAL_TENSION 0.1
 
-/* ---- recon_gibbs.c ---- */
-/** The fractal method: u = ustar + delta, delta sampled coarse to fine (levels L..0) by `sweeps` Gibbs
- *  sweeps at T_l per level after FT_RECON_RELAX_SWEEPS relaxation sweeps, each level starting from the
- *  prolongation of the coarser one. Deviates from streams of (seed, level, sweep, colour, row). */
-int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, double H, int sweeps,
-                     uint64_t seed, float *u, const ft_recon_progress *prog);
+/* ---- recon_perturb.c ---- */
+/** The fractal method: u = ustar + delta, delta an exact draw of N(0, lambda T0 A_ff^-1) (the prior at
+ *  temperature T0 conditioned on delta = 0 at the fixed nodes) by perturbation and optimization.
+ *  Deviates from streams of (seed, term type, row). */
+int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, uint64_t seed, float *u,
+                     const ft_recon_progress *prog);
 
 /* ---- recon_conditional.c ---- */
 /** Conditional simulation: s = unconditional fBm (exponent H, seed) plus white noise carrying the share
