@@ -5,14 +5,11 @@
  *    valid cells;
  *  - sigma0: Pentland's statistic S(d), the standard deviation of |dz| at separation d (§2.4), fitted
  *    over the data's lags and extrapolated to one cell (the paper computes sigma0 with Pentland's method);
- *  - T_0 = k g(H) sigma0² (eq. 13) and T_l = T_0 2^(2 H l) (eq. 12: successive random addition adds
- *    variance delta_l^(2H) at spacing delta_l = 2^l cells, synth_sra.c). g(H) = (1 - 2^(2H - 2)) / (1 -
- *    2^(2 H_c - 2)), H_c = 0.6 (D = 2.4, where the paper calibrated k), is the SRA analogy's share of the
- *    one-cell increment variance that the finest level adds: SRA's levels add sigma_l² = sigma_0² 2^(2Hl)
- *    at spacing 2^l, a bilinear ramp between independent nodes 2^l apart has one-cell increments of
- *    variance 2 sigma_l² 4^-l, so Var(dz_1) = 2 sigma_0² / (1 - 2^(2H - 2)) and the finest level's share
- *    falls from 0.67 (D = 2.8) to 0.24 (D = 2.2); g(0.6) = 1 keeps k the paper's kind of constant;
- *  - k: FT_RECON_K_DEFAULT, calibrated by eq. 11 (bench/accuracy/recon_calibrate.c; the figures below).
+ *  - T = k sigma0² (eq. 13 at the finest level). The fractal method samples the prior's equilibrium
+ *    (recon_perturb.c), so the SRA analogy's per-level temperatures of eq. 12 have no role: a sample of
+ *    the one-level prior at T already holds every scale the prior gives, and its shape across scales is
+ *    the prior's spectrum (the eq. 7 blend of D). One k for every D;
+ *  - k: FT_RECON_K_DEFAULT, calibrated on the structure function (the figures below).
  *  - the conditional method's small scales: mean |dz| at one cell and the white share, from the data's own
  *    closest pairs (ft_recon_small_scales), or, with too few of them, the Yokoya line at one cell.
  *

@@ -58,8 +58,8 @@ static int check_opts(const ft_recon_opts *o)
     if (!(o->k >= 0.0) || !isfinite(o->k))
         return ft_error(FT_E_INVALID, "k must be > 0 (or 0 for the calibrated default), got %g", o->k);
     if (o->sweeps < 0 || o->sweeps > 1000)
-        return ft_error(FT_E_INVALID, "sweeps must be in [1, 1000] (or 0 for the default %d), got %d",
-                        FT_RECON_SWEEPS_DEFAULT, o->sweeps);
+        return ft_error(FT_E_INVALID, "sweeps (unused: the fractal method draws an exact sample) must be in "
+                        "[0, 1000], got %d", o->sweeps);
     if (o->realizations < 1 || o->realizations > 1000000)
         return ft_error(FT_E_INVALID, "realizations must be >= 1, got %d", o->realizations);
     if (o->threads < 0)
@@ -272,7 +272,6 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
                         const ft_recon_problem *bound, double cell, ft_recon_params *par, ft_recon_info *info)
 {
     *par = (ft_recon_params){.method = o->method,
-                             .sweeps = o->sweeps > 0 ? o->sweeps : FT_RECON_SWEEPS_DEFAULT,
                              .tension = o->tension,
                              .realizations = o->realizations,
                              .seed = o->seed};
