@@ -569,8 +569,8 @@ static void inverse_diagonal(const double *A, const uint8_t *keep, size_t n, dou
  * the per-cell variance is lambda T (A_ff^-1)_ii, the posterior variance of the Gibbs distribution
  * exp(-E / (lambda T)) (Arakawa & Krotkov eq. 10), with A the prior's Hessian written out here from the
  * energy's definition. 24 x 24 nodes, data (fixed) on every 6th node, lambda 2, tension 0.4, T 3. The
- * sample variance of 600 draws has a relative error of about 6% per cell and 0.6% over the ~540 cells: the
- * test asks 2% on the mean ratio and 25% on every cell. The old Gibbs sampler (1 relaxation + 2 Gibbs
+ * sample variance of 600 draws has a relative error of about 6% per cell and 0.6% over the ~560 cells: the
+ * test asks 2% on the mean ratio and 30% (5 sd) on every cell (measured 1.009 and 0.22). The old Gibbs sampler (1 relaxation + 2 Gibbs
  * sweeps per level) was not at equilibrium and fails it. */
 static void test_fractal_equilibrium(void **state)
 {
@@ -612,7 +612,7 @@ static void test_fractal_equilibrium(void **state)
     print_message("fractal posterior variance, sampled / exact: mean %.4f, worst cell %.3f off\n", sum_s / sum_e,
                   worst);
     assert_true(fabs(sum_s / sum_e - 1.0) < 0.02);
-    assert_true(worst < 0.25);
+    assert_true(worst < 0.3);
     free(H);
     free(var);
     free(keep);
@@ -791,7 +791,7 @@ static ft_grid *fbm_nugget(size_t n, double D, uint64_t seed, double share)
 
 /* The largest |S_rec(h) / S_orig(h) - 1| over lags 1 .. 32 of the conditional reconstruction of 2 seeds of
  * exact fBm (share 0) or fBm plus white noise (256², every 4th cell plus a random 5%). */
-static double structure_worst(double D, double share, uint64_t seed0)
+static double structure_worst(ft_recon_method m, double D, double share, uint64_t seed0)
 {
     double so[33] = {0}, sr[33] = {0};
     for (uint64_t s = 0; s < 2; s++) {
@@ -807,7 +807,7 @@ static double structure_worst(double D, double share, uint64_t seed0)
                 }
         ft_rng_free(r);
         ft_recon_opts o = FT_RECON_OPTS_DEFAULT;
-        o.method = FT_RECON_CONDITIONAL;
+        o.method = m;
         o.dim = D;
         o.seed = 0x5eed0000 + s;
         ft_recon_info info;
@@ -826,8 +826,8 @@ static double structure_worst(double D, double share, uint64_t seed0)
             worst = fabs(sr[h] / so[h] - 1.0);
             at = h;
         }
-    print_message("D %.1f, white share %.2f: mean |dz| reconstruction / original: lag 1 %.3f, 2 %.3f, 4 %.3f, "
-                  "32 %.3f, worst %.3f at lag %zu\n", D, share, sr[1] / so[1], sr[2] / so[2], sr[4] / so[4],
+    print_message("%s D %.1f, white share %.2f: mean |dz| reconstruction / original: lag 1 %.3f, 2 %.3f, 4 %.3f, "
+                  "32 %.3f, worst %.3f at lag %zu\n", ft_recon_method_name(m), D, share, sr[1] / so[1], sr[2] / so[2], sr[4] / so[4],
                   sr[32] / so[32], worst, at);
     return worst;
 }
@@ -841,13 +841,15 @@ static double structure_worst(double D, double share, uint64_t seed0)
 static void test_structure_function(void **state)
 {
     (void)state;
-    static const double dims[] = {2.2, 2.5, 2.8};
+    static const double dims[] = {2.2, 2.5, 2.8}, fractal_dims[] = {2.2, 2.6};
     int bad = 0;
     for (size_t i = 0; i < 3; i++) {
-        bad += !(structure_worst(dims[i], 0.0, 700) <= 0.05);
+        bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.0, 700) <= 0.05);
         if (i > 0)
-            bad += !(structure_worst(dims[i], 0.4, 710) <= 0.05);
+            bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.4, 710) <= 0.05);
     }
+    for (size_t i = 0; i < 2; i++)
+        bad += !(structure_worst(FT_RECON_FRACTAL, fractal_dims[i], 0.0, 700) <= 0.05);
     assert_int_equal(bad, 0);
 
     ft_grid *t = target(64, 64), *g = fbm(64, 2.5, 5);
