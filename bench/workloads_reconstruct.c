@@ -190,7 +190,7 @@ static int setup_cli_512(ft_bench_case *c)
      FT_BENCH_CELLS, setup_##n, prepare_##n##_t2, run_##name##_t2, NULL}
 
 static const ft_bench_workload reconstruct_workloads[] = {
-    WL(fractal, 1024, "fractal reconstruction (smooth solution + Gibbs sampling per level)"),
+    WL(fractal, 1024, "fractal reconstruction (smooth solution + exact posterior sample)"),
     WL(conditional, 1024, "conditional simulation (fBm + smooth interpolation of the residuals)"),
     WL(smooth, 1024, "smooth reconstruction (T = 0, multigrid)"),
     WL(fractal, 4096, "fractal reconstruction"),

@@ -32,7 +32,7 @@ typedef struct {
     ft_recon_opts ro;
     ft_read_points_opts po;
     int band;
-    int have_extent, have_cell, have_band, have_temperature, have_k, have_sweeps;
+    int have_extent, have_cell, have_band, have_temperature, have_k;
     double extent[4]; /* xmin, ymin, xmax, ymax */
     double cell;
     const char *like, *crs, *driver, *method_text;
@@ -47,7 +47,6 @@ enum {
     OPT_LAMBDA,
     OPT_TEMPERATURE,
     OPT_K,
-    OPT_SWEEPS,
     OPT_REALIZATIONS,
     OPT_THREADS,
     OPT_CRS,
@@ -99,7 +98,6 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         a->have_temperature = 1;
         return cli_parse_double(cmd, "--temperature", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->ro.temperature);
     case OPT_K: a->have_k = 1; return cli_parse_double(cmd, "--k", arg, 0.0, INFINITY, CLI_OPEN_LO, &a->ro.k);
-    case OPT_SWEEPS: a->have_sweeps = 1; return cli_parse_int(cmd, "--sweeps", arg, 1, 100000, &a->ro.sweeps);
     case 'n':
     case OPT_REALIZATIONS:
         return cli_parse_int(cmd, "--realizations", arg, 1, RECON_MAX_REALIZATIONS, &a->ro.realizations);
@@ -132,8 +130,6 @@ static int check_options(const cli_command *cmd, const recon_args *a)
         fractal_only = "--temperature";
     else if (a->have_k)
         fractal_only = "--k";
-    else if (a->have_sweeps)
-        fractal_only = "--sweeps";
     if (fractal_only && a->ro.method != FT_RECON_FRACTAL)
         return cli_usage_error(cmd, "%s applies to --method fractal only (method is %s)", fractal_only,
                                ft_recon_method_name(a->ro.method));
@@ -368,7 +364,6 @@ static int run_reconstruct(const cli_command *cmd, int argc, char **argv)
         {"lambda", required_argument, NULL, OPT_LAMBDA},
         {"temperature", required_argument, NULL, OPT_TEMPERATURE},
         {"k", required_argument, NULL, OPT_K},
-        {"sweeps", required_argument, NULL, OPT_SWEEPS},
         {"realizations", required_argument, NULL, OPT_REALIZATIONS},
         {"seed", required_argument, NULL, 'S'},
         {"threads", required_argument, NULL, OPT_THREADS},
@@ -422,7 +417,7 @@ const cli_command cli_cmd_reconstruct = {
     "dense terrain from scattered elevations, or a DEM's voids filled (fractal, conditional, smooth)",
     "fracterra reconstruct INPUT OUT.tif [--method fractal|conditional|smooth] [--dim D|auto]\n"
     "       [--extent XMIN,YMIN,XMAX,YMAX] [--cell C] [--like GRID.tif] [--sigma S] [--weight FIELD]\n"
-    "       [--tension T] [--lambda L] [--temperature T0 | --k K] [--sweeps N] [--realizations N] [--seed N]\n"
+    "       [--tension T] [--lambda L] [--temperature T0 | --k K] [--realizations N] [--seed N]\n"
     "       [--threads N] [--crs CRS] [--x COL --y COL --z COL] [--layer NAME] [--zfield NAME] [--band N]\n"
     "       [-f DRIVER] [--json]",
     "Reconstructs a dense grid from scattered elevations (CSV with a header, XYZ text, or an OGR point\n"
@@ -430,8 +425,9 @@ const cli_command cli_cmd_reconstruct = {
     "rough as the data: regularization with a fractal prior on a multigrid (Arakawa & Krotkov section 3,\n"
     "after Szeliski), see docs/terrain-reconstruct.md.\n\n"
     "Methods:\n"
-    "  fractal      the paper's: the smooth solution, then Gibbs sampling at a temperature per level,\n"
-    "               T_l = T0 x (SRA variance ratio of level l), T0 = k g(D) sigma0^2 (default)\n"
+    "  fractal      the paper's (default): the smooth solution plus an exact sample of the prior of D\n"
+    "               conditioned on the data (Gibbs distribution at T = k sigma0^2, one k for every D),\n"
+    "               drawn by perturbation and optimization\n"
     "  conditional  an unconditional fBm surface of dimension D plus the smooth interpolation of its\n"
     "               residuals at the data: honours the data exactly; its one-cell roughness and white\n"
     "               share measured on data cells 1 and 2 cells apart (else Yokoya's line at one cell)\n"
@@ -450,17 +446,16 @@ const cli_command cli_cmd_reconstruct = {
     "  -g, --sigma S        standard deviation of a datum without a weight, elevation units (default 0:\n"
     "                       interpolate); the data are then fitted to within their sigmas\n"
     "      --weight FIELD   column or field holding each point's confidence 1/sigma\n"
-    "      --tension T      prior: 0 thin plate .. 1 membrane (default: conditional, and smooth with --dim:\n"
-    "                       from D, Szeliski's crossover,\n"
+    "      --tension T      prior: 0 thin plate .. 1 membrane (default: fractal, conditional, and smooth\n"
+    "                       with --dim: from D, Szeliski's crossover,\n"
     "                       tau/(1-tau) = 2 (D-2)/(3-D): 0.33 at D 2.2, 0.67 at 2.5, 0.89 at 2.8;\n"
-    "                       fractal, and smooth without --dim: 0.1)\n"
+    "                       smooth without --dim: 0.1)\n"
     "      --lambda L       weight of the prior against the data, > 0 (default 1). With sigmas: the\n"
     "                       largest weight; lowered until the RMS of (z - datum)/sigma at the data is\n"
     "                       about 1 (Morozov's discrepancy principle) if it misses them by more\n"
-    "      --temperature T0 fractal: the finest level's temperature, instead of k g(D) sigma0^2\n"
-    "      --k K            fractal: the calibration constant of T0 = k g(D) sigma0^2 (default: the\n"
-    "                       library's, calibrated by the paper's eq. 11)\n"
-    "      --sweeps N       fractal: Gibbs sweeps per level (default: the library's)\n"
+    "      --temperature T  fractal: the temperature, instead of k sigma0^2\n"
+    "      --k K            fractal: the constant of T = k sigma0^2 (default: the library's, 7.5,\n"
+    "                       calibrated on the structure function)\n"
     "  -n, --realizations N write the per-cell mean (band 1) and standard deviation (band 2) of N runs\n"
     "                       (streams seed, seed+1, ...); default 1\n"
     "      --seed N         random seed (default 1; printed in the JSON); same seed, same cells\n"

@@ -54,7 +54,7 @@ static double yokoya(const ft_grid *g)
 int main(int argc, char **argv)
 {
     size_t size = 256;
-    int seeds = 4, sweeps = 0, every = 4, threads = 0;
+    int seeds = 4, every = 4, threads = 0;
     double dims[16] = {2.2, 2.3, 2.4, 2.5, 2.6, 2.7, 2.8}, ks[32] = {0.0}, frac = 0.05, tension = -1.0;
     int nd = 7, nk = 1;
     const char *methods = "fractal,conditional,smooth";
@@ -70,8 +70,6 @@ int main(int argc, char **argv)
             nk = accuracy_parse_list(argv[++i], ks, 32);
         else if (!strcmp(argv[i], "--methods") && i + 1 < argc)
             methods = argv[++i];
-        else if (!strcmp(argv[i], "--sweeps") && i + 1 < argc)
-            sweeps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--every") && i + 1 < argc)
             every = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--fraction") && i + 1 < argc)
@@ -87,7 +85,7 @@ int main(int argc, char **argv)
             est_max_lag = atof(argv[++i]);
         else {
             fprintf(stderr, "usage: recon_calibrate [--size N] [--seeds S] [--dims a,b] [--scan k1,k2] "
-                            "[--methods fractal,conditional,smooth] [--sweeps n] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n] [--max-lag cells]\n");
+                            "[--methods fractal,conditional,smooth] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n] [--max-lag cells]\n");
             return 2;
         }
     }
@@ -117,7 +115,6 @@ int main(int argc, char **argv)
                     ro.method = m;
                     ro.dim = D;
                     ro.k = ks[ki];
-                    ro.sweeps = sweeps;
                     ro.threads = threads;
                     if (tension >= 0.0)
                         ro.tension = tension;

@@ -209,16 +209,16 @@ FT_API int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts
 
 /* ------------------------------------------------------------------------------------------------
  * Reconstruction of dense terrain from sparse elevations (Arakawa & Krotkov §3, after Szeliski):
- * regularization with a fractal prior on a multiresolution grid, solved by multigrid relaxation
- * (T = 0: the smooth solution) and then stochastic relaxation (Gibbs sampling) at a temperature per
- * level T_l = T_0(D) x (SRA variance ratio of level l), T_0 = k g(D) sigma0² (eqs. 12-13; g the SRA
- * share of the one-cell variance added by the finest level, 1 at D = 2.4) with sigma0 from the Pentland
- * estimate; k is calibrated once by eq. 11 and stored as FT_RECON_K_DEFAULT.
+ * regularization with a fractal prior (Szeliski's spline under tension with the eq. 7 blend of D), solved
+ * by multigrid (T = 0: the smooth solution); the fractal method then draws an exact sample of the
+ * posterior, the Gibbs distribution exp(-E / (lambda T)) conditioned on the data, by perturbation and
+ * optimization (Papandreou & Yuille 2010), at T = k sigma0² with sigma0 from the Pentland estimate and
+ * one k for every D (FT_RECON_K_DEFAULT, calibrated on the structure function).
  * docs/terrain-reconstruct.md holds the discretization, the calibration and the limits.
  * --------------------------------------------------------------------------------------------- */
 
 typedef enum {
-    FT_RECON_FRACTAL = 0,     /**< the paper's method: smooth solution + Gibbs sampling at T_l per level */
+    FT_RECON_FRACTAL = 0,     /**< the paper's method: smooth solution + an exact posterior sample at T */
     FT_RECON_CONDITIONAL = 1, /**< conditional simulation: unconditional fBm of dimension D plus the smooth
                                    interpolation of the residuals at the data; honours the data exactly */
     FT_RECON_SMOOTH = 2       /**< T = 0: thin-plate/membrane regularization only (the paper's baseline) */
@@ -233,9 +233,8 @@ typedef struct {
     double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1], or
                                    FT_RECON_TENSION_FROM_DIM (default): Szeliski's crossover from D,
                                    tau / (1 - tau) = 2 (D - 2) / (3 - D) (Arakawa & Krotkov eq. 7;
-                                   docs/terrain-reconstruct.md) for the conditional method, and for
-                                   the smooth one when dim is given (else 0.1); the fractal method
-                                   keeps 0.1, the blend its k was calibrated with */
+                                   docs/terrain-reconstruct.md) for the fractal and conditional
+                                   methods, and for the smooth one when dim is given (else 0.1) */
     double lambda;            /**< weight of the prior against the data term, > 0; default 1. No effect
                                    when the data are interpolated (sigma 0, no weights). With sigmas
                                    (sigma > 0 or per-point weights) it is an upper bound: if the fit
@@ -248,11 +247,11 @@ typedef struct {
                                    units, >= 0): the data are fitted to within it (see lambda);
                                    0 (default) = interpolate (the data are honoured to the solver's
                                    tolerance) */
-    double temperature;       /**< fractal: T_0 override, > 0; 0 (default) = k g(D) sigma0² */
-    double k;                 /**< fractal: calibration constant of T_0 = k g(D) sigma0², > 0;
+    double temperature;       /**< fractal: T override, > 0; 0 (default) = k sigma0² */
+    double k;                 /**< fractal: calibration constant of T = k sigma0², > 0;
                                    0 (default) = FT_RECON_K_DEFAULT */
-    int sweeps;               /**< fractal: Gibbs sweeps per level, >= 1; 0 (default) = the documented
-                                   number */
+    int sweeps;               /**< unused since the fractal method draws an exact sample (no Gibbs
+                                   sweeps); kept for the layout, must be in [0, 1000] */
     int realizations;         /**< >= 1; default 1. With N > 1 the output is the per-cell mean of N runs
                                    (seeds seed, seed+1, ... as streams) and sd_out their standard
                                    deviation */
@@ -286,7 +285,7 @@ typedef struct {
     double tension;           /**< the prior's blend used (opts->tension, or the one D gives) */
 } ft_recon_info;
 
-/** Fixed by the eq. 11 calibration (docs/terrain-reconstruct.md says how it was measured). */
+/** Fixed by a calibration on the structure function (docs/terrain-reconstruct.md says how). */
 extern const double FT_RECON_K_DEFAULT;
 
 FT_API const char *ft_recon_method_name(ft_recon_method m);

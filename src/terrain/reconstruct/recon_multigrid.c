@@ -253,7 +253,7 @@ static int vcycle(const ft_recon_problem *p, int l, float *x, const float *b, fl
     memset(x, 0, L->nx * L->ny * sizeof *x);
     int rc = FT_OK;
     for (int s = 0; s < PRE_SWEEPS && rc == FT_OK; s++)
-        rc = ft_recon_sweep(L, x, b, 0, NULL, p->nthreads);
+        rc = ft_recon_sweep(L, x, b, 0, p->nthreads);
     if (rc != FT_OK)
         return rc;
     ft_recon_residual(L, x, b, r, p->nthreads);
@@ -264,7 +264,7 @@ static int vcycle(const ft_recon_problem *p, int l, float *x, const float *b, fl
         return rc;
     ft_recon_prolong_add(L, C, C->x, x, p->nthreads);
     for (int s = 0; s < PRE_SWEEPS && rc == FT_OK; s++)
-        rc = ft_recon_sweep(L, x, b, 1, NULL, p->nthreads);
+        rc = ft_recon_sweep(L, x, b, 1, p->nthreads);
     return rc;
 }
 

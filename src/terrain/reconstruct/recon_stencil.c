@@ -1,5 +1,5 @@
-/* fracterra — recon_stencil.c: the discrete energy of the reconstruction and its Gauss-Seidel / Gibbs
- * sweeps (Arakawa & Krotkov §3.2 eqs. 6, 9-10; Szeliski 1990; Terzopoulos' splines under tension).
+/* fracterra — recon_stencil.c: the discrete energy of the reconstruction and its Gauss-Seidel sweeps
+ * (Arakawa & Krotkov §3.2 eqs. 6, 9-10; Szeliski 1990; Terzopoulos' splines under tension).
  *
  * On a level with node spacing h = 1 (in the level's own nodes) the energy is
  *     E(u) = sum_i c_i/2 (u_i - d_i)² + tp/2 [sum (u_xx)² + 2 sum (u_xy)² + sum (u_yy)²] + mem/2 sum |grad u|²
@@ -8,12 +8,11 @@
  * only the differences that fit in the grid count (natural boundary conditions). E = 1/2 u'Au - u'b + k
  * (eq. 9) with, inside the grid, the 13-node thin-plate stencil (20, -8, 2, 1) and the 5-node membrane
  * stencil (4, -1); near the edges (A u)_i is summed term by term. The Gauss-Seidel update of node i is
- * u+_i = u_i + (b_i - (A u)_i) / a_ii, and the Gibbs sampler draws u_i ~ N(u+_i, T / a_ii) (eq. 10).
+ * u+_i = u_i + (b_i - (A u)_i) / a_ii.
  *
  * Colours: node (x, y) has colour (x + 2y) mod 5; the stencil's offsets (±1, 0), (0, ±1), (±1, ±1),
  * (±2, 0), (0, ±2) all change it, so nodes of one colour never see each other: a colour's rows are updated
- * in parallel and the sweep's result does not depend on the thread count. Each (colour, row) of a Gibbs
- * sweep draws its deviates from its own stream.
+ * in parallel and the sweep's result does not depend on the thread count.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -101,54 +100,29 @@ static size_t first_of_colour(int k, size_t y)
     return (size_t)(((long)k - 2 * (long)(y % NCOLOURS) + 2 * NCOLOURS) % NCOLOURS);
 }
 
-static void sweep_row(const ft_recon_level *L, float *x, const float *b, int k, size_t y, const float *dev)
+static void sweep_row(const ft_recon_level *L, float *x, const float *b, int k, size_t y)
 {
-    size_t nx = L->nx, ny = L->ny, row = y * nx, j = 0;
+    size_t nx = L->nx, ny = L->ny, row = y * nx;
     int inner_row = y >= 2 && y + 2 < ny;
-    for (size_t c = first_of_colour(k, y); c < nx; c += NCOLOURS, j++) {
+    for (size_t c = first_of_colour(k, y); c < nx; c += NCOLOURS) {
         size_t i = row + c;
         if (L->fixed[i])
             continue;
         double a, ax = inner_row && c >= 2 && c + 2 < nx ? apply_inner(L, x, i, nx, &a) : apply_edge(L, x, c, y, &a);
         if (!(a > 0.0))
             continue;
-        double v = (double)x[i] + ((b ? (double)b[i] : 0.0) - ax) / a;
-        if (dev)
-            v += (double)dev[j] / sqrt(a);
-        x[i] = (float)v;
+        x[i] = (float)((double)x[i] + ((b ? (double)b[i] : 0.0) - ax) / a);
     }
 }
 
-int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, const ft_recon_noise *noise,
-                   int nthreads)
+int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, int nthreads)
 {
-    size_t nx = L->nx, ny = L->ny, per_row = nx / NCOLOURS + 1;
-    int failed = 0;
+    size_t nx = L->nx, ny = L->ny;
     for (int s = 0; s < NCOLOURS; s++) {
         int k = reverse ? NCOLOURS - 1 - s : s;
-#pragma omp parallel num_threads(ft_recon_threads(nthreads, nx * ny)) reduction(| : failed)
-        {
-            float *dev = noise ? malloc(per_row * sizeof *dev) : NULL;
-            failed |= noise && dev == NULL;
-#pragma omp for schedule(static)
-            for (size_t y = 0; y < ny; y++) {
-                if (noise && dev == NULL)
-                    continue;
-                if (dev) {
-                    ft_rng_fast g;
-                    ft_rng_fast_init(&g, noise->seed, ft_rng_mix(noise->stream + (uint64_t)k, (uint64_t)y));
-                    size_t m = (nx - first_of_colour(k, y) + NCOLOURS - 1) / NCOLOURS;
-                    ft_rng_fast_normals(&g, dev, m);
-                    double sd = sqrt(noise->scale);
-                    for (size_t j = 0; j < m; j++)
-                        dev[j] = (float)(sd * dev[j]);
-                }
-                sweep_row(L, x, b, k, y, dev);
-            }
-            free(dev);
-        }
-        if (failed)
-            return ft_error(FT_E_NOMEM, "out of memory in a Gibbs sweep");
+#pragma omp parallel for num_threads(ft_recon_threads(nthreads, nx * ny)) schedule(static)
+        for (size_t y = 0; y < ny; y++)
+            sweep_row(L, x, b, k, y);
     }
     return FT_OK;
 }

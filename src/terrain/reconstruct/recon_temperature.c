@@ -5,14 +5,11 @@
  *    valid cells;
  *  - sigma0: Pentland's statistic S(d), the standard deviation of |dz| at separation d (§2.4), fitted
  *    over the data's lags and extrapolated to one cell (the paper computes sigma0 with Pentland's method);
- *  - T_0 = k g(H) sigma0² (eq. 13) and T_l = T_0 2^(2 H l) (eq. 12: successive random addition adds
- *    variance delta_l^(2H) at spacing delta_l = 2^l cells, synth_sra.c). g(H) = (1 - 2^(2H - 2)) / (1 -
- *    2^(2 H_c - 2)), H_c = 0.6 (D = 2.4, where the paper calibrated k), is the SRA analogy's share of the
- *    one-cell increment variance that the finest level adds: SRA's levels add sigma_l² = sigma_0² 2^(2Hl)
- *    at spacing 2^l, a bilinear ramp between independent nodes 2^l apart has one-cell increments of
- *    variance 2 sigma_l² 4^-l, so Var(dz_1) = 2 sigma_0² / (1 - 2^(2H - 2)) and the finest level's share
- *    falls from 0.67 (D = 2.8) to 0.24 (D = 2.2); g(0.6) = 1 keeps k the paper's kind of constant;
- *  - k: FT_RECON_K_DEFAULT, calibrated by eq. 11 (bench/accuracy/recon_calibrate.c; the figures below).
+ *  - T = k sigma0² (eq. 13 at the finest level). The fractal method samples the prior's equilibrium
+ *    (recon_perturb.c), so the SRA analogy's per-level temperatures of eq. 12 have no role: a sample of
+ *    the one-level prior at T already holds every scale the prior gives, and its shape across scales is
+ *    the prior's spectrum (the eq. 7 blend of D). One k for every D;
+ *  - k: FT_RECON_K_DEFAULT, calibrated on the structure function (the figures below).
  *  - the conditional method's small scales: mean |dz| at one cell and the white share, from the data's own
  *    closest pairs (ft_recon_small_scales), or, with too few of them, the Yokoya line at one cell.
  *
@@ -25,13 +22,11 @@
 #include "fracterra/surface.h"
 #include "terrain/reconstruct/reconstruct_internal.h"
 
-/* Calibrated once by eq. 11 (bench/accuracy/recon_calibrate.c): D = 2.4, SRA 256², sparse subset every
- * 4th cell in each direction plus a random 5%, fractal reconstruction with T_0 = k g(H) sigma0², Yokoya's
- * grid estimator over its default lags (1 .. 32 cells, whole-range fit) on the original (D*) and the
- * result (D^). Mean D^ - D* over 8 seeds: k = 8: -0.0109, 9: -0.0030, 10: +0.0044, 11: +0.0115, 12: +0.0182;
- * k = 9.4 interpolates the zero. With it |D* - D^| <= 0.009 (256², 8 seeds) and <= 0.015 (512², 4 seeds)
- * for D = 2.2 .. 2.8 (docs/terrain-reconstruct.md, Table 4). */
-const double FT_RECON_K_DEFAULT = 9.4;
+/* Calibrated on the structure function (bench/accuracy/recon_structure.c): exact fBm 256², subset every 4th
+ * cell plus a random 5%, the exact posterior sample of recon_perturb.c with the eq. 7 blend of D. The k that
+ * puts mean |dz| at one cell on the original's: about 6.3 at D = 2.2, 8.5 at 2.5, 6.5 at 2.8 (2 seeds); k = 7.5
+ * keeps lags 1-32 within 5% for D = 2.2 .. 2.6 (docs/terrain-reconstruct.md has the table). */
+const double FT_RECON_K_DEFAULT = 7.5;
 
 static int fit_failed(int rc, const char *what)
 {
@@ -143,19 +138,9 @@ int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t 
     return 1;
 }
 
-static double sra_share(double H)
+double ft_recon_temperature0(double k, double sigma0)
 {
-    return 1.0 - pow(2.0, 2.0 * H - 2.0);
-}
-
-double ft_recon_temperature0(double k, double H, double sigma0)
-{
-    return k * sra_share(H) / sra_share(0.6) * sigma0 * sigma0;
-}
-
-double ft_recon_temperature_level(double T0, double H, int level)
-{
-    return T0 * pow(2.0, 2.0 * H * level);
+    return k * sigma0 * sigma0;
 }
 
 /* Szeliski's prior on one level is a spline under tension: membrane weight (2 pi f0)² times the thin

@@ -58,8 +58,8 @@ static int check_opts(const ft_recon_opts *o)
     if (!(o->k >= 0.0) || !isfinite(o->k))
         return ft_error(FT_E_INVALID, "k must be > 0 (or 0 for the calibrated default), got %g", o->k);
     if (o->sweeps < 0 || o->sweeps > 1000)
-        return ft_error(FT_E_INVALID, "sweeps must be in [1, 1000] (or 0 for the default %d), got %d",
-                        FT_RECON_SWEEPS_DEFAULT, o->sweeps);
+        return ft_error(FT_E_INVALID, "sweeps (unused: the fractal method draws an exact sample) must be in "
+                        "[0, 1000], got %d", o->sweeps);
     if (o->realizations < 1 || o->realizations > 1000000)
         return ft_error(FT_E_INVALID, "realizations must be >= 1, got %d", o->realizations);
     if (o->threads < 0)
@@ -124,7 +124,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
                                             t_smooth + (1.0 - t_smooth) * (r + 1) / nr);
         uint64_t seed = par->seed + (uint64_t)r;
         if (par->method == FT_RECON_FRACTAL)
-            rc = ft_recon_fractal(p, ustar, par->T0, par->H, par->sweeps, seed, u, &rp);
+            rc = ft_recon_fractal(p, ustar, par->T0, seed, u, &rp);
         else if (par->method == FT_RECON_CONDITIONAL)
             rc = ft_recon_conditional(p, ustar, par->H, par->amp, par->nugget, seed, u, &rp);
         if (stochastic)
@@ -272,7 +272,6 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
                         const ft_recon_problem *bound, double cell, ft_recon_params *par, ft_recon_info *info)
 {
     *par = (ft_recon_params){.method = o->method,
-                             .sweeps = o->sweeps > 0 ? o->sweeps : FT_RECON_SWEEPS_DEFAULT,
                              .tension = o->tension,
                              .realizations = o->realizations,
                              .seed = o->seed};
@@ -302,11 +301,8 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
     }
     info->dim = D;
     par->H = 3.0 - D;
-    /* the fractal method's temperature law (k) was calibrated with the fixed blend; its Gibbs sweeps with
-     * the eq. 7 blend put 15-45 % too much roughness at D >= 2.6 (docs/terrain-reconstruct.md) */
     if (tension_from_dim)
-        par->tension = info->tension = o->method == FT_RECON_FRACTAL ? FT_RECON_FRACTAL_TENSION
-                                                                     : ft_recon_tension_for_dim(D);
+        par->tension = info->tension = ft_recon_tension_for_dim(D);
     if (o->method == FT_RECON_CONDITIONAL) {
         return conditional_small_scales(&yk, bound, dem, cell, par);
     }
@@ -318,7 +314,7 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
         if (rc != FT_OK)
             return rc;
         info->sigma0 = ft_recon_line_at(&pe, cell);
-        par->T0 = ft_recon_temperature0(info->k, par->H, info->sigma0);
+        par->T0 = ft_recon_temperature0(info->k, info->sigma0);
     }
     info->temperature = par->T0;
     return FT_OK;

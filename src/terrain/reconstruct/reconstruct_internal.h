@@ -3,12 +3,12 @@
  *
  *  - recon_binding.c: scattered points -> the nodes (cell centres) of the target grid;
  *  - recon_stencil.c: the discrete energy (data term + lambda [(1 - tension) thin plate + tension
- *    membrane], h = 1 node of the level) applied at a node, and 5-colour Gauss-Seidel / Gibbs sweeps;
+ *    membrane], h = 1 node of the level) applied at a node, and 5-colour Gauss-Seidel sweeps;
  *  - recon_multigrid.c: the level hierarchy (spacing 2^l), restriction and prolongation, and the T = 0
  *    solver (conjugate gradients preconditioned by a symmetric multigrid V-cycle);
  *  - recon_discrepancy.c: with soft data, the prior weight by Morozov's discrepancy principle;
- *  - recon_temperature.c: D from the data, Pentland's sigma0, T_0 = k sigma0² and T_l (eqs. 12-13), k;
- *  - recon_gibbs.c: the fractal method (stochastic relaxation per level, eq. 10);
+ *  - recon_temperature.c: D from the data, Pentland's sigma0, T = k sigma0² (eq. 13), k;
+ *  - recon_perturb.c: the fractal method (an exact posterior sample by perturbation-optimization);
  *  - recon_conditional.c: conditional simulation (fBm + smooth interpolation of the residuals);
  *  - recon_voids.c: DEM voids -> problems on the boxes around them;
  *  - reconstruct.c: options, dispatch, realizations (mean, sd), info, method names.
@@ -24,10 +24,6 @@
 #include "fracterra/terrain.h"
 #include "internal.h"
 
-/** Gibbs sweeps per level when opts->sweeps is 0 (docs/terrain-reconstruct.md). */
-#define FT_RECON_SWEEPS_DEFAULT 2
-/** Deterministic Gauss-Seidel sweeps at T = 0 on each level before its Gibbs sweeps. */
-#define FT_RECON_RELAX_SWEEPS 1
 /** The T = 0 solver stops when the residual norm falls below this fraction of the initial one. */
 #define FT_RECON_TOL 1e-6
 #define FT_RECON_MAX_ITER 200
@@ -43,8 +39,10 @@ static inline int ft_recon_threads(int nthreads, size_t nodes)
 }
 
 /** Stream ids of the random numbers (mixed with the seed by ft_rng_fast_init). */
-#define FT_RECON_STREAM_GIBBS UINT64_C(0x7265630000000000)
 #define FT_RECON_STREAM_WHITE UINT64_C(0x7265637700000000)
+#define FT_RECON_STREAM_PERTURB UINT64_C(0x7265637000000000)
+/** The fractal sample's solve stops when its residual norm falls below this fraction of the initial one. */
+#define FT_RECON_SAMPLE_TOL 1e-4
 
 /** One level of the hierarchy: nodes at spacing 2^l fine nodes. */
 typedef struct {
@@ -94,16 +92,10 @@ int ft_recon_bind_points(const ft_points *p, const ft_grid *target, double sigma
 /* ---- recon_stencil.c ---- */
 /** (A x)_i at node (col, row) of level L and the diagonal a_ii (prior + data weight). */
 double ft_recon_apply(const ft_recon_level *L, const float *x, size_t col, size_t row, double *diag);
-/** Noise of a Gibbs sweep: node variance = scale / a_ii, deviates from streams of (seed, stream). */
-typedef struct {
-    double scale;
-    uint64_t seed, stream;
-} ft_recon_noise;
 /** One Gauss-Seidel sweep over the free nodes in 5 colours (0..4, or 4..0 if reverse), x_i += (b_i -
- *  (A x)_i) / a_ii (b NULL = 0); with noise, plus sqrt(noise->scale / a_ii) N(0, 1) (eq. 10's Gibbs
- *  conditional). Nodes of one colour do not interact, so rows run in parallel with the same result. */
-int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, const ft_recon_noise *noise,
-                   int nthreads);
+ *  (A x)_i) / a_ii (b NULL = 0). Nodes of one colour do not interact, so rows run in parallel with the
+ *  same result. */
+int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, int nthreads);
 /** r = b - A x on free nodes, 0 on fixed ones (b NULL = 0). Returns sum r² (rows reduced in order). */
 double ft_recon_residual(const ft_recon_level *L, const float *x, const float *b, float *r, int nthreads);
 /** Interior diagonal of the prior at a level (20 tp + 4 mem). */
@@ -162,10 +154,8 @@ int ft_recon_small_scales(const float *z, const uint8_t *has, size_t nx, size_t 
                           double *nugget);
 #define FT_RECON_PAIR_MIN 64
 #define FT_RECON_NUGGET_MAX 0.9
-/** T_0 = k g(H) sigma0² (eq. 13 with the SRA factor g, docs/terrain-reconstruct.md). */
-double ft_recon_temperature0(double k, double H, double sigma0);
-/** T_l = T_0 2^(2 H l) (eq. 12: the SRA variance ratio of level l). */
-double ft_recon_temperature_level(double T0, double H, int level);
+/** The fractal method's temperature, T = k sigma0² (eq. 13 at the finest level; one k for every D). */
+double ft_recon_temperature0(double k, double sigma0);
 /** The prior's blend for dimension D (Szeliski's eq. 7 crossover, Arakawa & Krotkov): the tension tau
  *  whose spline-under-tension spectrum has the fBm's log-log slope -(8 - 2D) at a wavelength of
  *  FT_RECON_TENSION_WAVELENGTH cells, tau / (1 - tau) = M (1 - H) / H, M = 2 - 2 cos(2 pi / wavelength). */
@@ -174,12 +164,12 @@ double ft_recon_tension_for_dim(double D);
 /** The blend the fractal method's k was calibrated with (its tension when opts->tension is from D). */
 #define FT_RECON_FRACTAL_TENSION 0.1
 
-/* ---- recon_gibbs.c ---- */
-/** The fractal method: u = ustar + delta, delta sampled coarse to fine (levels L..0) by `sweeps` Gibbs
- *  sweeps at T_l per level after FT_RECON_RELAX_SWEEPS relaxation sweeps, each level starting from the
- *  prolongation of the coarser one. Deviates from streams of (seed, level, sweep, colour, row). */
-int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, double H, int sweeps,
-                     uint64_t seed, float *u, const ft_recon_progress *prog);
+/* ---- recon_perturb.c ---- */
+/** The fractal method: u = ustar + delta, delta an exact draw of N(0, lambda T0 A_ff^-1) (the prior at
+ *  temperature T0 conditioned on delta = 0 at the fixed nodes) by perturbation and optimization.
+ *  Deviates from streams of (seed, term type, row). */
+int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, uint64_t seed, float *u,
+                     const ft_recon_progress *prog);
 
 /* ---- recon_conditional.c ---- */
 /** Conditional simulation: s = unconditional fBm (exponent H, seed) plus white noise carrying the share
@@ -193,10 +183,9 @@ int ft_recon_conditional(const ft_recon_problem *p, const float *ustar, double H
 typedef struct {
     ft_recon_method method;
     double H;           /**< 3 - D */
-    double T0;          /**< fractal: temperature of level 0 */
+    double T0;          /**< fractal: the temperature */
     double amp;         /**< conditional: mean |dz| at one cell of the result */
     double nugget;      /**< conditional: white share of the one-cell increment variance */
-    int sweeps;         /**< fractal: Gibbs sweeps per level */
     double tension;     /**< the prior's blend (opts->tension or ft_recon_tension_for_dim(D)) */
     int realizations;
     uint64_t seed;      /**< realization r uses seed + r */
