@@ -73,7 +73,7 @@ static int check_opts(const ft_dutton_opts *o)
         return ft_error(FT_E_INVALID, "sd 0 (the input's own dimension) needs the calibrated mode and uc > 0, got "
                         "%s and uc %g", o->literal_sd ? "literal_sd" : "calibrated", o->uc);
     if (!(o->sd >= 1.0 && o->sd <= 2.0) && o->sd != 0.0)
-        return ft_error(FT_E_INVALID, "sd must be in [1,2] (or 0: the input's own dimension), got %g", o->sd);
+        return ft_error(FT_E_INVALID, "sd must be in [1,2], got %g", o->sd); /* or 0: the input's own D */
     if (!(o->uc >= -1.0 && o->uc <= 1.0))
         return ft_error(FT_E_INVALID, "uc must be in [-1,1], got %g", o->uc);
     if (o->target_dim != 0.0 && !(o->target_dim >= 1.0 && o->target_dim <= 2.0))
