@@ -185,6 +185,14 @@ static int ring_starts(chain_set *s, int starts)
     return FT_OK;
 }
 
+static int has_ring(const chain_set *s)
+{
+    for (size_t c = 0; c < s->n; c++)
+        if (s->chains[c]->closed)
+            return 1;
+    return 0;
+}
+
 static void chain_set_clear(chain_set *s)
 {
     for (size_t c = 0; s->start && c < s->n; c++)
@@ -500,6 +508,9 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
         if (o->ellipsoid)
             ft_dim_result_set_units(*out, "m");
     }
+    if (rc == FT_OK && o->starts > 1 && o->only_start < 0 && !has_ring(&s))
+        rc = ft_dim_result_warn(*out, "starts: none of the chains is a ring (a closed line); open chains are walked "
+                                "from both ends, so the %d starts change nothing", o->starts);
     if (rc == FT_OK && o->ellipsoid == NULL && looks_like_profile(&s))
         rc = ft_dim_result_warn(*out, "profile: every chain is a graph over one axis (x or y only grows or only "
                                 "falls along it): if it is a profile (elevation against distance), the %s does not "

@@ -266,6 +266,16 @@ static void test_ring_starts(void **state)
 
     ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
     ft_dim_result *r = NULL;
+    c->closed = 0; /* an open chain: the starts change nothing, and the result says so */
+    o.starts = 4;
+    assert_int_equal(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_DIVIDER, &o, &r), FT_OK);
+    int said = 0;
+    for (size_t w = 0; w < r->nwarnings; w++)
+        said += strstr(r->warnings[w], "none of the chains is a ring") != NULL;
+    assert_int_equal(said, 1);
+    ft_dim_result_free(r);
+    r = NULL;
+    c->closed = 1;
     o.starts = 0;
     expect_msg(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_DIVIDER, &o, &r), FT_E_INVALID,
                "starts must be in [1, 1000], got 0");
