@@ -99,6 +99,43 @@ static const demo_item items[] = {
      "The same for the enhanced outline (its own automatic range).",
      {{"newfoundland_loglog_after.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_enhanced.geojson", "--plot", "newfoundland_loglog_after.svg"}},
+    {"Newfoundland, the paper's rule: enhanced",
+     "Dutton chose SD to be the coast's own dimension: <code>--sd input</code> aims the enhancement at the "
+     "outline's measured divider D (UC = 0.7, SM = 5100 m, no straightness limit), stage B of Fig. 6.",
+     {{"newfoundland_b.geojson", 0}},
+     {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_b.geojson", "--sd", "input", "--uc", "0.7",
+      "--sm", "5100"}},
+    {"Newfoundland, the paper's rule: weeded",
+     "Stage C: segments shorter than SM weeded out, dropping of each short segment's two vertices the one "
+     "nearer to the chord of its neighbours, so that the extreme points of bays and headlands stay.",
+     {{"newfoundland_c.geojson", 0}},
+     {"fracterra", "weed", "newfoundland_b.geojson", "newfoundland_c.geojson", "--min-segment", "5100",
+      "--keep-shape"}},
+    {"Newfoundland, the paper's rule: smoothed",
+     "Stage D: smoothed once (roundness 0.5, segments of at least SM).",
+     {{"newfoundland_d.geojson", 0}},
+     {"fracterra", "smooth", "newfoundland_c.geojson", "newfoundland_d.geojson", "--sm", "5100"}},
+#define NF_RULERS "--min-scale", "48540.3", "--max-scale", "187304", "--scales", "16", "--starts", "48"
+    {"Newfoundland A (158 points): divider over the common rulers",
+     "Every stage is measured over the same 16 rulers, 48.5 to 187.3 km (the 158-point outline's automatic "
+     "range), the walk averaged over 48 start vertices spread evenly round the ring: one walk's D moves by "
+     "about 0.05 with its start. The plot gives D; <code>--json</code> adds each start's spread. "
+     "docs/line-newfoundland.md tabulates the stages.",
+     {{"newfoundland_a_divider.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_158.geojson", NF_RULERS, "--plot", "newfoundland_a_divider.svg"}},
+    {"Newfoundland B (enhanced): divider over the common rulers",
+     "The same rulers and starts.",
+     {{"newfoundland_b_divider.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_b.geojson", NF_RULERS, "--plot", "newfoundland_b_divider.svg"}},
+    {"Newfoundland C (weeded): divider over the common rulers",
+     "The same rulers and starts.",
+     {{"newfoundland_c_divider.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_c.geojson", NF_RULERS, "--plot", "newfoundland_c_divider.svg"}},
+    {"Newfoundland D (smoothed): divider over the common rulers",
+     "The same rulers and starts.",
+     {{"newfoundland_d_divider.svg", 1}},
+     {"fracterra", "dim", "line", "newfoundland_d.geojson", NF_RULERS, "--plot", "newfoundland_d_divider.svg"}},
+#undef NF_RULERS
     {"Rhode Island, simplified boundary",
      "Rhode Island's boundary from the DCW states, simplified with Douglas-Peucker at 600 m: the input of "
      "the boundary simulation.",
@@ -574,7 +611,9 @@ const cli_command cli_cmd_demo = {
     "                                  relief and perspective view\n"
     "  hillshade, render, model fit    the same for the Maunga Whau DEM, and Clarke's model fitted to it\n"
     "  simplify, enhance, dim line     Dutton's Newfoundland sequence: the GSHHG shoreline generalized to\n"
-    "                                  158 points and enhanced; divider log-log plots of both\n"
+    "                                  158 points and enhanced; divider log-log plots of both; the paper's\n"
+    "                                  rule (SD = the outline's D) stage by stage (enhance, weed, smooth),\n"
+    "                                  each stage's divider over common rulers, 48 start vertices\n"
     "  simplify, boundary, dim line    Rhode Island's boundary with detail of D = 1.2325 added by the\n"
     "                                  midpoint-subdivision generator; its box-counting plot\n"
     "  mountain                        contours grown from one seed contour: map, DEM, perspective view\n"

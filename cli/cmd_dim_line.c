@@ -13,6 +13,7 @@
 #include "cli_geo.h"
 #include "dim_output.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +24,7 @@
 typedef struct {
     cli_dim_opts dim;
     const char *method, *layer, *where, *by;
+    int starts; /* --starts: divider walks round each ring (Andrle 1992); 1 = one walk from vertex 0 */
 } line_args;
 
 /* A set of features measured together. */
@@ -234,6 +236,45 @@ typedef struct {
     const ft_crs_info *crs;
 } line_input;
 
+/* With --starts N, the divider's D from each start alone over the rulers the mean's fit used (r's range, the
+ * same geometric series): "starts": {"n", "D_mean", "D_sd", "D_min", "D_max"} in info, and a line on
+ * stderr. */
+static int start_spread(const ft_chain *const *chains, size_t n, const ft_line_dim_opts *opts, const ft_dim_result *r,
+                        json_object *info)
+{
+    ft_line_dim_opts o = *opts;
+    o.min_scale = r->range[0];
+    o.max_scale = r->range[1];
+    o.nscales = (int)(r->fit.last - r->fit.first + 1);
+    o.fit_whole_range = 1;
+    o.min_r2 = 0.0;
+    o.progress = NULL;
+    double sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < o.starts; k++) {
+        ft_dim_result *one = NULL;
+        o.only_start = k;
+        int rc = ft_line_dim(chains, n, FT_LINE_DIVIDER, &o, &one);
+        if (rc != FT_OK)
+            return rc;
+        sum += one->D;
+        sum2 += one->D * one->D;
+        lo = one->D < lo ? one->D : lo;
+        hi = one->D > hi ? one->D : hi;
+        ft_dim_result_free(one);
+    }
+    double mean = sum / o.starts, var = (sum2 - sum * mean) / (o.starts - 1);
+    json_object *s = json_object_new_object();
+    json_object_object_add(s, "n", json_object_new_int(o.starts));
+    json_object_object_add(s, "D_mean", json_object_new_double(mean));
+    json_object_object_add(s, "D_sd", json_object_new_double(var > 0.0 ? sqrt(var) : 0.0));
+    json_object_object_add(s, "D_min", json_object_new_double(lo));
+    json_object_object_add(s, "D_max", json_object_new_double(hi));
+    json_object_object_add(info, "starts", s);
+    fprintf(stderr, "divider over %d starts: D %.4f of the mean lengths; one start alone: %.4f +- %.4f (sd), "
+            "[%.4f, %.4f]\n", o.starts, r->D, mean, var > 0.0 ? sqrt(var) : 0.0, lo, hi);
+    return FT_OK;
+}
+
 /* Measures one group (g == NULL: the whole layer) with every method into the report. Lon/lat chains are
  * walked on the ellipsoid, and box-counted in the equal-area copy. */
 static int measure(const line_input *in, const line_group *g, const ft_line_method *ms, int nm,
@@ -250,7 +291,8 @@ static int measure(const line_input *in, const line_group *g, const ft_line_meth
         return rc;
     }
     json_object *id = g ? json_object_get(g->id) : NULL;
-    rc = cli_dim_report_group(rep, g != NULL, id, label, group_info(g ? g->n : l->nfeatures, n, vertices));
+    json_object *info = group_info(g ? g->n : l->nfeatures, n, vertices); /* the report owns it */
+    rc = cli_dim_report_group(rep, g != NULL, id, label, info);
     if (rc == FT_OK && n == 0)
         rc = ft_error(FT_E_EMPTY, "%s: no chain of 2 or more vertices to measure", label);
     for (int i = 0; rc == FT_OK && i < nm; i++) {
@@ -266,6 +308,10 @@ static int measure(const line_input *in, const line_group *g, const ft_line_meth
             break;
         }
         r->method = ft_line_method_name(ms[i]);
+        if (ms[i] == FT_LINE_DIVIDER && o.starts > 1 && (rc = start_spread(chains, n, &o, r, info)) != FT_OK) {
+            ft_dim_result_free(r);
+            break;
+        }
         cli_geo_units(r, in->crs);
         const char *xl, *yl;
         axis_labels(ms[i], &xl, &yl);
@@ -322,6 +368,7 @@ static int measure_all(const cli_command *cmd, const line_input *in, const char 
     o.min_r2 = FT_LINE_R2_FLOOR;
     o.fit.regime = a->dim.regime;
     o.progress = cli_progress();
+    o.starts = a->starts;
     if (a->by == NULL)
         return measure(in, NULL, ms, nm, &o, rep, path) == FT_OK ? CLI_OK : cli_fail(cmd);
     line_group *groups = NULL;
@@ -355,6 +402,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     switch (opt) {
     case 'w': a->where = arg; return CLI_CONTINUE;
     case 'b': a->by = arg; return CLI_CONTINUE;
+    case 's': return cli_parse_int(cmd, "--starts", arg, 1, 1000, &a->starts);
     default: return cli_usage_error(cmd, "unexpected option");
     }
 }
@@ -377,14 +425,15 @@ static int run_dim_line(const cli_command *cmd, int argc, char **argv)
     static const struct option longopts[] = {
         {"method", required_argument, NULL, 'm'}, {"layer", required_argument, NULL, 'l'},
         {"where", required_argument, NULL, 'w'},  {"by", required_argument, NULL, 'b'},
+        {"starts", required_argument, NULL, 's'},
         CLI_DIM_LONGOPTS,                          CLI_OPT_HELP,
         CLI_OPT_END,
     };
     static const char *const names[] = {"INPUT"};
-    line_args a = {CLI_DIM_OPTS_DEFAULT, "divider", NULL, NULL, NULL};
+    line_args a = {CLI_DIM_OPTS_DEFAULT, "divider", NULL, NULL, NULL, 1};
     ft_line_method ms[NMETHODS];
     int first = 0, nm = 0;
-    int rc = cli_parse_options(cmd, argc, argv, longopts, "m:l:w:b:" CLI_DIM_SHORTOPTS, on_option, &a, &first);
+    int rc = cli_parse_options(cmd, argc, argv, longopts, "m:l:w:b:s:" CLI_DIM_SHORTOPTS, on_option, &a, &first);
     if (rc == CLI_CONTINUE)
         rc = cli_expect_args(cmd, argc, argv, first, names, 1);
     if (rc == CLI_CONTINUE)
@@ -393,6 +442,10 @@ static int run_dim_line(const cli_command *cmd, int argc, char **argv)
         rc = cli_usage_error(cmd, "--method must be divider, equipaced, hybrid, box, a comma-separated list of "
                                   "them, or all; got '%s'",
                              a.method);
+    for (int i = 0; rc == CLI_CONTINUE && a.starts > 1 && i < nm; i++)
+        if (ms[i] != FT_LINE_DIVIDER)
+            rc = cli_usage_error(cmd, "--starts %d applies to the divider only, not to the %s", a.starts,
+                                 ft_line_method_name(ms[i]));
     if (rc != CLI_CONTINUE)
         return rc;
     const char *path = argv[first];
@@ -425,8 +478,8 @@ const cli_command cli_cmd_dim_line = {
     "dim line",
     "fractal dimension of lines and polygon boundaries",
     "fracterra dim line INPUT [--method divider|equipaced|hybrid|box|all] [--layer NAME] [--where SQL]\n"
-    "                          [--by FIELD] [--min-scale S] [--max-scale S] [--scales N] [--segments]\n"
-    "                          [--plot FILE] [--json]",
+    "                          [--by FIELD] [--starts N] [--min-scale S] [--max-scale S] [--scales N]\n"
+    "                          [--segments] [--plot FILE] [--json]",
     "Measures the fractal dimension D of the chains (lines, polygon rings) of INPUT, any OGR vector layer\n"
     "or a GMT text file (.gmt, .xy, .txt). The quantity is measured at scales in a geometric series,\n"
     "summed over the chains, and D is read from the widest regime (straight run, by a curvature test) of\n"
@@ -447,6 +500,11 @@ const cli_command cli_cmd_dim_line = {
     "  -w, --where SQL      only the features matching this OGR attribute filter\n"
     "  -b, --by FIELD       one result per value of FIELD (features sharing a value measured together);\n"
     "                       'fid' gives one result per feature. Default: the whole layer as one set\n"
+    "  -s, --starts N       divider on rings: L(r) is the mean of N walks starting at vertices evenly\n"
+    "                       spaced along each ring (the first at or after k/N of its length), so that D\n"
+    "                       does not hang on the start (Andrle 1992); the JSON's \"starts\" and a line on\n"
+    "                       stderr give the D of each start alone over the same rulers: mean, sd, range.\n"
+    "                       Default 1: one walk from the first vertex. Open lines: walks from both ends\n"
     CLI_DIM_OPTIONS_HELP
     "  -h, --help           print this help\n"
     "With both --min-scale and --max-scale, D is fitted over every scale between them.\n\n"

@@ -7,6 +7,7 @@
 #include "line_edit.h"
 
 #include <math.h>
+#include <string.h>
 
 #define MAX_ITERATIONS 16
 #define MAX_PASSES 16
@@ -15,14 +16,15 @@ enum { /* long-only option codes, clear of line_edit.h's */
     OPT_TARGET_DIM = 0x300,
     OPT_INPUT_DIM,
     OPT_LITERAL_SD,
-    OPT_ALLOW_CROSSINGS
+    OPT_ALLOW_CROSSINGS,
+    OPT_KEEP_SHAPE
 };
 
 typedef struct {
     line_io io;
     ft_dutton_opts dutton;
     ft_smooth_opts smooth;
-    int weed, repair, roundness_given;
+    int weed, repair, roundness_given, keep_shape;
     json_object *params; /* the report's parameters: the plan is added once the layer is read */
 } enhance_args;
 
@@ -46,7 +48,12 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     if (line_io_option(opt, arg, &a->io) == CLI_CONTINUE)
         return CLI_CONTINUE;
     switch (opt) {
-    case 'd': return cli_parse_double(cmd, "--sd", arg, 1.0, 2.0, CLI_CLOSED, &a->dutton.sd);
+    case 'd':
+        if (strcmp(arg, "input") == 0) {
+            a->dutton.sd = 0.0; /* the library's "SD is D_in" */
+            return CLI_CONTINUE;
+        }
+        return cli_parse_double(cmd, "--sd", arg, 1.0, 2.0, CLI_CLOSED, &a->dutton.sd);
     case 'u': return cli_parse_double(cmd, "--uc", arg, -1.0, 1.0, CLI_CLOSED, &a->dutton.uc);
     case 't': return cli_parse_double(cmd, "--st", arg, 0.0, INFINITY, CLI_OPEN_LO | CLI_ALLOW_INF, &a->dutton.st);
     case 'm': return cli_parse_double(cmd, "--sm", arg, 0.0, INFINITY, CLI_CLOSED, &a->dutton.sm);
@@ -63,6 +70,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         a->roundness_given = 1;
         return cli_parse_double(cmd, "--roundness", arg, 0.0, 1.0, CLI_OPEN_LO, &a->smooth.roundness);
     case 'W': a->weed = 1; return CLI_CONTINUE;
+    case OPT_KEEP_SHAPE: a->keep_shape = 1; return CLI_CONTINUE;
     case 'R': a->repair = 1; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");
     }
@@ -73,6 +81,8 @@ static int check_args(const cli_command *cmd, enhance_args *a)
     if (a->dutton.sm >= a->dutton.st)
         return cli_usage_error(cmd, "--sm %g must be below --st %g: no segment could be altered", a->dutton.sm,
                                a->dutton.st);
+    if (a->keep_shape && !a->weed)
+        return cli_usage_error(cmd, "--keep-shape chooses how --weed drops vertices: give --weed");
     if (a->weed && a->dutton.sm <= 0.0)
         return cli_usage_error(cmd, "--weed drops segments shorter than --sm: give --sm > 0");
     if (a->roundness_given && a->smooth.passes == 0)
@@ -85,7 +95,7 @@ static int check_args(const cli_command *cmd, enhance_args *a)
 static json_object *params_json(const enhance_args *a)
 {
     json_object *p = json_object_new_object();
-    json_object_object_add(p, "sd", cli_json_double(a->dutton.sd));
+    json_object_object_add(p, "sd", a->dutton.sd == 0.0 ? json_object_new_string("input") : cli_json_double(a->dutton.sd));
     json_object_object_add(p, "uc", cli_json_double(a->dutton.uc));
     json_object_object_add(p, "st", cli_json_double(a->dutton.st)); /* null: no limit */
     json_object_object_add(p, "sm", cli_json_double(a->dutton.sm));
@@ -93,6 +103,7 @@ static json_object *params_json(const enhance_args *a)
     json_object_object_add(p, "literal_sd", json_object_new_boolean(a->dutton.literal_sd));
     json_object_object_add(p, "allow_crossings", json_object_new_boolean(a->dutton.allow_crossings));
     json_object_object_add(p, "weed", json_object_new_boolean(a->weed));
+    json_object_object_add(p, "keep_shape", json_object_new_boolean(a->keep_shape));
     json_object_object_add(p, "smooth", json_object_new_int(a->smooth.passes));
     json_object_object_add(p, "roundness", cli_json_double(a->smooth.roundness));
     json_object_object_add(p, "repair", json_object_new_boolean(a->repair));
@@ -108,11 +119,11 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
         {"roundness", required_argument, NULL, 'r'}, {"weed", no_argument, NULL, 'W'},
         {"repair", no_argument, NULL, 'R'},          {"target-dim", required_argument, NULL, OPT_TARGET_DIM},
         {"input-dim", required_argument, NULL, OPT_INPUT_DIM}, {"literal-sd", no_argument, NULL, OPT_LITERAL_SD},
-        {"allow-crossings", no_argument, NULL, OPT_ALLOW_CROSSINGS},
+        {"allow-crossings", no_argument, NULL, OPT_ALLOW_CROSSINGS}, {"keep-shape", no_argument, NULL, OPT_KEEP_SHAPE},
         LINE_IO_LONGOPTS,
         CLI_OPT_HELP,                                CLI_OPT_END,
     };
-    enhance_args a = {LINE_IO_DEFAULT, FT_DUTTON_OPTS_DEFAULT, FT_SMOOTH_OPTS_DEFAULT, 0, 0, 0, NULL};
+    enhance_args a = {LINE_IO_DEFAULT, FT_DUTTON_OPTS_DEFAULT, FT_SMOOTH_OPTS_DEFAULT, 0, 0, 0, 0, NULL};
     a.smooth.passes = 0;
     int first = 0;
     int rc = line_edit_parse(cmd, argc, argv, longopts, "d:u:t:m:i:s:r:" LINE_IO_SHORTOPTS, on_option, &a, &first);
@@ -128,7 +139,8 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
         snprintf(steps[n++].option, sizeof steps[0].option, "--iterations %d", a.dutton.iterations);
     }
     if (a.weed)
-        steps[n++] = (line_step){"weed", ft_line_op_weed, &a.dutton.sm, NULL, NULL, 0.0, ""};
+        steps[n++] = (line_step){"weed", a.keep_shape ? ft_line_op_weed_shape : ft_line_op_weed, &a.dutton.sm, NULL,
+                                 NULL, 0.0, ""};
     if (a.smooth.passes > 0) {
         steps[n] = (line_step){"smooth", ft_line_op_smooth, &a.smooth, line_smooth_layer_step, &a.smooth,
                                ldexp(1.0, a.smooth.passes), ""};
@@ -144,7 +156,7 @@ const cli_command cli_cmd_enhance = {
     "enhance",
     "Dutton's fractal enhancement of generalized lines and polygon boundaries",
     "fracterra enhance INPUT OUTPUT [--sd D [--literal-sd] | --target-dim D] [--uc U] [--input-dim D] [--st LEN]\n"
-    "                                [--sm LEN] [--iterations N] [--weed] [--smooth K] [--roundness R] [--repair]\n"
+    "                                [--sm LEN] [--iterations N] [--weed [--keep-shape]] [--smooth K] [--roundness R] [--repair]\n"
     "                                [--allow-crossings] [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER]\n"
     "                                [--json]",
     "Puts self-similar detail back into generalized lines (Dutton 1981, docs/line-enhance.md): at each\n"
@@ -166,7 +178,9 @@ const cli_command cli_cmd_enhance = {
     LINE_IO_COVERAGE_HELP "\n"
     "Options:\n"
     "  -d, --sd D           sinuosity dimension in [1,2]: the divider dimension of the result at UC = 1;\n"
-    "                       default 1.3. At most 1.777 (UC = 1), 1.614 (UC = 0.7), 1.453 (UC = 0.5)\n"
+    "                       default 1.3. At most 1.777 (UC = 1), 1.614 (UC = 0.7), 1.453 (UC = 0.5).\n"
+    "                       'input': SD is the input's own D_in (Dutton's Newfoundland), the target\n"
+    "                       whatever UC\n"
     "      --literal-sd     Dutton's literal reading: the apex angle pi - 2a, cos a = 2^(1/SD - 1), no\n"
     "                       calibration (it measures less than SD: SD 1.3 gives 1.12)\n"
     "      --target-dim D   the divider dimension wanted, whatever UC (--sd and D_in are then not used)\n"
@@ -178,6 +192,8 @@ const cli_command cli_cmd_enhance = {
     "  -m, --sm LEN         smoothness tolerance: only segments of at least LEN are altered; default 0\n"
     "  -i, --iterations N   fractalizing iterations, 0..16 (each one about doubles the vertices); default 1\n"
     "      --weed           after fractalizing, drop vertices so that no segment is shorter than --sm\n"
+    "      --keep-shape     with --weed: of a short segment's two vertices drop the one nearer to the chord\n"
+    "                       of its neighbours (`weed --keep-shape`), not the next one\n"
     "  -s, --smooth K       then K passes of corner cutting (0..16); default 0\n"
     "  -r, --roundness R    corner cutting in (0,1]: V becomes V + R(M1-V) and V + R(M2-V) (0.5: Chaikin);\n"
     "                       default 0.5; alone, implies --smooth 1\n"

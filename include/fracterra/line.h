@@ -51,11 +51,17 @@ typedef struct {
                                         (project the chains to an equal-area CRS first) */
     double min_r2;          /**< 0 (default): off; else a fit with r² below it fails (the CLI uses
                                  FT_LINE_R2_FLOOR), unless D is pinned anyway (see FT_LINE_R2_FLOOR) */
+    int starts;             /**< divider on rings: L(r) is the mean of this many walks, walk k starting at the
+                                 first vertex at or after arc length k L / starts from vertex 0 (Andrle 1992:
+                                 the start moves a ring's D); 1 (default): one walk from vertex 0. Open chains
+                                 keep both_ends. Other methods: 1 only */
+    int only_start;         /**< -1 (default): the mean of the starts; k in [0, starts): walk k alone (the
+                                 spread of D over the starts, docs/line-dimension.md) */
 } ft_line_dim_opts;
 #define FT_LINE_DIM_OPTS_DEFAULT                                                                                     \
     {.struct_size = sizeof(ft_line_dim_opts), .min_scale = 0.0, .max_scale = 0.0, .nscales = 0, .both_ends = 1,      \
      .box_offsets = 4, .fit = FT_LOGLOG_OPTS_DEFAULT, .fit_whole_range = 0, .progress = NULL, .progress_arg = NULL,  \
-     .ellipsoid = NULL, .min_r2 = 0.0}
+     .ellipsoid = NULL, .min_r2 = 0.0, .starts = 1, .only_start = -1}
 
 /** The least r² the CLI accepts (opts.min_r2; docs/line-dimension.md): below it ft_line_dim fails
  *  (FT_E_INVALID) naming the range, rather than return a D read from a table that is not a straight line.
@@ -95,7 +101,8 @@ FT_API int ft_line_box_count(const ft_chain *const *chains, size_t n, double siz
 typedef struct {
     size_t struct_size; /**< sizeof(ft_dutton_opts); see FT_OPTS in core.h */
     double sd;       /**< sinuosity dimension in [1, 2]: the divider dimension the enhanced chain measures over
-                          the scales the enhancement generates when uc = 1 (unless literal_sd); default 1.3 */
+                          the scales the enhancement generates when uc = 1 (unless literal_sd); default 1.3;
+                          0: the input's own D_in (input_dim), the target whatever uc (not with literal_sd) */
     double uc;       /**< uniformity coefficient in [-1, 1]; default 1. For uc in (0, 1] the target dimension
                           is D_in + uc (sd - D_in), D_in the input's divider dimension (input_dim); uc = 0
                           moves nothing; uc < 0 (exaggeration) uses the literal apex angle of sd */
@@ -174,6 +181,10 @@ typedef struct {
 FT_API int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **out);
 /** Weeding: drops vertices so that no segment is shorter than min_seg (end points of open chains kept). */
 FT_API int ft_line_weed(const ft_chain *in, double min_seg, ft_chain **out);
+/** Weeding that keeps the shape: no segment shorter than min_seg either, but of a short segment's two
+ *  vertices the one nearer to the chord of its neighbours is dropped (weed_shape.c); open chains keep their
+ *  end points, rings at least 3 vertices. */
+FT_API int ft_line_weed_shape(const ft_chain *in, double min_seg, ft_chain **out);
 /** Douglas-Peucker simplification with a distance tolerance (rings keep at least 3 vertices). */
 FT_API int ft_line_simplify(const ft_chain *in, double tolerance, ft_chain **out);
 /** The smallest Douglas-Peucker tolerance (to 1e-12 of the layer's diagonal, by bisection) that leaves the
@@ -256,6 +267,7 @@ FT_API int ft_line_apply_layer(ft_layer *l, ft_line_op op, const void *opts, int
 FT_API int ft_line_op_enhance(const ft_chain *in, const void *opts /* const ft_dutton_opts * */, ft_chain **out);
 FT_API int ft_line_op_smooth(const ft_chain *in, const void *opts /* const ft_smooth_opts * */, ft_chain **out);
 FT_API int ft_line_op_weed(const ft_chain *in, const void *opts /* const double *min_seg */, ft_chain **out);
+FT_API int ft_line_op_weed_shape(const ft_chain *in, const void *opts /* const double *min_seg */, ft_chain **out);
 FT_API int ft_line_op_simplify(const ft_chain *in, const void *opts /* const double *tolerance */, ft_chain **out);
 FT_API int ft_line_op_remove_loops(const ft_chain *in, const void *opts /* ignored, may be NULL */, ft_chain **out);
 

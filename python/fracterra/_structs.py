@@ -309,9 +309,10 @@ class ft_line_dim_opts(_Opts):
     _c_default_ = "FT_LINE_DIM_OPTS_DEFAULT"
     _fields_ = [("struct_size", _sz), ("min_scale", _dbl), ("max_scale", _dbl), ("nscales", _int), ("both_ends", _int),
                 ("box_offsets", _int), ("fit", ft_loglog_opts), ("fit_whole_range", _int),
-                ("progress", PROGRESS), ("progress_arg", _vp), ("ellipsoid", _P(ft_ellipsoid)), ("min_r2", _dbl)]
+                ("progress", PROGRESS), ("progress_arg", _vp), ("ellipsoid", _P(ft_ellipsoid)), ("min_r2", _dbl),
+                ("starts", _int), ("only_start", _int)]
     _defaults_ = dict(min_scale=0.0, max_scale=0.0, nscales=0, both_ends=1, box_offsets=4, fit=FIT_DEFAULTS,
-                      fit_whole_range=0, min_r2=0.0)
+                      fit_whole_range=0, min_r2=0.0, starts=1, only_start=-1)
 
 
 @_mirror

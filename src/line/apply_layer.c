@@ -47,6 +47,12 @@ int ft_line_op_weed(const ft_chain *in, const void *opts, ft_chain **out)
     return rc == FT_OK ? ft_line_weed(in, *(const double *)opts, out) : rc;
 }
 
+int ft_line_op_weed_shape(const ft_chain *in, const void *opts, ft_chain **out)
+{
+    int rc = need_opts("weed", opts);
+    return rc == FT_OK ? ft_line_weed_shape(in, *(const double *)opts, out) : rc;
+}
+
 int ft_line_op_simplify(const ft_chain *in, const void *opts, ft_chain **out)
 {
     int rc = need_opts("simplify", opts);

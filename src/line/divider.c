@@ -29,6 +29,7 @@ void ft_walk_src_init(ft_walk_src *w, const ft_chain *c, int from_end)
     w->n = c->n;
     w->m = c->closed ? c->n + 1 : c->n;
     w->backward = c->closed ? 0 : (from_end != 0);
+    w->off = 0;
 }
 
 /* Parameter t in [0, 1] where A + t (B - A) leaves the circle of radius^2 r2 around P, A inside it and B
@@ -168,6 +169,37 @@ void ft_line_divider_length(const ft_chain *c, const double *z, double r, int bo
     walk(&w, r, &len2, &st2);
     *length = 0.5 * (len + len2);
     *steps = 0.5 * ((double)st + (double)st2);
+}
+
+void ft_line_divider_ring_from(const ft_chain *c, const double *z, size_t off, double r, double *length,
+                               double *steps)
+{
+    ft_walk_src w;
+    size_t st;
+    ft_walk_src_init(&w, c, 0);
+    w.z = z;
+    w.off = off < c->n ? off : 0;
+    walk(&w, r, length, &st);
+    *steps = (double)st;
+}
+
+void ft_line_ring_starts(const ft_chain *c, const double *z, size_t nstarts, size_t *start)
+{
+    double total = 0.0;
+    for (size_t i = 0; i < c->n; i++) {
+        size_t j = i + 1 == c->n ? 0 : i + 1;
+        total += ft_walk_dist(c->x[j] - c->x[i], c->y[j] - c->y[i], z ? z[j] - z[i] : 0.0);
+    }
+    double s = 0.0; /* arc length from vertex 0 to vertex i */
+    size_t i = 0;
+    for (size_t k = 0; k < nstarts; k++) {
+        double want = total * (double)k / (double)nstarts;
+        while (i + 1 < c->n && s < want) {
+            s += ft_walk_dist(c->x[i + 1] - c->x[i], c->y[i + 1] - c->y[i], z ? z[i + 1] - z[i] : 0.0);
+            i++;
+        }
+        start[k] = i;
+    }
 }
 
 int ft_line_divider_walk(const ft_chain *c, double ruler, int from_end, double *length, size_t *steps)

@@ -69,8 +69,11 @@ static int check_opts(const ft_dutton_opts *o)
 {
     if (o == NULL)
         return ft_error(FT_E_INVALID, "enhance: NULL options");
-    if (!(o->sd >= 1.0 && o->sd <= 2.0))
-        return ft_error(FT_E_INVALID, "sd must be in [1,2], got %g", o->sd);
+    if (o->sd == 0.0 && (o->literal_sd || o->uc <= 0.0))
+        return ft_error(FT_E_INVALID, "sd 0 (the input's own dimension) needs the calibrated mode and uc > 0, got "
+                        "%s and uc %g", o->literal_sd ? "literal_sd" : "calibrated", o->uc);
+    if (!(o->sd >= 1.0 && o->sd <= 2.0) && o->sd != 0.0)
+        return ft_error(FT_E_INVALID, "sd must be in [1,2], got %g", o->sd); /* or 0: the input's own D */
     if (!(o->uc >= -1.0 && o->uc <= 1.0))
         return ft_error(FT_E_INVALID, "uc must be in [-1,1], got %g", o->uc);
     if (o->target_dim != 0.0 && !(o->target_dim >= 1.0 && o->target_dim <= 2.0))
@@ -130,7 +133,13 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     if (o->literal_sd || o->uc <= 0.0)
         return FT_OK; /* literal reading; uc = 0 moves nothing, uc < 0 exaggerates: no dimension target */
     double target = o->target_dim;
-    if (target == 0.0 && o->uc == 1.0) {
+    if (target == 0.0 && o->sd == 0.0) { /* SD is the input's own D (Dutton's Newfoundland): D_in whatever uc */
+        double din = o->input_dim;
+        if (din == 0.0 && (rc = measure_input_dim(chains, n, &din)) != FT_OK)
+            return rc;
+        p->input_dim = din;
+        target = din;
+    } else if (target == 0.0 && o->uc == 1.0) {
         target = o->sd;
     } else if (target == 0.0) {
         double din = o->input_dim;

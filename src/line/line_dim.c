@@ -36,6 +36,7 @@
 #define NSCALES_DEFAULT 16
 #define NSCALES_DEFAULT_BOX 12
 #define NSCALES_MAX 1000
+#define STARTS_MAX 1000
 #define BOX_OFFSETS_MAX 16
 #define LO_SEGMENTS_WALK 2.0       /* lo = this x the median segment length: divider, equipaced, hybrid */
 #define LO_SEGMENTS_BOX 1.0        /* ... box counting */
@@ -74,6 +75,7 @@ typedef struct {
     double **ecef_z;
     size_t n;
     double xmin, ymin, zmin, xmax, ymax, zmax;
+    size_t **start;    /* per ring its walks' start vertices (opts starts > 1), else NULL */
     double median_seg; /* median of the non-zero segment lengths */
     double length;     /* total length */
 } chain_set;
@@ -95,6 +97,14 @@ static int check_opts(ft_line_method method, const ft_line_dim_opts *o)
         return ft_error(FT_E_INVALID, "min_r2 must be in [0, 1], got %g", o->min_r2);
     if (o->box_offsets < 1 || o->box_offsets > BOX_OFFSETS_MAX)
         return ft_error(FT_E_INVALID, "box_offsets must be in [1, %d], got %d", BOX_OFFSETS_MAX, o->box_offsets);
+    if (o->starts < 1 || o->starts > STARTS_MAX)
+        return ft_error(FT_E_INVALID, "starts must be in [1, %d], got %d", STARTS_MAX, o->starts);
+    if (o->starts > 1 && method != FT_LINE_DIVIDER)
+        return ft_error(FT_E_INVALID, "starts (%d) applies to the divider only, not to the %s", o->starts,
+                        method_names[method]);
+    if (o->only_start < -1 || o->only_start >= o->starts)
+        return ft_error(FT_E_INVALID, "only_start must be -1 (all) or in [0, %d), got %d", o->starts,
+                        o->only_start);
     return FT_OK;
 }
 
@@ -156,8 +166,38 @@ static int to_ecef(chain_set *s, const ft_ellipsoid *e)
     return FT_OK;
 }
 
+/* The start vertices of every ring's walks (opts starts > 1, Andrle 1992), on the chains as walked. */
+static int ring_starts(chain_set *s, int starts)
+{
+    if (starts < 2)
+        return FT_OK;
+    s->start = ft_calloc(s->n, sizeof *s->start);
+    if (s->start == NULL)
+        return FT_E_NOMEM;
+    for (size_t c = 0; c < s->n; c++) {
+        if (!s->chains[c]->closed)
+            continue;
+        s->start[c] = ft_malloc((size_t)starts * sizeof *s->start[c]);
+        if (s->start[c] == NULL)
+            return FT_E_NOMEM;
+        ft_line_ring_starts(s->chains[c], s->z[c], (size_t)starts, s->start[c]);
+    }
+    return FT_OK;
+}
+
+static int has_ring(const chain_set *s)
+{
+    for (size_t c = 0; c < s->n; c++)
+        if (s->chains[c]->closed)
+            return 1;
+    return 0;
+}
+
 static void chain_set_clear(chain_set *s)
 {
+    for (size_t c = 0; s->start && c < s->n; c++)
+        free(s->start[c]);
+    free(s->start);
     for (size_t c = 0; s->ecef && c < s->n; c++) {
         ft_chain_free(s->ecef[c]);
         free(s->ecef_z ? s->ecef_z[c] : NULL);
@@ -268,6 +308,26 @@ static int scale_range(const chain_set *s, ft_line_method method, const ft_line_
     return FT_OK;
 }
 
+/* Divider length and steps of a ring at ruler r: the walk from start[only_start], or the mean over the
+ * starts. */
+static void divider_starts(const ft_chain *c, const double *z, const size_t *start, const ft_line_dim_opts *o,
+                           double r, double *length, double *steps)
+{
+    if (o->only_start >= 0) {
+        ft_line_divider_ring_from(c, z, start[o->only_start], r, length, steps);
+        return;
+    }
+    double len = 0.0, st = 0.0;
+    for (int k = 0; k < o->starts; k++) {
+        double l, n;
+        ft_line_divider_ring_from(c, z, start[k], r, &l, &n);
+        len += l;
+        st += n;
+    }
+    *length = len / o->starts;
+    *steps = st / o->starts;
+}
+
 /* value and count of the method at scale r, summed over the chains. */
 static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_opts *o, double r, double *value,
                    double *count)
@@ -286,7 +346,9 @@ static int measure(const chain_set *s, ft_line_method method, const ft_line_dim_
     double len = 0.0, steps = 0.0;
     for (size_t c = 0; c < s->n; c++) {
         double l = 0.0, k = 0.0;
-        if (method == FT_LINE_DIVIDER)
+        if (method == FT_LINE_DIVIDER && s->start && s->start[c])
+            divider_starts(s->chains[c], s->z[c], s->start[c], o, r, &l, &k);
+        else if (method == FT_LINE_DIVIDER)
             ft_line_divider_length(s->chains[c], s->z[c], r, o->both_ends, &l, &k);
         else if (method == FT_LINE_EQUIPACED)
             ft_line_equipaced_length(s->chains[c], s->z[c], r, &l, &k);
@@ -422,6 +484,8 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
     if (rc == FT_OK)
         rc = set_statistics(&s);
     if (rc == FT_OK)
+        rc = ring_starts(&s, o->starts);
+    if (rc == FT_OK)
         rc = scale_range(&s, method, o, &lo, &hi);
     if (rc == FT_OK)
         rc = ft_progress(o->progress, o->progress_arg, 0.0, method_names[method]);
@@ -444,6 +508,9 @@ int ft_line_dim(const ft_chain *const *chains, size_t n, ft_line_method method, 
         if (o->ellipsoid)
             ft_dim_result_set_units(*out, "m");
     }
+    if (rc == FT_OK && o->starts > 1 && o->only_start < 0 && !has_ring(&s))
+        rc = ft_dim_result_warn(*out, "starts: none of the chains is a ring (a closed line); open chains are walked "
+                                "from both ends, so the %d starts change nothing", o->starts);
     if (rc == FT_OK && o->ellipsoid == NULL && looks_like_profile(&s))
         rc = ft_dim_result_warn(*out, "profile: every chain is a graph over one axis (x or y only grows or only "
                                 "falls along it): if it is a profile (elevation against distance), the %s does not "

@@ -24,6 +24,7 @@ typedef struct {
     size_t n;            /**< its vertices */
     size_t m;            /**< vertices of the walked sequence: n (open) or n + 1 (ring, closes on vertex 0) */
     int backward;        /**< 1: walk an open chain from its last vertex to its first */
+    size_t off;          /**< a ring's walk starts (and closes) at its vertex off; 0 for open chains */
 } ft_walk_src;
 
 /** The walked sequence of c (n >= 2) from its start (from_end = 0) or its end (1; ignored for rings); planar
@@ -33,7 +34,9 @@ void ft_walk_src_init(ft_walk_src *w, const ft_chain *c, int from_end);
 /** Vertex k (0 <= k < w->m) of the walked sequence. */
 static inline void ft_walk_vertex(const ft_walk_src *w, size_t k, double *x, double *y)
 {
-    size_t i = k == w->n ? 0 : (w->backward ? w->n - 1 - k : k);
+    size_t i = w->backward ? w->n - 1 - k : k + w->off;
+    if (i >= w->n) /* a ring: k + off wraps round (k = n closes on the start vertex) */
+        i -= w->n;
     *x = w->x[i];
     *y = w->y[i];
 }
@@ -47,7 +50,9 @@ static inline void ft_walk_vertex(const ft_walk_src *w, size_t k, double *x, dou
 #endif
 FT_WALK_INLINE void ft_walk_vertex3(const ft_walk_src *w, size_t k, double *x, double *y, double *z, int d3)
 {
-    size_t i = k == w->n ? 0 : (w->backward ? w->n - 1 - k : k);
+    size_t i = w->backward ? w->n - 1 - k : k + w->off;
+    if (i >= w->n)
+        i -= w->n;
     *x = w->x[i];
     *y = w->y[i];
     *z = d3 ? w->z[i] : 0.0;
@@ -64,6 +69,15 @@ static inline double ft_walk_dist(double dx, double dy, double dz)
 /** Divider length of one chain (n >= 2) at ruler r > 0: the walk from the start, or for an open chain with
  *  both_ends set the mean of the walks from either end. *steps gets the (mean) number of whole steps. */
 void ft_line_divider_length(const ft_chain *c, const double *z, double r, int both_ends, double *length, double *steps);
+
+/** The divider walk of a ring c (n >= 2) from its vertex off at ruler r: walked length and whole steps. */
+void ft_line_divider_ring_from(const ft_chain *c, const double *z, size_t off, double r, double *length,
+                               double *steps);
+
+/** The vertices where nstarts walks round a ring c (n >= 2, z as below) start (Andrle 1992): for k = 0 ..
+ *  nstarts - 1 the first vertex at or after arc length k L / nstarts from vertex 0 (L the ring's length);
+ *  start[0] = 0. */
+void ft_line_ring_starts(const ft_chain *c, const double *z, size_t nstarts, size_t *start);
 
 /** Equipaced polygon length of one chain (n >= 2) at arc-length spacing s > 0; *steps gets the number of
  *  whole spacings (the polygon's sides of length s along the chain). */

@@ -29,6 +29,13 @@ static const char *const outputs[] = {"terrain_synth.tif",
                                       "newfoundland_enhanced.geojson",
                                       "newfoundland_loglog_before.svg",
                                       "newfoundland_loglog_after.svg",
+                                      "newfoundland_b.geojson",
+                                      "newfoundland_c.geojson",
+                                      "newfoundland_d.geojson",
+                                      "newfoundland_a_divider.svg",
+                                      "newfoundland_b_divider.svg",
+                                      "newfoundland_c_divider.svg",
+                                      "newfoundland_d_divider.svg",
                                       "urban_ri.geojson",
                                       "urban_ri_simulated.geojson",
                                       "urban_ri_simulated_loglog.svg",
@@ -39,7 +46,7 @@ static const char *const outputs[] = {"terrain_synth.tif",
                                       "gallery.json",
                                       "index.html"};
 #define NOUTPUTS (sizeof outputs / sizeof outputs[0])
-#define NCOMMANDS 14 /* every output but gallery.json and index.html comes from one of 14 commands */
+#define NCOMMANDS 21 /* every output but gallery.json and index.html comes from one of 21 commands */
 typedef struct {
     char *dir; /* temporary parent */
     char *out; /* dir/out: the demo's OUTDIR, made by the demo */
@@ -142,6 +149,7 @@ static void test_png(void **state)
 static void test_svgs(void **state)
 {
     const char *svgs[] = {"newfoundland_loglog_before.svg", "newfoundland_loglog_after.svg",
+                          "newfoundland_a_divider.svg", "newfoundland_d_divider.svg",
                           "urban_ri_simulated_loglog.svg", "mountain_contours.svg"};
     for (size_t i = 0; i < sizeof svgs / sizeof svgs[0]; i++) {
         char *p = out_path(state, svgs[i]);

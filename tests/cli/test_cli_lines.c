@@ -589,6 +589,11 @@ static void test_bad_input_every_command(void **state)
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--roundness", "enhance", in, "o.geojson", "--roundness", "0");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--iterations", "enhance", in, "o.geojson", "--iterations", "99");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--weed", "enhance", in, "o.geojson", "--weed");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--keep-shape chooses how --weed drops vertices", "enhance", in, "o.geojson",
+                           "--sm", "1", "--keep-shape");
+    FT_TEST_EXPECT_FAILURE(1, "enhance", "sd 0 (the input's own dimension) needs the calibrated mode", "enhance", in,
+                           "o.geojson", "--sd", "input", "--literal-sd");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--sd", "enhance", in, "o.geojson", "--sd", "inputs");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--sm", "enhance", in, "o.geojson", "--sm", "10", "--st", "5");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "unknown option '--bogus'", "enhance", in, "o.geojson", "--bogus");
     FT_TEST_EXPECT_FAILURE(2, "simplify", "either --tolerance", "simplify", in, "o.geojson");
@@ -619,6 +624,9 @@ static void test_bad_input_dim(void **state)
                            "/nonexistent/folder/p.svg");
     FT_TEST_EXPECT_FAILURE(1, "dim line", "'nosuch'", "dim", "line", in, "--by", "nosuch");
     FT_TEST_EXPECT_FAILURE(2, "dim line", "missing INPUT", "dim", "line");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--starts", "dim", "line", in, "--starts", "0");
+    FT_TEST_EXPECT_FAILURE(2, "dim line", "--starts 4 applies to the divider only, not to the box", "dim", "line", in,
+                           "--starts", "4", "--method", "divider,box");
     const char *one = ft_test_tmp_text("one.geojson", "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":"
                                                       "\"Feature\",\"properties\":{},\"geometry\":{\"type\":"
                                                       "\"LineString\",\"coordinates\":[[0,0],[1,1]]}}]}\n");
@@ -633,7 +641,10 @@ static void test_bad_input_dim(void **state)
 /* ---- Dutton's Newfoundland sequence ---- */
 
 /* Divider D of a file over the rulers of a table (its first and last scales, as many scales). */
-static double dim_on_rulers(const char *path, json_object *table)
+/* D of path over the rulers of table (its first to last scale, as many), the divider averaged over
+ * NF_STARTS start vertices (dim line --starts); *sd (may be NULL) gets one start's standard deviation. */
+#define NF_STARTS "24"
+static double dim_on_rulers(const char *path, json_object *table, double *sd)
 {
     size_t n = json_object_array_length(table);
     char scales[16];
@@ -641,8 +652,12 @@ static double dim_on_rulers(const char *path, json_object *table)
     json_object *o = FT_TEST_RUN_JSON("dim", "line", path, "--min-scale",
                                       arg_num(ft_test_json_num(ft_test_json_at(table, 0), "scale")), "--max-scale",
                                       arg_num(ft_test_json_num(ft_test_json_at(table, n - 1), "scale")), "--scales",
-                                      scales, "--json");
+                                      scales, "--starts", NF_STARTS, "--json");
     assert_int_equal(json_object_array_length(ft_test_json_key(o, "table")), n);
+    json_object *st = ft_test_json_key(o, "starts");
+    assert_int_equal(ft_test_json_int(st, "n"), atoi(NF_STARTS));
+    if (sd)
+        *sd = ft_test_json_num(st, "D_sd");
     double d = ft_test_json_num(o, "D");
     json_object_put(o);
     return d;
@@ -706,7 +721,8 @@ static void test_newfoundland_sequence(void **state)
     double x0, y0, x1, y1;
     assert_int_equal(ft_layer_bbox(l, &x0, &y0, &x1, &y1), FT_OK);
     ft_layer_free(l);
-    const char *sm = arg_num(0.01 * (x1 - x0));
+    char sm[32]; /* arg_num's buffers are reused */
+    snprintf(sm, sizeof sm, "%s", arg_num(0.01 * (x1 - x0)));
 
     json_object *d0 = FT_TEST_RUN_JSON("dim", "line", gen, "--json");
     json_object *table = ft_test_json_key(d0, "table");
@@ -723,20 +739,53 @@ static void test_newfoundland_sequence(void **state)
     assert_true(nweed < nenh && nweed > 0.7 * nenh);
     assert_true(nsmooth > 1.8 * nweed && nsmooth <= 2 * nweed);
 
-    double denh = dim_on_rulers(enh, table), dweed = dim_on_rulers(weed, table),
-           dsmooth = dim_on_rulers(smooth, table);
-    fprintf(stderr, "Newfoundland: %zu pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f\n", n158,
-            dgen, nenh, denh, nweed, dweed, nsmooth, dsmooth);
+    double sd = 0.0, d158 = dim_on_rulers(gen, table, &sd);
+    double denh = dim_on_rulers(enh, table, NULL), dweed = dim_on_rulers(weed, table, NULL),
+           dsmooth = dim_on_rulers(smooth, table, NULL);
+    fprintf(stderr, "Newfoundland, SD 1.3 (D over " NF_STARTS " starts): %zu pts D %.3f (one start: sd %.3f) -> %zu "
+            "pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f\n", n158, d158, sd, nenh, denh, nweed, dweed, nsmooth,
+            dsmooth);
+    /* one walk's start moves D by more than the 0.03 asked (sd 0.051 measured): only the mean over starts can
+     * compare stages */
+    assert_true(sd > 0.03);
     /* The target of 0.03 does not hold: the calibrated default aims the fine scales at
-     * D_in + UC (SD - D_in) = 1.347 and the first pass pulls the coarse rulers down with it (measured 1.370,
-     * 1.368, 1.405 against 1.458; docs/line-newfoundland.md). This bounds what is measured. */
-    assert_true(fabs(denh - dgen) < 0.10);
-    assert_true(fabs(dweed - dgen) < 0.10);
-    assert_true(fabs(dsmooth - dgen) < 0.10);
+     * D_in + UC (SD - D_in) = 1.347 and the first pass pulls the coarse rulers down with it (measured over 24
+     * starts: 1.446, 1.447, 1.457 against 1.504; docs/line-newfoundland.md). This bounds what is measured. */
+    assert_true(fabs(denh - d158) < 0.10);
+    assert_true(fabs(dweed - d158) < 0.10);
+    assert_true(fabs(dsmooth - d158) < 0.10);
+
+    /* The paper's choice, SD = the outline's own D (--sd input), weeding that keeps the shape: the weeding
+     * loses no D (measured +0.002; Dutton's greedy weeding -0.008), the counts stay near the paper's
+     * (measured 158 -> 328 -> 302 -> 604), every stage within 0.07 of the outline (measured -0.036, -0.034,
+     * -0.053: not 0.03, docs/line-newfoundland.md) */
+    const char *penh = ft_test_tmp("nf_p_enh.geojson"), *pweed = ft_test_tmp("nf_p_weed.geojson");
+    const char *psmooth = ft_test_tmp("nf_p_smooth.geojson");
+    gen = ft_test_tmp("nf158.geojson"); /* ft_test_tmp's buffers are reused */
+    size_t pe = vertices_out(FT_TEST_RUN_JSON("enhance", gen, penh, "--sd", "input", "--uc", "0.7", "--sm", sm,
+                                              "--json"));
+    size_t pw = vertices_out(FT_TEST_RUN_JSON("weed", penh, pweed, "--min-segment", sm, "--keep-shape", "--json"));
+    size_t ps = vertices_out(FT_TEST_RUN_JSON("smooth", pweed, psmooth, "--sm", sm, "--json"));
+    double pde = dim_on_rulers(penh, table, NULL), pdw = dim_on_rulers(pweed, table, NULL),
+           pds = dim_on_rulers(psmooth, table, NULL);
+    fprintf(stderr, "Newfoundland, SD = D_in, shape-keeping weeding: %zu pts D %.3f -> %zu pts D %.3f -> %zu pts "
+            "D %.3f -> %zu pts D %.3f\n", n158, d158, pe, pde, pw, pdw, ps, pds);
+    assert_true(pe > 1.8 * n158 && pe <= 2.15 * n158);
+    assert_true(pw < pe && pw > 0.8 * pe);
+    assert_true(ps > 1.8 * pw && ps <= 2 * pw);
+    assert_true(fabs(pdw - pde) < 0.015);
+    assert_true(fabs(pde - d158) < 0.07 && fabs(pdw - d158) < 0.07 && fabs(pds - d158) < 0.07);
 
     /* the same in one command */
+    gen = ft_test_tmp("nf158.geojson"); /* ft_test_tmp's buffers are reused */
     json_object *o = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_one.geojson"), "--sd", "1.3", "--uc", "0.7",
                                       "--sm", sm, "--weed", "--smooth", "1", "--json");
+    json_object *p = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_p_one.geojson"), "--sd", "input", "--uc", "0.7",
+                                      "--sm", sm, "--weed", "--keep-shape", "--smooth", "1", "--json");
+    json_object *pst = ft_test_json_key(p, "stages");
+    assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 1), "vertices"), pw);
+    assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 2), "vertices"), ps);
+    json_object_put(p);
     json_object *stages = ft_test_json_key(o, "stages");
     assert_int_equal(ft_test_json_int(ft_test_json_at(stages, 0), "vertices"), nenh);
     assert_int_equal(ft_test_json_int(ft_test_json_at(stages, 1), "vertices"), nweed);

@@ -182,6 +182,113 @@ static void test_hybrid_hand_cases(void **state)
     ft_chain_free(c);
 }
 
+static void expect_msg(int rc, int code, const char *msg)
+{
+    assert_int_equal(rc, code);
+    if (strstr(ft_last_error(), msg) == NULL)
+        print_error("message '%s' lacks '%s'\n", ft_last_error(), msg);
+    assert_non_null(strstr(ft_last_error(), msg));
+}
+
+/* A ring of 60 vertices whose radius wanders (a deterministic wiggle, uneven spacing), scale ~100. */
+static ft_chain *wiggly_ring(size_t off)
+{
+    enum { N = 60 };
+    double xy[2 * N];
+    for (size_t j = 0; j < N; j++) {
+        size_t i = (j + off) % N;
+        double t = 2.0 * M_PI * (i + 0.3 * sin(1.7 * i)) / N, r = 100.0 * (1.0 + 0.25 * sin(7.0 * t) + 0.1 * cos(13.0 * t));
+        xy[2 * j] = r * cos(t);
+        xy[2 * j + 1] = r * sin(t);
+    }
+    return chain_of(xy, N, 1);
+}
+
+static ft_dim_result *ring_dim(const ft_chain *c, int starts, int only_start)
+{
+    ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
+    o.min_scale = 15.0;
+    o.max_scale = 60.0;
+    o.nscales = 8;
+    o.fit_whole_range = 1;
+    o.starts = starts;
+    o.only_start = only_start;
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_line_dim(&c, 1, FT_LINE_DIVIDER, &o, &r), FT_OK);
+    return r;
+}
+
+/* starts = N: walk k alone is the one walk of the ring rotated to start at the first vertex at or after k/N
+ * of its length (found here by summing the sides), and the lengths of the mean are the mean of the N walks. */
+static void test_ring_starts(void **state)
+{
+    (void)state;
+    enum { NS = 5 };
+    ft_chain *c = wiggly_ring(0);
+    ft_dim_result *one = ring_dim(c, 1, -1), *mean = ring_dim(c, NS, -1), *each[NS];
+    ft_dim_result *first = ring_dim(c, NS, 0);
+    for (size_t i = 0; i < one->table->n; i++) /* start 0 is vertex 0: the single walk, bit for bit */
+        assert_true(first->table->rows[i].value == one->table->rows[i].value);
+    double side[60], total = 0.0;
+    for (size_t i = 0; i < 60; i++) {
+        size_t j = (i + 1) % 60;
+        side[i] = hypot(c->x[j] - c->x[i], c->y[j] - c->y[i]);
+        total += side[i];
+    }
+    for (int k = 0; k < NS; k++) {
+        size_t v = 0;
+        for (double s = 0.0; s < total * k / NS; s += side[v++])
+            ;
+        ft_chain *rot = wiggly_ring(v);
+        ft_dim_result *expect = ring_dim(rot, 1, -1);
+        each[k] = ring_dim(c, NS, k);
+        assert_int_equal(each[k]->table->n, expect->table->n);
+        for (size_t i = 0; i < expect->table->n; i++)
+            assert_near(each[k]->table->rows[i].value, expect->table->rows[i].value, 1e-9);
+        ft_dim_result_free(expect);
+        ft_chain_free(rot);
+    }
+    double spread = 0.0;
+    for (size_t i = 0; i < mean->table->n; i++) {
+        double sum = 0.0;
+        for (int k = 0; k < NS; k++)
+            sum += each[k]->table->rows[i].value;
+        assert_near(mean->table->rows[i].value, sum / NS, 1e-9);
+    }
+    for (int k = 1; k < NS; k++) /* the start does move D on this ring */
+        spread = fmax(spread, fabs(each[k]->D - each[0]->D));
+    assert_true(spread > 1e-3);
+    for (int k = 0; k < NS; k++)
+        ft_dim_result_free(each[k]);
+    ft_dim_result_free(one);
+    ft_dim_result_free(mean);
+    ft_dim_result_free(first);
+
+    ft_line_dim_opts o = FT_LINE_DIM_OPTS_DEFAULT;
+    ft_dim_result *r = NULL;
+    c->closed = 0; /* an open chain: the starts change nothing, and the result says so */
+    o.starts = 4;
+    assert_int_equal(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_DIVIDER, &o, &r), FT_OK);
+    int said = 0;
+    for (size_t w = 0; w < r->nwarnings; w++)
+        said += strstr(r->warnings[w], "none of the chains is a ring") != NULL;
+    assert_int_equal(said, 1);
+    ft_dim_result_free(r);
+    r = NULL;
+    c->closed = 1;
+    o.starts = 0;
+    expect_msg(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_DIVIDER, &o, &r), FT_E_INVALID,
+               "starts must be in [1, 1000], got 0");
+    o.starts = 3;
+    expect_msg(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_BOX, &o, &r), FT_E_INVALID,
+               "starts (3) applies to the divider only, not to the box");
+    o.only_start = 3;
+    expect_msg(ft_line_dim((const ft_chain *const *)&c, 1, FT_LINE_DIVIDER, &o, &r), FT_E_INVALID,
+               "only_start must be -1 (all) or in [0, 3), got 3");
+    assert_null(r);
+    ft_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -192,6 +299,7 @@ int main(void)
         cmocka_unit_test(test_walk_bad_input),
         cmocka_unit_test(test_equipaced_hand_cases),
         cmocka_unit_test(test_hybrid_hand_cases),
+        cmocka_unit_test(test_ring_starts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -350,6 +350,37 @@ static void expect_error(const ft_chain *in, const ft_dutton_opts *o, int code, 
     assert_non_null(strstr(ft_last_error(), msg));
 }
 
+/* sd 0: the target is the input's own divider D (measured as ft_line_dim measures it), whatever uc. */
+static void test_sd_input(void **state)
+{
+    (void)state;
+    ft_chain *in = wiggly(400, 3, 1);
+    const ft_chain *cs[] = {in};
+    ft_dim_result *r = NULL;
+    assert_int_equal(ft_line_dim(cs, 1, FT_LINE_DIVIDER, NULL, &r), FT_OK);
+    double uc[] = {0.7, 1.0};
+    for (int k = 0; k < 2; k++) {
+        ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+        o.sd = 0.0;
+        o.uc = uc[k];
+        ft_dutton_plan p;
+        int rc = ft_dutton_plan_make(cs, 1, &o, &p);
+        if (rc != FT_OK)
+            print_error("%s\n", ft_last_error());
+        assert_int_equal(rc, FT_OK);
+        assert_true(p.input_dim == fmin(fmax(r->D, 1.0), 2.0));
+        assert_true(p.target_dim == p.input_dim);
+    }
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT; /* D_in 1.48 is beyond what uc 0.4 reaches (1.355) */
+    o.sd = 0.0;
+    o.uc = 0.4;
+    ft_dutton_plan p;
+    assert_int_equal(ft_dutton_plan_make(cs, 1, &o, &p), FT_E_INVALID);
+    assert_non_null(strstr(ft_last_error(), "out of reach with uc = 0.4"));
+    ft_dim_result_free(r);
+    ft_chain_free(in);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -359,6 +390,12 @@ static void test_bad_input(void **state)
     expect_error(in, &o, FT_E_INVALID, "sd must be in [1,2], got 2.7");
     o.sd = NAN;
     expect_error(in, &o, FT_E_INVALID, "sd must be in [1,2], got nan");
+    o.sd = 0.0; /* the input's own D: only in the calibrated mode with uc > 0 */
+    o.literal_sd = 1;
+    expect_error(in, &o, FT_E_INVALID, "sd 0 (the input's own dimension) needs the calibrated mode and uc > 0");
+    o.literal_sd = 0;
+    o.uc = -0.5;
+    expect_error(in, &o, FT_E_INVALID, "sd 0 (the input's own dimension) needs the calibrated mode and uc > 0");
     o.sd = 1.3;
     o.uc = -1.5;
     expect_error(in, &o, FT_E_INVALID, "uc must be in [-1,1], got -1.5");
@@ -402,6 +439,7 @@ int main(void)
         cmocka_unit_test(test_ring),
         cmocka_unit_test(test_straight_line_stays),
         cmocka_unit_test(test_divider_dimension_after_six_iterations),
+        cmocka_unit_test(test_sd_input),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -158,6 +158,64 @@ static void test_weed(void **state)
     ft_chain_free(in);
 }
 
+/* 1 if (x, y) is a vertex of c. */
+static int has_vertex(const ft_chain *c, double x, double y)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (c->x[i] == x && c->y[i] == y)
+            return 1;
+    return 0;
+}
+
+/* A headland: S (9.6, 7.5) lies 0.64 before the tip T (10, 8). Greedy weeding keeps S and drops the tip;
+ * keep-shape drops S (0.14 from the chord A T) and keeps T (0.64 from the chord S C). On random walks:
+ * no short segment left, every vertex an input vertex, ends kept; rings keep at least 3. */
+static void test_weed_keep_shape(void **state)
+{
+    (void)state;
+    const double head[] = {0, 0, 9.6, 7.5, 10, 8, 20, 0};
+    ft_chain *in = chain_of(head, 4, 0), *out = NULL;
+    assert_int_equal(ft_line_weed(in, 1.0, &out), FT_OK);
+    assert_false(has_vertex(out, 10, 8));
+    ft_chain_free(out);
+    assert_int_equal(ft_line_weed_shape(in, 1.0, &out), FT_OK);
+    const double kept[] = {0, 0, 10, 8, 20, 0};
+    assert_vertices(out, kept, 3);
+    ft_chain_free(out);
+    ft_chain_free(in);
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        in = walk(2000, seed, 1.0);
+        const double sm = 2.5;
+        for (int closed = 0; closed < 2; closed++) {
+            in->closed = closed;
+            assert_int_equal(ft_line_weed_shape(in, sm, &out), FT_OK);
+            assert_true(out->n < in->n && out->n > 10);
+            for (size_t i = 0; i + (closed ? 0 : 1) < out->n; i++)
+                assert_true(seg_len(out, i) >= sm);
+            for (size_t i = 0; i < out->n; i++)
+                assert_true(has_vertex(in, out->x[i], out->y[i]));
+            if (!closed) {
+                assert_true(out->x[0] == in->x[0] && out->y[0] == in->y[0]);
+                assert_true(out->x[out->n - 1] == in->x[in->n - 1] && out->y[out->n - 1] == in->y[in->n - 1]);
+            }
+            ft_chain_free(out);
+        }
+        ft_chain_free(in);
+    }
+    const double tiny[] = {0, 0, 0.1, 0, 0.1, 0.1, 0, 0.1};
+    in = chain_of(tiny, 4, 1);
+    assert_int_equal(ft_line_weed_shape(in, 1.0, &out), FT_OK); /* all shorter than SM: 3 are left */
+    assert_int_equal(out->n, 3);
+    ft_chain_free(out);
+    in->closed = 0;
+    assert_int_equal(ft_line_weed_shape(in, 1.0, &out), FT_OK);
+    const double ends[] = {0, 0, 0, 0.1};
+    assert_vertices(out, ends, 2);
+    ft_chain_free(out);
+    expect_msg(ft_line_weed_shape(in, -1.0, &out), FT_E_INVALID, "weeding length (sm) must be finite and >= 0");
+    ft_chain_free(in);
+}
+
 /* ---- Douglas-Peucker ---------------------------------------------------------------------------- */
 
 static void test_simplify_by_hand(void **state)
@@ -380,6 +438,7 @@ int main(void)
         cmocka_unit_test(test_smooth_chaikin_quarter_points),
         cmocka_unit_test(test_smooth_window),
         cmocka_unit_test(test_weed),
+        cmocka_unit_test(test_weed_keep_shape),
         cmocka_unit_test(test_simplify_by_hand),
         cmocka_unit_test(test_simplify_band),
         cmocka_unit_test(test_count_by_hand),
