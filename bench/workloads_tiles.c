@@ -181,7 +181,8 @@ static const ft_bench_workload tiles_workloads[] = {
      map_ranks_setup, NULL, NULL, tiles_teardown},
     {"tiles.dim_surface.2ranks", "dim surface, exhaustive variogram, on 2 MPI ranks, 1 thread each (peer: 1 rank)",
      FT_BENCH_CELLS, surface_ranks_setup, NULL, NULL, tiles_teardown},
-    {"tiles.synth_fft.2ranks", "synth --method fft (FFTW MPI) to a .vrt of per-rank parts on 2 MPI ranks, 1 thread each (peer: 1 rank)",
+    {"tiles.synth_fft.2ranks",
+     "synth --method fft (FFTW MPI) to a .vrt of per-rank parts on 2 MPI ranks, 1 thread each (peer: 1 rank)",
      FT_BENCH_CELLS, synth_ranks_setup, NULL, NULL, tiles_teardown},
 };
 

@@ -7,7 +7,8 @@
  * (ft_synth_rescale_rows). OUT.tif: rank 0 writes its rows and then the other ranks' into one tiled GeoTIFF.
  * OUT.vrt: the output rows are evened out between the ranks (balance_rows), every rank writes its share as its
  * own GeoTIFF part, OUT's stem + ".part-NNNN.tif" (in parallel, each with its share of the cores), and once
- * every part is whole rank 0 writes the VRT mosaic over them (ft_io_write_mosaic_vrt). The cells differ from `synth` in one process by the transform's rounding only.
+ * every part is whole rank 0 writes the VRT mosaic over them (ft_io_write_mosaic_vrt). The cells differ from
+ * `synth` in one process by the transform's rounding only.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -230,7 +231,7 @@ static int balance_rows(synth_slab *s, float **out)
     return CLI_OK;
 }
 
-/* OUT.vrt: this rank's slab into a temporary beside its part; once every rank's is whole, each renames its
+/* OUT.vrt: this rank's share of the rows into a temporary beside its part; once every rank's is whole, each renames its
  * own onto the part's name; once every part is there, rank 0 writes the VRT. On any failure every rank
  * removes what it wrote, so neither parts nor the mosaic are left (earlier files of the same names stay as they
  * were unless the renames had begun). Collective. */

@@ -6,6 +6,7 @@
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,12 @@ static char *beside(const char *vrt, const char *name)
     return p;
 }
 
+/* Equal nodata values, NaN equal to NaN. */
+static int same_value(double a, double b)
+{
+    return a == b || (isnan(a) && isnan(b));
+}
+
 /* Opens part k and checks it against the mosaic: its rows, block size, and (part 0) the type and nodata. */
 static int check_part(const char *vrt, mosaic *m, size_t k, mosaic_part *p)
 {
@@ -69,7 +76,7 @@ static int check_part(const char *vrt, mosaic *m, size_t k, mosaic_part *p)
             m->type = t;
             m->has_nodata = has;
             m->nodata = nd;
-        } else if (t != m->type || has != m->has_nodata || (has && !(nd == m->nodata || (nd != nd && m->nodata != m->nodata)))) {
+        } else if (t != m->type || has != m->has_nodata || (has && !same_value(nd, m->nodata))) {
             rc = ft_error(FT_E_FORMAT, "'%s': part '%s' differs from the first part in data type or nodata", vrt, path);
         }
     }
