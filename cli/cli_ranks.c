@@ -7,11 +7,29 @@
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
+
+/* The first number of OMP_NUM_THREADS ("4" or a nested "4,2"), or 0 when unset or not a count. */
+static int omp_threads(void)
+{
+    const char *s = getenv("OMP_NUM_THREADS");
+    char *end = NULL;
+    long n = s ? strtol(s, &end, 10) : 0;
+    return end != s && n >= 1 && n <= 65536 && (*end == '\0' || *end == ',') ? (int)n : 0;
+}
+
+/* The share of the node's cores of each of its `ranks` ranks (1 at least). */
+static int core_share(int ranks)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long n = cores > 0 && ranks > 0 ? cores / ranks : 1;
+    return n >= 1 ? (int)(n < 65536 ? n : 65536) : 1;
+}
 
 #ifdef FT_HAVE_MPI
 #include <mpi.h>
 
-static int joined = 0, rank = 0, nranks = 1;
+static int joined = 0, rank = 0, nranks = 1, node_ranks = 1;
 
 /* Started by a launcher: Open MPI's mpiexec sets OMPI_COMM_WORLD_SIZE, PMIx and PMI launchers their own. */
 static int launched(void)
@@ -30,6 +48,11 @@ int cli_ranks_init(int *argc, char ***argv)
     joined = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    MPI_Comm node; /* the ranks sharing this rank's node (and its cores) */
+    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) == MPI_SUCCESS) {
+        MPI_Comm_size(node, &node_ranks);
+        MPI_Comm_free(&node);
+    }
     if (rank > 0 && freopen("/dev/null", "w", stdout) == NULL)
         return -1;
     return 0;
@@ -55,6 +78,12 @@ int cli_rank(void)
 int cli_nranks(void)
 {
     return nranks;
+}
+
+int cli_ranks_threads(void)
+{
+    int n = omp_threads();
+    return n > 0 ? n : core_share(node_ranks);
 }
 
 int cli_ranks_all_ok(int ok)
@@ -129,6 +158,12 @@ int cli_rank(void)
 int cli_nranks(void)
 {
     return 1;
+}
+
+int cli_ranks_threads(void)
+{
+    int n = omp_threads();
+    return n > 0 ? n : core_share(1);
 }
 
 int cli_ranks_all_ok(int ok)

@@ -21,6 +21,9 @@ int cli_ranks_joined(void);
 /** This process's rank and the number of ranks (0 and 1 without MPI). */
 int cli_rank(void);
 int cli_nranks(void);
+/** The threads this rank should run: the first number of OMP_NUM_THREADS when set, else the online cores
+ *  divided by the ranks on this node (MPI_COMM_TYPE_SHARED; 1 rank without MPI), 1 at least. */
+int cli_ranks_threads(void);
 /** 1 if every rank passed ok != 0 (a collective: every rank must call it at the same point). */
 int cli_ranks_all_ok(int ok);
 /** The sum over ranks of v, on every rank (collective). */

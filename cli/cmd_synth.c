@@ -195,7 +195,11 @@ static int run_synth(const cli_command *cmd, int argc, char **argv)
         rc = cli_usage_error(cmd, "under mpiexec only --method fft runs (on FFTW's distributed transform), got "
                              "--method %s", ft_synth_method_name(a.so.method));
     if (rc == CLI_CONTINUE && cli_ranks_joined() && a.driver && strcasecmp(a.driver, "GTiff") != 0)
-        rc = cli_usage_error(cmd, "under mpiexec the surface is written as one GeoTIFF, got -f %s", a.driver);
+        rc = cli_usage_error(cmd, "under mpiexec the surface is written as GeoTIFF (one file, or one part a rank "
+                             "under OUT.vrt), got -f %s", a.driver);
+    if (rc == CLI_CONTINUE && !cli_ranks_joined() && tile_is_mosaic(argv[first]))
+        rc = cli_usage_error(cmd, "'%s': a .vrt mosaic of parts is written under mpiexec only (one part a rank); "
+                             "one process writes one raster: give OUT.tif", argv[first]);
     if (rc != CLI_CONTINUE)
         return rc;
     /* float output, a padded FFT grid of doubles and its complex spectrum: about 32 bytes a cell */
@@ -222,8 +226,12 @@ const cli_command cli_cmd_synth = {
     "unless the extension or -f says otherwise), north-up with the given cell size, origin and CRS.\n"
     "The same options and seed give identical cells on any machine and thread count.\n"
     "Under mpiexec -n N (built with FFTW's MPI transforms) --method fft runs on the N ranks, each holding\n"
-    "about 1/N of the padded grid; rank 0 writes one GeoTIFF, the cells of the one-process run to the\n"
-    "transform's rounding (docs/tiling.md).\n\n"
+    "about 1/N of the padded grid: the cells of the one-process run to the transform's rounding\n"
+    "(docs/tiling.md). OUT.tif: rank 0 writes one GeoTIFF. OUT.vrt: each rank writes its rows, in\n"
+    "parallel, as OUT's stem + .part-NNNN.tif beside it, then rank 0 the VRT mosaic (GDAL reads it as one\n"
+    "raster; it names its parts relative to itself: move them together); on an error nothing is left.\n"
+    "Each rank compresses with its share of the cores (GDAL_NUM_THREADS, else OMP_NUM_THREADS, else\n"
+    "cores / ranks on the node).\n\n"
     "Options:\n"
     "  --dim D          fractal dimension, in (2,3) (required)\n"
     "  --size NxM       columns x rows (required), each up to 65536\n"

@@ -18,6 +18,19 @@ int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell);
 /** The band's size without reading its cells: CLI_CONTINUE, or CLI_FAIL (printed). */
 int tile_band_size(const cli_command *cmd, const char *path, int band, size_t *nx, size_t *ny);
 
+/** GDAL's compression threads for a write under mpiexec, so that a rank keeps to its share of the cores as
+ *  its OpenMP threads do: NUM_THREADS = GDAL_NUM_THREADS when the user set it, else cli_ranks_threads()
+ *  (OMP_NUM_THREADS, else the node's cores / its ranks). Points wo->co at t's storage (t must outlive the
+ *  write). Without mpiexec wo is left as it is (the library's default: every core). */
+/** 1 if OUT names a mosaic (ends in .vrt): under mpiexec the ranks write parts beside it (tile_synth). */
+int tile_is_mosaic(const char *out);
+
+typedef struct {
+    char opt[64];
+    const char *co[2];
+} tile_threads;
+void tile_write_threads(ft_write_grid_opts *wo, tile_threads *t);
+
 /** This rank's share [*a, *b) of n rows (the r-th of P nearly equal parts). */
 void tile_rank_share(size_t n, size_t *a, size_t *b);
 
@@ -72,8 +85,9 @@ int tile_output_stats(const cli_command *cmd, const char *path, size_t rows, ft_
 
 #ifdef FT_HAVE_FFTW_MPI
 /** `synth --method fft` on the MPI ranks with FFTW's distributed c2r (tile_synth.c): the nx x ny surface of so
- *  (wkt: its CRS or NULL) into OUT (GeoTIFF), rank 0 writing. On rank 0, CLI_OK with *st (the output's
- *  figures, read back from OUT; st may be NULL); or CLI_FAIL (printed). Collective: every rank calls it. */
+ *  (wkt: its CRS or NULL) into OUT: a GeoTIFF written by rank 0, or (OUT.vrt) one GeoTIFF part per rank,
+ *  OUT's stem + ".part-NNNN.tif", written in parallel, and the VRT over them. On rank 0, CLI_OK with *st (the
+ *  output's figures, read back from OUT; st may be NULL); or CLI_FAIL (printed). Collective. */
 int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts *so, const char *wkt,
                const char *out, ft_grid_stats *st);
 #endif

@@ -24,8 +24,10 @@
 #include "cli_ranks.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 int tile_parse_rows(const cli_command *cmd, const char *arg, long *rows)
 {
@@ -38,6 +40,26 @@ int tile_wanted(long tile_rows, size_t nx, size_t ny, double bytes_per_cell)
 {
     return tile_rows > 0 || cli_ranks_joined() ||
            (double)nx * (double)ny * bytes_per_cell > 0.5 * (double)ft_memory_limit();
+}
+
+int tile_is_mosaic(const char *out)
+{
+    size_t n = strlen(out);
+    return n > 4 && strcasecmp(out + n - 4, ".vrt") == 0;
+}
+
+void tile_write_threads(ft_write_grid_opts *wo, tile_threads *t)
+{
+    if (!cli_ranks_joined())
+        return;
+    const char *user = getenv("GDAL_NUM_THREADS");
+    if (user != NULL && user[0] != '\0')
+        snprintf(t->opt, sizeof t->opt, "NUM_THREADS=%s", user);
+    else
+        snprintf(t->opt, sizeof t->opt, "NUM_THREADS=%d", cli_ranks_threads());
+    t->co[0] = t->opt;
+    t->co[1] = NULL;
+    wo->co = t->co;
 }
 
 int tile_band_size(const cli_command *cmd, const char *path, int band, size_t *nx, size_t *ny)
@@ -233,7 +255,9 @@ static int map_rank(map_run *m, ft_grid_reader *r, const char *out, int *any)
         ft_grid h;
         lattice_header(ft_io_grid_reader_header(r), j->window, j->step, m->nox, m->noy, &h);
         ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+        tile_threads th;
         wo.driver = j->driver;
+        tile_write_threads(&wo, &th);
         if (ft_io_grid_writer_create(out, &h, 2, &wo, &m->w) != FT_OK)
             return cli_fail(m->cmd);
     } else if (b > a && (m->share = malloc(2 * m->nox * (b - a) * sizeof *m->share)) == NULL) {

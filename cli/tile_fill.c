@@ -186,6 +186,8 @@ static int fill_rank(fill_run *f, ft_grid_reader *r, ft_grid_reader *mr, const f
     f->share_rows = b - a;
     if (cli_rank() == 0) {
         ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+        tile_threads th;
+        tile_write_threads(&wo, &th);
         if (ft_io_grid_writer_create(j->out, hdr, f->nb, &wo, &f->w) != FT_OK)
             return cli_fail(f->cmd);
     } else if (b > a && (f->share = malloc(f->nb * f->nx * (b - a) * sizeof *f->share)) == NULL) {

@@ -94,7 +94,9 @@ static int shade_rank(shade_run *s, ft_grid_reader *r, const char *out, long til
         hdr.has_nodata = 1;
         hdr.nodata_value = 0.0;
         ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+        tile_threads th;
         wo.type = OUT_TYPE_BYTE;
+        tile_write_threads(&wo, &th);
         if (ft_io_grid_writer_create(out, &hdr, 1, &wo, &s->w) != FT_OK)
             return cli_fail(s->cmd);
     } else if (b > a && (s->share = malloc(s->nx * (b - a))) == NULL) {

@@ -4,8 +4,11 @@
  * (ft_synth_fft_spectrum_rows: row ky from its own stream, so the spectrum is the one-process run's, bit for
  * bit), the ranks run the distributed c2r together (two global transposes inside FFTW), each crops its slab and
  * adds the plane (ft_synth_fft_surface_rows), the rows' sums are gathered in row order for the rescale to sigma
- * (ft_synth_rescale_rows), and rank 0 writes its rows and then the other ranks' into one tiled GeoTIFF. The
- * cells differ from `synth` in one process by the transform's rounding only.
+ * (ft_synth_rescale_rows). OUT.tif: rank 0 writes its rows and then the other ranks' into one tiled GeoTIFF.
+ * OUT.vrt: the output rows are evened out between the ranks (balance_rows), every rank writes its share as its
+ * own GeoTIFF part, OUT's stem + ".part-NNNN.tif" (in parallel, each with its share of the cores), and once
+ * every part is whole rank 0 writes the VRT mosaic over them (ft_io_write_mosaic_vrt). The cells differ from
+ * `synth` in one process by the transform's rounding only.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -17,7 +20,9 @@
 #include <fftw3-mpi.h>
 #include <mpi.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 typedef struct {
@@ -27,6 +32,7 @@ typedef struct {
     size_t nout;           /* of which output rows (below ny) */
     size_t alloc;          /* complex values in buf */
     fftwf_complex *buf;
+    long long *spans;      /* every rank's (first output row, output rows), in rank order */
 } synth_slab;
 
 /* The slab's spectrum, the distributed inverse transform, crop and plane; the rows' sums into sums. */
@@ -72,7 +78,7 @@ static int gather_sums(synth_slab *s, double *sums)
     int nr = cli_nranks();
     int *count = malloc((size_t)nr * sizeof *count), *displ = malloc((size_t)nr * sizeof *displ);
     long long mine[2] = {(long long)(s->nout ? (size_t)s->s0 : 0), (long long)s->nout}, *all = NULL;
-    all = malloc((size_t)nr * sizeof mine);
+    all = s->spans = malloc((size_t)nr * sizeof mine);
     int rc = CLI_FAIL;
     if (cli_ranks_all_ok(count && displ && all) && MPI_Allgather(mine, 2, MPI_LONG_LONG, all, 2, MPI_LONG_LONG, MPI_COMM_WORLD) ==
                                      MPI_SUCCESS) {
@@ -88,7 +94,6 @@ static int gather_sums(synth_slab *s, double *sums)
     }
     if (rc != CLI_OK)
         cli_error(s->cmd, "cannot gather the rows' sums across ranks");
-    free(all);
     free(count);
     free(displ);
     return rc;
@@ -153,17 +158,160 @@ static int write_slabs(synth_slab *s, ft_grid_writer *w)
     return rc;
 }
 
+/* Part k of the mosaic out: out without ".vrt" + ".part-NNNN.tif" (malloc'd); its name relative to the .vrt's
+ * folder starts at *rel. */
+static char *part_path(const char *out, int k, const char **rel)
+{
+    size_t stem = strlen(out) - 4;
+    char *p = malloc(stem + 32);
+    if (p == NULL)
+        return NULL;
+    snprintf(p, stem + 32, "%.*s.part-%04d.tif", (int)stem, out, k);
+    const char *slash = strrchr(p, '/');
+    *rel = slash ? slash + 1 : p;
+    return p;
+}
+
+/* OUT.vrt: the output rows moved so that rank r writes rows [ny r / P, ny (r + 1) / P). FFTW's slabs are of the
+ * padded grid, whose padding rows (not written) fall on the last ranks, so the slabs' output rows are uneven
+ * (16384², 2 ranks: 10,240 and 6,144) and the parts' compression would be too. Each rank sends the rows it
+ * holds of another's share and receives the rows of its own share that another holds, one MPI row type of
+ * nx floats (counts stay ints); then the slab is freed. *out: the share's rows (malloc'd). Collective. */
+static int balance_rows(synth_slab *s, float **out)
+{
+    int nr = cli_nranks(), me = cli_rank();
+    size_t a = s->ny * (size_t)me / (size_t)nr, b = s->ny * (size_t)(me + 1) / (size_t)nr;
+    size_t h0 = s->nout ? (size_t)s->s0 : 0, h1 = h0 + s->nout;
+    float *mine = b > a ? malloc((b - a) * s->nx * sizeof *mine) : NULL;
+    MPI_Request *rq = malloc(2 * (size_t)nr * sizeof *rq);
+    MPI_Datatype row;
+    int ok = (b == a || mine != NULL) && rq != NULL, nrq = 0;
+    if (!cli_ranks_all_ok(ok)) {
+        cli_error(s->cmd, "out of memory for %zu rows of the surface", b - a);
+        free(mine);
+        free(rq);
+        return CLI_FAIL;
+    }
+    MPI_Type_contiguous((int)s->nx, MPI_FLOAT, &row);
+    MPI_Type_commit(&row);
+    const float *held = (const float *)s->buf;
+    for (int q = 0; q < nr && ok; q++) {
+        size_t qa = s->ny * (size_t)q / (size_t)nr, qb = s->ny * (size_t)(q + 1) / (size_t)nr;
+        size_t g0 = (size_t)s->spans[2 * q], g1 = g0 + (size_t)s->spans[2 * q + 1];
+        size_t lo = h0 > qa ? h0 : qa, hi = h1 < qb ? h1 : qb; /* rows I hold of q's share */
+        if (q == me && hi > lo)
+            memcpy(mine + (lo - a) * s->nx, held + (lo - h0) * s->nx, (hi - lo) * s->nx * sizeof *mine);
+        else if (hi > lo)
+            ok = MPI_Isend(held + (lo - h0) * s->nx, (int)(hi - lo), row, q, 1, MPI_COMM_WORLD, &rq[nrq++]) ==
+                 MPI_SUCCESS;
+        lo = g0 > a ? g0 : a;
+        hi = g1 < b ? g1 : b; /* rows q holds of my share */
+        if (q != me && hi > lo && ok)
+            ok = MPI_Irecv(mine + (lo - a) * s->nx, (int)(hi - lo), row, q, 1, MPI_COMM_WORLD, &rq[nrq++]) ==
+                 MPI_SUCCESS;
+    }
+    ok = ok && MPI_Waitall(nrq, rq, MPI_STATUSES_IGNORE) == MPI_SUCCESS;
+    MPI_Type_free(&row);
+    free(rq);
+    if (!ok)
+        cli_error(s->cmd, "cannot exchange the surface's rows between ranks");
+    if (!cli_ranks_all_ok(ok)) {
+        free(mine);
+        return CLI_FAIL;
+    }
+    fftwf_free(s->buf);
+    s->buf = NULL;
+    s->s0 = (ptrdiff_t)a;
+    s->nout = b - a;
+    for (int q = 0; q < nr; q++) {
+        s->spans[2 * q] = (long long)(s->ny * (size_t)q / (size_t)nr);
+        s->spans[2 * q + 1] = (long long)(s->ny * (size_t)(q + 1) / (size_t)nr) - s->spans[2 * q];
+    }
+    *out = mine;
+    return CLI_OK;
+}
+
+/* OUT.vrt: this rank's share of the rows into a temporary beside its part; once every rank's is whole, each renames its
+ * own onto the part's name; once every part is there, rank 0 writes the VRT. On any failure every rank
+ * removes what it wrote, so neither parts nor the mosaic are left (earlier files of the same names stay as they
+ * were unless the renames had begun). Collective. */
+static int write_parts(synth_slab *s, const float *rows, const ft_grid *hdr, const char *out)
+{
+    const char *rel = NULL;
+    char *part = part_path(out, cli_rank(), &rel), *tmp = NULL;
+    int ok = part != NULL;
+    if (ok && s->nout > 0) {
+        ft_grid g = {.nx = s->nx, .ny = s->nout, .z = (float *)rows, .crs_wkt = hdr->crs_wkt};
+        memcpy(g.gt, hdr->gt, sizeof g.gt);
+        g.gt[3] = hdr->gt[3] + (double)s->s0 * hdr->gt[5];
+        ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
+        tile_threads th;
+        wo.driver = "GTiff";
+        tile_write_threads(&wo, &th);
+        ok = (tmp = ft_io_atomic_tmp(part)) != NULL && ft_io_write_grid(tmp, &g, &wo) == FT_OK;
+    }
+    if (!ok && part == NULL)
+        cli_error(s->cmd, "out of memory");
+    else if (!ok)
+        cli_fail(s->cmd);
+    int committed = 0;
+    if (cli_ranks_all_ok(ok) && tmp != NULL) {
+        ok = ft_io_atomic_commit(tmp, part) == FT_OK;
+        committed = ok;
+        if (!ok)
+            cli_fail(s->cmd);
+    } else {
+        ok = tmp == NULL && ok;
+    }
+    ft_io_atomic_discard(committed ? NULL : tmp);
+    ok = cli_ranks_all_ok(ok);
+    if (ok && cli_rank() == 0) {
+        int nr = cli_nranks(), n = 0;
+        char **paths = calloc((size_t)nr, sizeof *paths);
+        const char **names = calloc((size_t)nr, sizeof *names);
+        ok = paths != NULL && names != NULL;
+        for (int k = 0; ok && k < nr; k++)
+            if (s->spans[2 * k + 1] > 0)
+                ok = (paths[n] = part_path(out, k, &names[n])) != NULL && (n++, 1);
+        if (!ok)
+            cli_error(s->cmd, "out of memory");
+        else if (ft_io_write_mosaic_vrt(out, hdr, (size_t)n, names) != FT_OK) {
+            cli_fail(s->cmd);
+            ok = 0;
+        }
+        for (int k = 0; paths != NULL && k < nr; k++)
+            free(paths[k]);
+        free(paths);
+        free(names);
+    }
+    ok = cli_ranks_all_ok(ok);
+    if (!ok && committed)
+        remove(part);
+    free(tmp);
+    free(part);
+    return ok ? CLI_OK : CLI_FAIL;
+}
+
 int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts *so, const char *wkt,
                const char *out, ft_grid_stats *st)
 {
     synth_slab s = {.cmd = cmd, .nx = nx, .ny = ny};
     if (ft_synth_fft_grid_size(nx, ny, so, &s.px, &s.py) != FT_OK)
         return cli_fail(cmd);
+    int mosaic = tile_is_mosaic(out);
     ft_grid_writer *w = NULL;
     ft_grid hdr = {.nx = nx, .ny = ny, .crs_wkt = (char *)wkt,
                    .gt = {so->origin_x, so->cell, 0.0, so->origin_y, 0.0, -so->cell}};
     ft_write_grid_opts wo = FT_WRITE_GRID_OPTS_DEFAULT;
-    int ok = cli_rank() != 0 || ft_io_grid_writer_create(out, &hdr, 1, &wo, &w) == FT_OK;
+    tile_threads th;
+    tile_write_threads(&wo, &th);
+    int ok = mosaic || cli_rank() != 0 || ft_io_grid_writer_create(out, &hdr, 1, &wo, &w) == FT_OK;
+    if (ok && mosaic) { /* every rank writes its part beside the .vrt */
+        const char *rel = NULL;
+        char *part = part_path(out, cli_rank(), &rel);
+        ok = part != NULL && ft_io_check_writable(part) == FT_OK;
+        free(part);
+    }
     if (!ok)
         cli_fail(cmd);
     double *sums = malloc(2 * ny * sizeof *sums);
@@ -178,7 +326,12 @@ int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts
     if (rc == CLI_OK && ft_synth_rescale_rows(nx, ny, so, sums, s.nout, (float *)s.buf) != FT_OK)
         rc = cli_fail(cmd);
     rc = cli_ranks_all_ok(rc == CLI_OK) ? CLI_OK : CLI_FAIL;
-    if (rc == CLI_OK && cli_rank() == 0) {
+    if (rc == CLI_OK && mosaic) {
+        float *rows = NULL;
+        rc = balance_rows(&s, &rows);
+        rc = rc == CLI_OK ? write_parts(&s, rows, &hdr, out) : rc;
+        free(rows);
+    } else if (rc == CLI_OK && cli_rank() == 0) {
         rc = write_slabs(&s, w);
         rc = rc == CLI_OK && ft_io_grid_writer_commit(w) != FT_OK ? cli_fail(cmd) : rc;
         w = rc == CLI_OK ? NULL : w;
@@ -192,9 +345,11 @@ int tile_synth(const cli_command *cmd, size_t nx, size_t ny, const ft_synth_opts
     }
     ft_io_grid_writer_abort(w);
     fftwf_free(s.buf);
+    free(s.spans);
     free(sums);
     fftwf_mpi_cleanup();
-    /* no collective after the write: a rank done sending leaves (rank 0's failure is the run's exit status) */
+    /* OUT.tif: no collective after the write, a rank done sending leaves (rank 0's failure is the run's exit
+     * status) */
     if (rc == CLI_OK && cli_rank() == 0 && st != NULL)
         rc = tile_output_stats(cmd, out, 1024, st);
     return rc;

@@ -183,6 +183,14 @@ FT_API int ft_io_grid_writer_commit(ft_grid_writer *w);
 /** Removes the temporary file and frees w; NULL is a no-op. */
 FT_API void ft_io_grid_writer_abort(ft_grid_writer *w);
 
+/** Writes path (a name ending in .vrt) as a GDAL virtual raster that mosaics n one-band rasters holding
+ *  consecutive stripes of whole rows: parts[0] is the top rows, parts[1] the rows below, ... (e.g. one part
+ *  per MPI rank). parts are named relative to path's folder and written so (relativeToVRT), so the .vrt moves
+ *  with its parts, not without them. header gives the mosaic's size, geotransform and CRS. Every part is
+ *  opened and checked: header->nx columns, one band, the first part's data type and nodata, the heights
+ *  adding up to header->ny (FT_E_FORMAT / FT_E_INVALID naming the part). Atomic, as every writer. */
+FT_API int ft_io_write_mosaic_vrt(const char *path, const ft_grid *header, size_t n, const char *const *parts);
+
 /* ------------------------------------------------------------------------------------------------
  * Points
  * --------------------------------------------------------------------------------------------- */

@@ -16,7 +16,10 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <dirent.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "fracterra/fracterra.h"
@@ -542,6 +545,95 @@ static void test_mpi_synth_fft_equals_serial(void **state)
 #endif
 }
 
+#if defined(FT_TEST_MPIEXEC) && defined(FT_TEST_FFTW_MPI) && !defined(FT_TEST_SANITIZE)
+/* Files of the test folder whose name starts with prefix or with "." prefix (a temporary of the atomic
+ * service). */
+static int count_named(const char *prefix)
+{
+    char *dir = strdup(ft_test_tmp("x")), *slash = strrchr(dir, '/');
+    *slash = '\0';
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        const char *name = e->d_name + (e->d_name[0] == '.');
+        n += strncmp(name, prefix, strlen(prefix)) == 0;
+    }
+    closedir(d);
+    free(dir);
+    return n;
+}
+#endif
+
+/* `mpiexec -n 1|2|3 synth OUT.vrt`: each rank writes its slab as OUT's stem + ".part-NNNN.tif" and rank 0 the VRT
+ * over them; GDAL reads the .vrt as the one-process surface to FFT rounding (max |delta| <= 1e-4 sd), the
+ * sources are named relative to the .vrt, and on an error nothing is left behind. */
+static void test_mpi_synth_fft_vrt_parts(void **state)
+{
+    (void)state;
+#if defined(FT_TEST_MPIEXEC) && defined(FT_TEST_FFTW_MPI) && !defined(FT_TEST_SANITIZE)
+    static const char *const cases[] = {
+        "--dim 2.3 --size 203x157 --seed 11 --sigma 2 --cell 30 --origin 500000,4600000 --crs EPSG:32632",
+        "--dim 2.15 --size 41x250 --seed 9",
+    };
+    char args[1024];
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char *serial = strdup(ft_test_tmp("vrt_serial.tif"));
+        snprintf(args, sizeof args, "%s synth %s %s", FT_BIN, serial, cases[c]);
+        assert_int_equal(system(args), 0);
+        for (int n = 1; n <= 3; n++) {
+            char *vrt = strdup(ft_test_tmp("mosaic.vrt"));
+            snprintf(args, sizeof args, "synth %s %s --json", vrt, cases[c]);
+            assert_int_equal(mpirun_n(n, ft_test_tmp("mosaic.out"), args), 0);
+            double sd = 0.0, d = max_abs_diff(serial, vrt, &sd);
+            assert_true(sd > 0.0);
+            if (!(d <= 1e-4 * sd))
+                print_error("%s on %d ranks, .vrt: max |delta| %g, sd %g\n", cases[c], n, d, sd);
+            assert_true(d <= 1e-4 * sd);
+            char *xml = slurp(vrt); /* one source a rank holding rows, named beside the .vrt */
+            assert_non_null(strstr(xml, "<SourceFilename relativeToVRT=\"1\">mosaic.part-0000.tif<"));
+            int sources = 0;
+            for (const char *p = xml; (p = strstr(p, "<SimpleSource>")) != NULL; p++)
+                sources++;
+            assert_true(sources >= 1 && sources <= n);
+            assert_int_equal(count_named("mosaic.part-"), sources);
+            free(xml);
+            char *rep = slurp(ft_test_tmp("mosaic.out")); /* one report, rank 0's, read from the mosaic */
+            assert_non_null(strstr(rep, "\"grid\""));
+            assert_null(strstr(strstr(rep, "\"grid\"") + 1, "\"grid\""));
+            free(rep);
+            for (int k = 0; k < 3; k++) {
+                snprintf(args, sizeof args, "%.*s.part-%04d.tif", (int)(strlen(vrt) - 4), vrt, k);
+                unlink(args);
+            }
+            unlink(vrt);
+            free(vrt);
+        }
+        free(serial);
+    }
+    /* rank 1's part cannot be written (a folder has its name): every rank fails, no part, no VRT, no temporary */
+    char *bad = strdup(ft_test_tmp("broken.vrt"));
+    assert_int_equal(mkdir(ft_test_tmp("broken.part-0001.tif"), 0755), 0);
+    snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64", bad);
+    assert_int_equal(mpirun2(ft_test_tmp("brk.out"), args), 1);
+    char *err = slurp(ft_test_tmp("brk.out.err"));
+    assert_non_null(strstr(err, "broken.part-0001.tif': it is a folder"));
+    free(err);
+    assert_int_equal(count_named("broken."), 1); /* the folder only */
+    assert_int_equal(rmdir(ft_test_tmp("broken.part-0001.tif")), 0);
+    /* -f other than GTiff, and a .vrt from one process: usage errors, nothing written */
+    snprintf(args, sizeof args, "synth %s --dim 2.3 --size 64x64 -f AAIGrid", bad);
+    assert_int_equal(mpirun2(ft_test_tmp("brk.out"), args), 2);
+    snprintf(args, sizeof args, "%s synth %s --dim 2.3 --size 64x64 2>/dev/null", FT_BIN, bad);
+    int st = system(args);
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 2);
+    assert_int_equal(count_named("broken."), 0);
+    free(bad);
+#else
+    skip(); /* built without MPI or FFTW's MPI transforms, or under the sanitizers */
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -554,6 +646,7 @@ int main(void)
         cmocka_unit_test(test_fill_rows_errors),
         cmocka_unit_test(test_mpi_two_ranks_equal_whole),
         cmocka_unit_test(test_mpi_synth_fft_equals_serial),
+        cmocka_unit_test(test_mpi_synth_fft_vrt_parts),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }

@@ -9,7 +9,9 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -214,6 +216,76 @@ static void test_hillshade_rows_equal_whole(void **state)
     assert_null(g);
 }
 
+/* The raster at path equals g: size, georeferencing, CRS, mask and cells. */
+static void assert_mosaic_is(const char *path, const ft_grid *g)
+{
+    ft_grid *m = read_whole(path);
+    assert_int_equal(m->nx, g->nx);
+    assert_int_equal(m->ny, g->ny);
+    for (int k = 0; k < 6; k++)
+        assert_true(m->gt[k] == g->gt[k]);
+    ft_test_assert_same_crs(m->crs_wkt, g->crs_wkt);
+    for (size_t i = 0; i < g->nx * g->ny; i++) {
+        int va = g->mask == NULL || g->mask[i], vb = m->mask == NULL || m->mask[i];
+        assert_int_equal(va, vb);
+        if (va)
+            assert_true(g->z[i] == m->z[i]);
+    }
+    ft_grid_free(m);
+}
+
+/* Three stripes of a DEM written as parts and mosaicked by a VRT read back as the DEM, cell for cell, also
+ * after the .vrt and its parts moved together to another folder; bad mosaics are refused, nothing written. */
+static void test_mosaic_vrt_of_parts(void **state)
+{
+    (void)state;
+    ft_grid *g = read_whole(VOLCANO);
+    ft_grid_reader *r = NULL;
+    assert_int_equal(ft_io_grid_reader_open(VOLCANO, NULL, &r), FT_OK);
+    const char *names[] = {"mos.part-0000.tif", "mos.part-0001.tif", "mos.part-0002.tif"};
+    size_t cut[] = {0, g->ny / 3, g->ny / 3 + 17, g->ny};
+    for (int k = 0; k < 3; k++) {
+        ft_grid *t = NULL;
+        assert_int_equal(ft_io_grid_reader_read(r, 0, cut[k], g->nx, cut[k + 1] - cut[k], &t), FT_OK);
+        assert_int_equal(ft_io_write_grid(ft_test_tmp(names[k]), t, NULL), FT_OK);
+        ft_grid_free(t);
+    }
+    ft_io_grid_reader_close(r);
+    char *vrt = strdup(ft_test_tmp("mos.vrt"));
+    assert_int_equal(ft_io_write_mosaic_vrt(vrt, g, 3, names), FT_OK);
+    assert_mosaic_is(vrt, g);
+    char *dir = strdup(ft_test_tmp("moved"));
+    assert_int_equal(mkdir(dir, 0755), 0);
+    char to[4096];
+    for (int k = 0; k < 3; k++) {
+        snprintf(to, sizeof to, "%s/%s", dir, names[k]);
+        assert_int_equal(rename(ft_test_tmp(names[k]), to), 0);
+    }
+    snprintf(to, sizeof to, "%s/mos.vrt", dir);
+    assert_int_equal(rename(vrt, to), 0);
+    assert_mosaic_is(to, g);
+    /* refusals, in the moved folder (the parts are there) */
+    char bad[4096];
+    snprintf(bad, sizeof bad, "%s/bad.vrt", dir);
+    assert_int_equal(ft_io_write_mosaic_vrt(bad, g, 2, names), FT_E_INVALID); /* rows do not add up */
+    assert_non_null(strstr(ft_last_error(), "hold"));
+    g->nx++;
+    assert_int_equal(ft_io_write_mosaic_vrt(bad, g, 3, names), FT_E_FORMAT); /* width */
+    g->nx--;
+    const char *missing[] = {"mos.part-0000.tif", "nothere.tif", "mos.part-0002.tif"};
+    assert_int_equal(ft_io_write_mosaic_vrt(bad, g, 3, missing), FT_E_IO);
+    const char *absolute[] = {to};
+    assert_int_equal(ft_io_write_mosaic_vrt(bad, g, 1, absolute), FT_E_INVALID);
+    snprintf(bad, sizeof bad, "%s/bad.tif", dir);
+    assert_int_equal(ft_io_write_mosaic_vrt(bad, g, 3, names), FT_E_INVALID); /* not .vrt */
+    assert_int_equal(access(bad, F_OK), -1);
+    snprintf(bad, sizeof bad, "%s/bad.vrt", dir);
+    assert_int_equal(access(bad, F_OK), -1);
+    free(dir);
+    free(vrt);
+    ft_grid_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -222,6 +294,7 @@ int main(void)
         cmocka_unit_test(test_writer_pieces_any_order),
         cmocka_unit_test(test_writer_bad_input_leaves_nothing),
         cmocka_unit_test(test_hillshade_rows_equal_whole),
+        cmocka_unit_test(test_mosaic_vrt_of_parts),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }
