@@ -257,6 +257,7 @@ struct pair_job {
     const float *flo2, *fhi2; /* the float screen's annuli */
     uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
     lane_fn lane[FEW_MAX + 1];
+    lane_fn many;             /* the others, or NULL: the lookup-table screen (cell_pair) */
 };
 
 /* The real points of cell c in the padded arrays. */
@@ -444,33 +445,48 @@ __attribute__((target("avx512f"))) static inline __attribute__((always_inline)) 
 lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
 {
     const padded_cells *p = jb->p;
+    const float *flo = jb->flo2 + off->k0, *fhi = jb->fhi2 + off->k0;
     __m512 lo[FEW_MAX], hi[FEW_MAX];
-    for (uint32_t k = 0; k < nk; k++) {
-        lo[k] = _mm512_set1_ps(jb->flo2[off->k0 + k]);
-        hi[k] = _mm512_set1_ps(jb->fhi2[off->k0 + k]);
+    for (uint32_t k = 0; k < nk && k < FEW_MAX; k++) {
+        lo[k] = _mm512_set1_ps(flo[k]);
+        hi[k] = _mm512_set1_ps(fhi[k]);
     }
     const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512 ox = _mm512_set1_ps(off->fx), oy = _mm512_set1_ps(off->fy);
     uint32_t *cand = w->cand;
-    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b];
-    for (size_t j = j0; j < p->start[b + 1]; j += 16) {
-        __m512 xb = _mm512_add_ps(_mm512_loadu_ps(p->fx + j), ox);
-        __m512 yb = _mm512_add_ps(_mm512_loadu_ps(p->fy + j), oy);
-        __m512i jv = _mm512_add_epi32(_mm512_set1_epi32((int)(j - j0)), iota);
-        for (size_t i = 0; i < ni; i++) {
-            __m512 dx = _mm512_sub_ps(xb, _mm512_set1_ps(p->fx[i0 + i]));
-            __m512 dy = _mm512_sub_ps(yb, _mm512_set1_ps(p->fy[i0 + i]));
+    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b], nj = padded_end(jb, b) - j0;
+    size_t vi = p->start[a + 1] - i0, vj = p->start[b + 1] - j0; /* padded counts */
+    /* Sixteen points of one cell in the lanes, the other's points in turn: the cheaper way round (cells
+     * are padded to sixteen). The lanes hold b's points moved by the offset, or a's moved back by it. */
+    int swap = nj * (vi / 16) < ni * (vj / 16);
+    const float *vx = swap ? p->fx + i0 : p->fx + j0, *vy = swap ? p->fy + i0 : p->fy + j0;
+    const float *sx = swap ? p->fx + j0 : p->fx + i0, *sy = swap ? p->fy + j0 : p->fy + i0;
+    size_t nv = swap ? vi : vj, ns = swap ? nj : ni;
+    const __m512 ox = _mm512_set1_ps(swap ? -off->fx : off->fx), oy = _mm512_set1_ps(swap ? -off->fy : off->fy);
+    /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
+    const __m512i lane_id = swap ? _mm512_slli_epi32(iota, 16) : iota;
+    const __m512i next_s = _mm512_set1_epi32(swap ? 1 : 1 << 16), next_v = _mm512_set1_epi32(swap ? 16 << 16 : 16);
+    __m512i base = lane_id;
+    for (size_t v = 0; v < nv; v += 16, base = _mm512_add_epi32(base, next_v)) {
+        __m512 xv = _mm512_add_ps(_mm512_loadu_ps(vx + v), ox);
+        __m512 yv = _mm512_add_ps(_mm512_loadu_ps(vy + v), oy);
+        __m512i ij = base;
+        for (size_t t = 0; t < ns; t++, ij = _mm512_add_epi32(ij, next_s)) {
+            __m512 dx = _mm512_sub_ps(xv, _mm512_set1_ps(sx[t]));
+            __m512 dy = _mm512_sub_ps(yv, _mm512_set1_ps(sy[t]));
             __m512 d2 = _mm512_fmadd_ps(dx, dx, _mm512_mul_ps(dy, dy));
-            __mmask16 in = _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[0], _CMP_GE_OQ), d2, hi[0], _CMP_LE_OQ);
-            for (uint32_t k = 1; k < nk; k++)
-                in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
-            /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
-            __m512i ij = _mm512_or_si512(jv, _mm512_set1_epi32((int)(i << 16)));
+            __mmask16 in = 0;
+            if (nk <= FEW_MAX)
+                for (uint32_t k = 0; k < nk; k++)
+                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
+            else
+                for (uint32_t k = 0; k < nk; k++)
+                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, _mm512_set1_ps(flo[k]), _CMP_GE_OQ), d2,
+                                                  _mm512_set1_ps(fhi[k]), _CMP_LE_OQ);
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
     }
-    add_candidates_avx512(jb->L, w, p, i0, p->start[a + 1] - i0, j0, p->start[b + 1] - j0, cand, n, off->k0, nk);
+    add_candidates_avx512(jb->L, w, p, i0, vi, j0, vj, cand, n, off->k0, nk);
 }
 
 #define LANE_FN(isa, n)                                                                                        \
@@ -495,6 +511,13 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
                                                      lane_pair_##isa##_8};
 LANE_TABLE(avx2)
 LANE_TABLE(avx512f)
+
+/* The float screen for offsets meeting more than FEW_MAX annuli (near the origin). */
+__attribute__((target("avx512f"))) static void lane_pair_avx512f_many(const pair_job *jb, size_t a, size_t b,
+                                                                    const lane_offset *off, scratch *w)
+{
+    lane_body_avx512f(jb, a, b, off, w, off->nk);
+}
 #endif
 
 /* The lane screen for this processor (and isa_limit) and cells of at most `most` points: its functions
@@ -504,6 +527,7 @@ static size_t pick_lanes(pair_job *jb, size_t most)
     for (int k = 0; k <= FEW_MAX; k++)
         jb->lane[k] = lane_pair_generic;
     jb->few = 4;
+    jb->many = NULL;
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
@@ -511,6 +535,7 @@ static size_t pick_lanes(pair_job *jb, size_t most)
     if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f") &&
         __builtin_cpu_supports("avx512dq")) {
         t = lanes_avx512f;
+        jb->many = lane_pair_avx512f_many;
         pad = 16;
     } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
         t = lanes_avx2;
@@ -544,6 +569,8 @@ static void one_cell(const pair_job *jb, size_t c, scratch *w)
             continue;
         if (off->nk <= jb->few)
             jb->lane[off->nk](jb, c, b, off, w);
+        else if (jb->many != NULL)
+            jb->many(jb, c, b, off, w);
         else
             cell_pair(g, c, b, jb->L, w->acc, w->d2, w->bin);
     }
