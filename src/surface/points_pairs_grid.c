@@ -12,12 +12,15 @@
  *
  * Most pairs lie far apart, where an offset's range of separations meets one to three annuli (they are
  * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
- * annuli, four pairs per instruction: d² = dx² + dy² (rounded as the scalar code rounds it: no fused
- * multiply-add), compared with each annulus' bounds; the few pairs inside one go through the scalar test
- * and the integer sums. Cells are copied with their point counts padded to a multiple of four with NaN
- * coordinates (a NaN d² lies in no annulus). Offsets near the origin, meeting more annuli, keep the
- * lookup-table screen. A pair meets the same annuli whichever screen runs, so the counters do not depend
- * on it (tests/unit/test_surface_points.c compares both with the exact enumeration).
+ * annuli: with AVX-512, sixteen pairs per instruction in float against annuli widened beyond the float
+ * roundings, the pairs kept listed and then tested exactly eight at a time (lane_body_avx512f,
+ * candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
+ * always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused multiply-add),
+ * the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
+ * lane width with NaN coordinates (a NaN d² lies in no annulus). Without AVX-512, offsets near the
+ * origin, meeting more annuli, keep the lookup-table screen. A pair meets the same annuli whichever screen
+ * runs, so the counters do not depend on it (tests/unit/test_surface_points.c compares each with the
+ * exact enumeration).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
