@@ -12,12 +12,15 @@
  *
  * Most pairs lie far apart, where an offset's range of separations meets one to three annuli (they are
  * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
- * annuli, four pairs per instruction: d² = dx² + dy² (rounded as the scalar code rounds it: no fused
- * multiply-add), compared with each annulus' bounds; the few pairs inside one go through the scalar test
- * and the integer sums. Cells are copied with their point counts padded to a multiple of four with NaN
- * coordinates (a NaN d² lies in no annulus). Offsets near the origin, meeting more annuli, keep the
- * lookup-table screen. A pair meets the same annuli whichever screen runs, so the counters do not depend
- * on it (tests/unit/test_surface_points.c compares both with the exact enumeration).
+ * annuli: with AVX-512, sixteen pairs per instruction in float against annuli widened beyond the float
+ * roundings, the pairs kept listed and then tested exactly eight at a time (lane_body_avx512f,
+ * candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
+ * always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused multiply-add),
+ * the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
+ * lane width with NaN coordinates (a NaN d² lies in no annulus). Without AVX-512, offsets near the
+ * origin, meeting more annuli, keep the lookup-table screen. A pair meets the same annuli whichever screen
+ * runs, so the counters do not depend on it (tests/unit/test_surface_points.c compares each with the
+ * exact enumeration).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -209,32 +212,41 @@ static inline __attribute__((always_inline)) void add_lane_pair(const pts_lags *
     }
 }
 
-/* The float screen's candidates cand[0..n) (i << 16 | j, within cells a and b) through the exact test.
- * Out of line and compiled for the base instruction set, not the screen's: some compilers take AVX-512 to
- * imply FMA and would fuse dx * dx + dy * dy, changing the rounding of d². */
-#define ADD_CANDIDATES(m)                                                                                      \
-    for (size_t t = 0; t < n; t++)                                                                             \
-        add_lane_pair(L, acc + k0, p, i0 + (cand[t] >> 16), j0 + (cand[t] & 0xffffu), k0, m);                 \
-    return;
-__attribute__((noinline)) static void add_candidates(const pts_lags *L, pts_acc *acc, const padded_cells *p,
-                                                     size_t i0, size_t j0, const uint32_t *cand, size_t n,
-                                                     uint32_t k0, uint32_t nk)
-{
-    switch (nk) {
-    case 1: ADD_CANDIDATES(1)
-    case 2: ADD_CANDIDATES(2)
-    case 3: ADD_CANDIDATES(3)
-    default: ADD_CANDIDATES(nk)
-    }
-}
-
 /* One thread's counters and buffers. */
 typedef struct {
     pts_acc *acc;
     double *d2;     /* cell_pair: a row of squared separations */
     int32_t *bin;   /* and their bins */
     uint32_t *cand; /* the float screen's candidate pairs (i << 16 | j, indices within their cells) */
+    int64_t *wide;  /* the vector exact test's sums: per lag WIDE_FIELDS x 8 lanes (see wide_flush) */
+    uint64_t pending; /* candidates through the vector exact test since wide was last flushed */
 } scratch;
+
+/* The vector exact test adds each pair's terms t (int64, rounded as add_lane_pair rounds them) split in
+ * two, t mod 2^32 (field LO) and t >> 32 (arithmetic shift, field HI), into 64-bit lanes per lag: fewer
+ * than WIDE_FLUSH additions cannot overflow a lane, and Σt = Σlo + 2^32 Σhi exactly. wide_flush moves
+ * the lanes into the 128-bit sums: the same integers as the scalar test adds, so the same counters. */
+enum { W_ALO, W_AHI, W_BLO, W_BHI, W_SLO, W_SHI, W_C, WIDE_FIELDS };
+#define WIDE_LANES 8
+#define WIDE_FLUSH ((uint64_t)1 << 31)
+
+static void wide_flush(scratch *w, size_t nlags)
+{
+    const pts_i128 two32 = (pts_i128)1 << 32;
+    for (size_t k = 0; k < nlags; k++) {
+        int64_t *v = w->wide + k * WIDE_FIELDS * WIDE_LANES;
+        pts_acc *q = &w->acc[k];
+        for (size_t l = 0; l < WIDE_LANES; l++) {
+            q->a += (pts_i128)(uint64_t)v[W_ALO * WIDE_LANES + l] + (pts_i128)v[W_AHI * WIDE_LANES + l] * two32;
+            q->b += (pts_i128)(uint64_t)v[W_BLO * WIDE_LANES + l] + (pts_i128)v[W_BHI * WIDE_LANES + l] * two32;
+            q->s += (pts_i128)(uint64_t)v[W_SLO * WIDE_LANES + l] + (pts_i128)v[W_SHI * WIDE_LANES + l] * two32;
+            q->c += (uint64_t)v[W_C * WIDE_LANES + l];
+        }
+        for (size_t f = 0; f < WIDE_FIELDS * WIDE_LANES; f++)
+            v[f] = 0;
+    }
+    w->pending = 0;
+}
 
 typedef struct pair_job pair_job;
 typedef void (*lane_fn)(const pair_job *, size_t, size_t, const lane_offset *, scratch *);
@@ -248,6 +260,7 @@ struct pair_job {
     const float *flo2, *fhi2; /* the float screen's annuli */
     uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
     lane_fn lane[FEW_MAX + 1];
+    lane_fn many;             /* the others, or NULL: the lookup-table screen (cell_pair) */
 };
 
 /* The real points of cell c in the padded arrays. */
@@ -306,6 +319,127 @@ lane_body_avx2(const pair_job *jb, size_t a, size_t b, const lane_offset *off, s
     }
 }
 
+/* Keeps the compiler from fusing the product v into a following addition (some compilers take AVX-512 to
+ * imply FMA): each product is rounded on its own, as in the scalar test. */
+#define NO_FUSE(v) __asm__("" : "+v"(v))
+
+/* v[0..8) += x in the lanes of `in`. */
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) void
+wide_add(int64_t *v, __mmask8 in, __m512i x)
+{
+    __m512i s = _mm512_loadu_si512(v);
+    _mm512_storeu_si512(v, _mm512_mask_add_epi64(s, in, s, x));
+}
+
+/* One coordinate of the points of a cell, padded to at most 32: a table for permutes (no gathers, slow on
+ * some processors). */
+typedef struct {
+    __m512d t[4];
+} cell_table;
+
+/* The table of a cell's npad values (npad <= 8 x rows, rows 2 or 4; rows past npad are left as zeros). */
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) cell_table
+table_load(const double *v, size_t npad, const int rows)
+{
+    cell_table c;
+    for (int r = 0; r < 4; r++)
+        c.t[r] = r < rows && (size_t)r * 8 < npad ? _mm512_loadu_pd(v + 8 * r) : _mm512_setzero_pd();
+    return c;
+}
+
+/* The values at idx (< 8 x rows) of the table, or with rows = 0 gathered from v (masked to m). */
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) __m512d
+table_get(const cell_table *c, const double *v, __m512i idx, __mmask8 m, const int rows)
+{
+    if (rows == 0)
+        return _mm512_mask_i64gather_pd(_mm512_setzero_pd(), m, idx, v, 8);
+    __m512d r = _mm512_permutex2var_pd(c->t[0], idx, c->t[1]);
+    if (rows > 2)
+        r = _mm512_mask_mov_pd(r, _mm512_test_epi64_mask(idx, _mm512_set1_epi64(16)),
+                               _mm512_permutex2var_pd(c->t[2], idx, c->t[3]));
+    return r;
+}
+
+/* The exact test of add_lane_pair on eight of the float screen's candidates cand[0..n) at once (i << 16 | j,
+ * within cells starting at i0 and j0, padded to at most 8 x rows points, rows = 0: any size): the same
+ * d² = dx² + dy², the same annulus bounds, the same terms, added into the thread's 64-bit lanes
+ * (wide_flush). */
+__attribute__((target("avx512f,avx512dq"))) static inline __attribute__((always_inline)) void
+candidates_body(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0, size_t ni, size_t j0, size_t nj,
+                const uint32_t *cand, size_t n, uint32_t k0, uint32_t nk, const int rows)
+{
+    const __m512d qa = _mm512_set1_pd(L->qa), qb = _mm512_set1_pd(L->qb), qs = _mm512_set1_pd(L->qs);
+    const __m512d half = _mm512_set1_pd(0.5);
+    const __m512i low = _mm512_set1_epi64(0xffffffff), one = _mm512_set1_epi64(1);
+    cell_table xa = {0}, ya = {0}, za = {0}, xb = {0}, yb = {0}, zb = {0};
+    if (rows > 0) {
+        xa = table_load(p->x + i0, ni, rows);
+        ya = table_load(p->y + i0, ni, rows);
+        za = table_load(p->z + i0, ni, rows);
+        xb = table_load(p->x + j0, nj, rows);
+        yb = table_load(p->y + j0, nj, rows);
+        zb = table_load(p->z + j0, nj, rows);
+    }
+    for (size_t t = 0; t < n; t += 8) {
+        /* lanes past n read stale entries of the buffer (it has sixteen to spare) and are masked off */
+        __mmask8 m = n - t >= 8 ? (__mmask8)0xff : (__mmask8)((1u << (n - t)) - 1u);
+        __m512i c = _mm512_cvtepu32_epi64(_mm256_loadu_si256((const __m256i *)(cand + t)));
+        __m512i ii = _mm512_srli_epi64(c, 16), jj = _mm512_and_si512(c, _mm512_set1_epi64(0xffff));
+        __m512d dx = _mm512_sub_pd(table_get(&xb, p->x + j0, jj, m, rows), table_get(&xa, p->x + i0, ii, m, rows));
+        __m512d dy = _mm512_sub_pd(table_get(&yb, p->y + j0, jj, m, rows), table_get(&ya, p->y + i0, ii, m, rows));
+        __m512d dz = _mm512_sub_pd(table_get(&zb, p->z + j0, jj, m, rows), table_get(&za, p->z + i0, ii, m, rows));
+        __m512d sx = _mm512_mul_pd(dx, dx), sy = _mm512_mul_pd(dy, dy);
+        NO_FUSE(sx);
+        NO_FUSE(sy);
+        __m512d d2 = _mm512_add_pd(sx, sy), adz = _mm512_abs_pd(dz);
+        __m512d pa = _mm512_mul_pd(adz, qa), a2 = _mm512_mul_pd(adz, adz);
+        NO_FUSE(pa);
+        NO_FUSE(a2);
+        __m512d pb = _mm512_mul_pd(a2, qb), ps = _mm512_mul_pd(_mm512_sqrt_pd(d2), qs);
+        NO_FUSE(pb);
+        NO_FUSE(ps);
+        __m512i ta = _mm512_cvttpd_epi64(_mm512_add_pd(pa, half));
+        __m512i tb = _mm512_cvttpd_epi64(_mm512_add_pd(pb, half));
+        __m512i ts = _mm512_cvttpd_epi64(_mm512_add_pd(ps, half));
+        __m512i alo = _mm512_and_si512(ta, low), ahi = _mm512_srai_epi64(ta, 32);
+        __m512i blo = _mm512_and_si512(tb, low), bhi = _mm512_srai_epi64(tb, 32);
+        __m512i slo = _mm512_and_si512(ts, low), shi = _mm512_srai_epi64(ts, 32);
+        for (uint32_t k = 0; k < nk; k++) {
+            __mmask8 in = _mm512_mask_cmp_pd_mask(
+                _mm512_mask_cmp_pd_mask(m, d2, _mm512_set1_pd(L->lo2[k0 + k]), _CMP_GE_OQ), d2,
+                _mm512_set1_pd(L->hi2[k0 + k]), _CMP_LE_OQ);
+            int64_t *v = w->wide + (size_t)(k0 + k) * WIDE_FIELDS * WIDE_LANES;
+            wide_add(v + W_ALO * WIDE_LANES, in, alo);
+            wide_add(v + W_AHI * WIDE_LANES, in, ahi);
+            wide_add(v + W_BLO * WIDE_LANES, in, blo);
+            wide_add(v + W_BHI * WIDE_LANES, in, bhi);
+            wide_add(v + W_SLO * WIDE_LANES, in, slo);
+            wide_add(v + W_SHI * WIDE_LANES, in, shi);
+            wide_add(v + W_C * WIDE_LANES, in, one);
+        }
+    }
+    w->pending += n;
+    if (w->pending >= WIDE_FLUSH)
+        wide_flush(w, L->n);
+}
+
+/* candidates_body for cells of `ni` and `nj` padded points: from permute tables when both hold at most 32,
+ * else gathered. */
+__attribute__((target("avx512f,avx512dq"))) static void
+add_candidates_avx512(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0, size_t ni, size_t j0,
+                      size_t nj, const uint32_t *cand, size_t n, uint32_t k0, uint32_t nk)
+{
+    if (n == 0)
+        return;
+    size_t most = ni > nj ? ni : nj;
+    if (most <= 16)
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 2);
+    else if (most <= 32)
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 4);
+    else
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 0);
+}
+
 /* The float screen, sixteen pairs per AVX-512 instruction, against the widened annuli (float_annuli):
  * each sixteen points of cell b (moved by the offset) against every point of cell a in turn, the indices
  * of the pairs it keeps packed into the thread's candidate list, which then goes through the exact test
@@ -313,35 +447,49 @@ lane_body_avx2(const pair_job *jb, size_t a, size_t b, const lane_offset *off, s
 __attribute__((target("avx512f"))) static inline __attribute__((always_inline)) void
 lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
 {
-    pts_acc *acc = w->acc;
     const padded_cells *p = jb->p;
+    const float *flo = jb->flo2 + off->k0, *fhi = jb->fhi2 + off->k0;
     __m512 lo[FEW_MAX], hi[FEW_MAX];
-    for (uint32_t k = 0; k < nk; k++) {
-        lo[k] = _mm512_set1_ps(jb->flo2[off->k0 + k]);
-        hi[k] = _mm512_set1_ps(jb->fhi2[off->k0 + k]);
+    for (uint32_t k = 0; k < nk && k < FEW_MAX; k++) {
+        lo[k] = _mm512_set1_ps(flo[k]);
+        hi[k] = _mm512_set1_ps(fhi[k]);
     }
     const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512 ox = _mm512_set1_ps(off->fx), oy = _mm512_set1_ps(off->fy);
     uint32_t *cand = w->cand;
-    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b];
-    for (size_t j = j0; j < p->start[b + 1]; j += 16) {
-        __m512 xb = _mm512_add_ps(_mm512_loadu_ps(p->fx + j), ox);
-        __m512 yb = _mm512_add_ps(_mm512_loadu_ps(p->fy + j), oy);
-        __m512i jv = _mm512_add_epi32(_mm512_set1_epi32((int)(j - j0)), iota);
-        for (size_t i = 0; i < ni; i++) {
-            __m512 dx = _mm512_sub_ps(xb, _mm512_set1_ps(p->fx[i0 + i]));
-            __m512 dy = _mm512_sub_ps(yb, _mm512_set1_ps(p->fy[i0 + i]));
+    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b], nj = padded_end(jb, b) - j0;
+    size_t vi = p->start[a + 1] - i0, vj = p->start[b + 1] - j0; /* padded counts */
+    /* Sixteen points of one cell in the lanes, the other's points in turn: the cheaper way round (cells
+     * are padded to sixteen). The lanes hold b's points moved by the offset, or a's moved back by it. */
+    int swap = nj * (vi / 16) < ni * (vj / 16);
+    const float *vx = swap ? p->fx + i0 : p->fx + j0, *vy = swap ? p->fy + i0 : p->fy + j0;
+    const float *sx = swap ? p->fx + j0 : p->fx + i0, *sy = swap ? p->fy + j0 : p->fy + i0;
+    size_t nv = swap ? vi : vj, ns = swap ? nj : ni;
+    const __m512 ox = _mm512_set1_ps(swap ? -off->fx : off->fx), oy = _mm512_set1_ps(swap ? -off->fy : off->fy);
+    /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
+    const __m512i lane_id = swap ? _mm512_slli_epi32(iota, 16) : iota;
+    const __m512i next_s = _mm512_set1_epi32(swap ? 1 : 1 << 16), next_v = _mm512_set1_epi32(swap ? 16 << 16 : 16);
+    __m512i base = lane_id;
+    for (size_t v = 0; v < nv; v += 16, base = _mm512_add_epi32(base, next_v)) {
+        __m512 xv = _mm512_add_ps(_mm512_loadu_ps(vx + v), ox);
+        __m512 yv = _mm512_add_ps(_mm512_loadu_ps(vy + v), oy);
+        __m512i ij = base;
+        for (size_t t = 0; t < ns; t++, ij = _mm512_add_epi32(ij, next_s)) {
+            __m512 dx = _mm512_sub_ps(xv, _mm512_set1_ps(sx[t]));
+            __m512 dy = _mm512_sub_ps(yv, _mm512_set1_ps(sy[t]));
             __m512 d2 = _mm512_fmadd_ps(dx, dx, _mm512_mul_ps(dy, dy));
-            __mmask16 in = _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[0], _CMP_GE_OQ), d2, hi[0], _CMP_LE_OQ);
-            for (uint32_t k = 1; k < nk; k++)
-                in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
-            /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
-            __m512i ij = _mm512_or_si512(jv, _mm512_set1_epi32((int)(i << 16)));
+            __mmask16 in = 0;
+            if (nk <= FEW_MAX)
+                for (uint32_t k = 0; k < nk; k++)
+                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
+            else
+                for (uint32_t k = 0; k < nk; k++)
+                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, _mm512_set1_ps(flo[k]), _CMP_GE_OQ), d2,
+                                                  _mm512_set1_ps(fhi[k]), _CMP_LE_OQ);
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
     }
-    add_candidates(jb->L, acc, p, i0, j0, cand, n, off->k0, nk);
+    add_candidates_avx512(jb->L, w, p, i0, vi, j0, vj, cand, n, off->k0, nk);
 }
 
 #define LANE_FN(isa, n)                                                                                        \
@@ -366,6 +514,13 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
                                                      lane_pair_##isa##_8};
 LANE_TABLE(avx2)
 LANE_TABLE(avx512f)
+
+/* The float screen for offsets meeting more than FEW_MAX annuli (near the origin). */
+__attribute__((target("avx512f"))) static void lane_pair_avx512f_many(const pair_job *jb, size_t a, size_t b,
+                                                                    const lane_offset *off, scratch *w)
+{
+    lane_body_avx512f(jb, a, b, off, w, off->nk);
+}
 #endif
 
 /* The lane screen for this processor (and isa_limit) and cells of at most `most` points: its functions
@@ -375,12 +530,15 @@ static size_t pick_lanes(pair_job *jb, size_t most)
     for (int k = 0; k <= FEW_MAX; k++)
         jb->lane[k] = lane_pair_generic;
     jb->few = 4;
+    jb->many = NULL;
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
     /* the float screen's candidates hold indices within cells of at most `most` points as 15 bits */
-    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f")) {
+    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f") &&
+        __builtin_cpu_supports("avx512dq")) {
         t = lanes_avx512f;
+        jb->many = lane_pair_avx512f_many;
         pad = 16;
     } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
         t = lanes_avx2;
@@ -414,6 +572,8 @@ static void one_cell(const pair_job *jb, size_t c, scratch *w)
             continue;
         if (off->nk <= jb->few)
             jb->lane[off->nk](jb, c, b, off, w);
+        else if (jb->many != NULL)
+            jb->many(jb, c, b, off, w);
         else
             cell_pair(g, c, b, jb->L, w->acc, w->d2, w->bin);
     }
@@ -436,6 +596,7 @@ static void scratch_free(scratch *w, int nt)
         free(w[t].d2);
         free(w[t].bin);
         free(w[t].cand);
+        free(w[t].wide);
     }
     free(w);
 }
@@ -453,7 +614,8 @@ static scratch *scratch_new(int nt, size_t most, size_t lanes, pts_acc *part, si
         w[t].d2 = ft_malloc(most * sizeof *w[t].d2);
         w[t].bin = ft_malloc(most * sizeof *w[t].bin);
         w[t].cand = ft_malloc(pairs * sizeof *w[t].cand);
-        if (w[t].d2 == NULL || w[t].bin == NULL || w[t].cand == NULL) {
+        w[t].wide = ft_calloc(nlags * WIDE_FIELDS * WIDE_LANES, sizeof *w[t].wide);
+        if (w[t].d2 == NULL || w[t].bin == NULL || w[t].cand == NULL || w[t].wide == NULL) {
             scratch_free(w, nt);
             return NULL;
         }
@@ -503,8 +665,10 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
             one_cell(&jb, c, &w[omp_get_thread_num()]);
         rc = ft_progress(fn, arg, (double)(chunk + 1) / CHUNKS, "pairs");
     }
-    for (int t = 0; rc == FT_OK && t < nt; t++)
+    for (int t = 0; rc == FT_OK && t < nt; t++) {
+        wide_flush(&w[t], L->n);
         pts_acc_merge(acc, part + (size_t)t * L->n, L->n);
+    }
     pts_offsets_free(&o);
     padded_free(&pad);
     scratch_free(w, nt);
