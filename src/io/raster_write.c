@@ -185,8 +185,8 @@ static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
     for (size_t row = 0; row < g->ny && rc == FT_OK; row += chunk) {
         size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx, n = rows * g->nx;
         if (as_float) {
-            size_t bad = 0;
-            for (size_t k = 0; k < n; k++)
+            size_t bad = 0; /* a band without nodata has no invalid cell (any_invalid said so) */
+            for (size_t k = 0; w->use_nodata[band] && k < n; k++)
                 bad += cell_invalid(g, base + k);
             float *f = buf, nd = (float)w->nodata[band];
             if (bad == 0) { /* GDAL only reads the buffer of a write: the grid itself */
