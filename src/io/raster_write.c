@@ -99,22 +99,27 @@ static int default_codec(GDALDriverH drv, const char **codec)
  * has no ZSTD, or when FRACTERRA_GTIFF_COMPRESS=DEFLATE asks for it, for readers on a libtiff without
  * ZSTD). Measured on 4096² Float32 fBm surfaces (docs/bench.md): ZSTD-1 + predictor 3 gives the file size
  * of DEFLATE-1 + predictor 3 (47.6 against 47.4 MB) for ~0.55x its CPU time; predictor 2 is 12 % larger,
- * LZW 29 % larger and slower. A level is set only for a default codec. */
+ * LZW 29 % larger and slower. A caller's ZLEVEL alone asks for DEFLATE at that level. */
 int ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t, char ***out)
 {
     char **o = NULL;
     *out = NULL;
     int gtiff = EQUAL(GDALGetDriverShortName(drv), "GTiff");
-    int caller_codec = 0;
+    int caller_codec = 0, caller_zlevel = 0;
     for (size_t i = 0; co != NULL && co[i] != NULL; i++) {
         char *key = NULL;
         CPLParseNameValue(co[i], &key);
         caller_codec |= key != NULL && EQUAL(key, "COMPRESS");
+        caller_zlevel |= key != NULL && EQUAL(key, "ZLEVEL");
         CPLFree(key);
     }
     const char *codec = NULL;
     if (gtiff && !caller_codec) {
-        int rc = default_codec(drv, &codec);
+        int rc = FT_OK;
+        if (caller_zlevel)
+            codec = "DEFLATE"; /* at the caller's level */
+        else
+            rc = default_codec(drv, &codec);
         if (rc != FT_OK)
             return rc;
     }

@@ -442,8 +442,9 @@ static void file_codec(const char *path, char codec[32], char pred[8])
     GDALClose(ds);
 }
 
-/* GeoTIFF codec: ZSTD + predictor by default (this GDAL has ZSTD), DEFLATE with FRACTERRA_GTIFF_COMPRESS,
- * the caller's COMPRESS over both, a bad variable an error with nothing written; cells identical. */
+/* GeoTIFF codec: ZSTD + predictor by default (this GDAL has ZSTD), DEFLATE with a caller's ZLEVEL or with
+ * FRACTERRA_GTIFF_COMPRESS, the caller's COMPRESS over both, a bad variable an error with nothing
+ * written; cells identical. */
 static void test_default_codec(void **state)
 {
     (void)state;
@@ -464,6 +465,13 @@ static void test_default_codec(void **state)
     file_codec(path, codec, pred);
     assert_string_equal(codec, "ZSTD");
     assert_string_equal(pred, "2");
+
+    const char *const zlevel[] = {"ZLEVEL=9", NULL}; /* a DEFLATE level alone asks for DEFLATE */
+    o = (ft_write_grid_opts)FT_WRITE_GRID_OPTS_DEFAULT;
+    o.co = zlevel;
+    write_ok(path, g, &o);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "DEFLATE");
 
     setenv("FRACTERRA_GTIFF_COMPRESS", "deflate", 1);
     write_ok(path, g, NULL);
