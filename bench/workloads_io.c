@@ -269,10 +269,20 @@ static int geotiff_write_run(ft_bench_case *c)
     return ft_io_write_grid(c->scratch, held_grid, &o);
 }
 
-/* io.geotiff.write.default: ft_io_write_grid's GeoTIFF defaults (ZSTD level 1 or DEFLATE level 1, all cores) */
+/* io.geotiff.write.default: ft_io_write_grid's GeoTIFF defaults (ZSTD level 1, predictor 3, all cores) */
 static int geotiff_write_default_run(ft_bench_case *c)
 {
     return ft_io_write_grid(c->scratch, held_grid, NULL);
+}
+
+/* io.geotiff.write.deflate1: the same defaults with DEFLATE level 1 (the default before ZSTD, and what
+ * FRACTERRA_GTIFF_COMPRESS=DEFLATE gives): the cost of the codec every reader has */
+static int geotiff_write_deflate1_run(ft_bench_case *c)
+{
+    static const char *const co[] = {"COMPRESS=DEFLATE", "ZLEVEL=1", NULL};
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.co = co;
+    return ft_io_write_grid(c->scratch, held_grid, &o);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -376,8 +386,10 @@ static const ft_bench_workload io_workloads[] = {
      geotiff_read_setup, NULL, geotiff_read_run, NULL},
     {"io.geotiff.write", "ft_io_write_grid of that grid, " TIF_CO_TEXT, FT_BENCH_CELLS,
      geotiff_write_setup, geotiff_prepare, geotiff_write_run, NULL},
-    {"io.geotiff.write.default", "ft_io_write_grid of that grid with its GeoTIFF defaults", FT_BENCH_CELLS,
-     geotiff_write_setup, geotiff_prepare, geotiff_write_default_run, NULL},
+    {"io.geotiff.write.default", "ft_io_write_grid of that grid with its GeoTIFF defaults (ZSTD 1, predictor 3)",
+     FT_BENCH_CELLS, geotiff_write_setup, geotiff_prepare, geotiff_write_default_run, NULL},
+    {"io.geotiff.write.deflate1", "the same with COMPRESS=DEFLATE ZLEVEL=1 (FRACTERRA_GTIFF_COMPRESS=DEFLATE)",
+     FT_BENCH_CELLS, geotiff_write_setup, geotiff_prepare, geotiff_write_deflate1_run, NULL},
     {"io.geotiff.copy", "ft_io_read_grid + ft_io_write_grid, " TIF_CO_TEXT, FT_BENCH_CELLS,
      geotiff_copy_setup, NULL, geotiff_copy_run, NULL},
     {"io.geojson.read", "ft_io_read_layer of line1m.geojson (one LineString, 1,000,000 vertices)",

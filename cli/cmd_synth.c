@@ -224,6 +224,8 @@ const cli_command cli_cmd_synth = {
     "       [--json]",
     "Writes a fractional Brownian surface of dimension D = 3 - H as a one-band Float32 raster (GeoTIFF\n"
     "unless the extension or -f says otherwise), north-up with the given cell size, origin and CRS.\n"
+    "A GeoTIFF is tiled and compressed losslessly with ZSTD (FRACTERRA_GTIFF_COMPRESS=DEFLATE for\n"
+    "readers without ZSTD; fracterra(1), ENVIRONMENT).\n"
     "The same options and seed give identical cells on any machine and thread count.\n"
     "Under mpiexec -n N (built with FFTW's MPI transforms) --method fft runs on the N ranks, each holding\n"
     "about 1/N of the padded grid: the cells of the one-process run to the transform's rounding\n"

@@ -82,11 +82,11 @@ FILE *ft_io_fopen_read(const char *path);            /* stdin for "-" */
 int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, const ft_write_grid_opts *opts);
 /* The pieces of that writer the tile writer (raster_tile_write.c) shares: the band type of a request (0 =
  * Float32), the nodata value of a type when the grid has none, the creation options (GeoTIFF defaults plus
- * the caller's; CSLDestroy them), a band's nodata in its type, and FT_E_UNSUPPORTED when drv cannot store
- * the type. */
+ * the caller's, into *out: CSLDestroy them; FT_E_INVALID for a bad FRACTERRA_GTIFF_COMPRESS), a band's
+ * nodata in its type, and FT_E_UNSUPPORTED when drv cannot store the type. */
 int ft_io_output_type(int requested, GDALDataType *t);
 double ft_io_default_nodata(GDALDataType t);
-char **ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t);
+int ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t, char ***out);
 void ft_io_set_nodata(GDALRasterBandH b, GDALDataType t, double v);
 int ft_io_check_type(const char *path, GDALDriverH drv, GDALDataType type);
 

@@ -1,7 +1,7 @@
 /* fracterra — io/raster_tile_write.c: one raster written piece by piece (stripes or blocks of the bands, in
  * any order), so that a grid far larger than memory is written with the memory of one piece.
  *
- * The output is a tiled GeoTIFF (the GeoTIFF defaults of raster_write.c: tiled, DEFLATE, predictor, BigTIFF
+ * The output is a tiled GeoTIFF (the GeoTIFF defaults of raster_write.c: tiled, ZSTD or DEFLATE, predictor, BigTIFF
  * when needed) created at its full size under the atomic service's on-disk temporary name; each piece goes
  * through GDALRasterIO at its global offset, GDAL's block cache gathering the pieces of a tile row, and
  * commit closes the file (the last blocks are written) and renames it onto the destination. Masked and
@@ -65,7 +65,9 @@ static int create_dataset(ft_grid_writer *w, const ft_grid *h, const ft_write_gr
     if ((rc = ft_io_stage_begin(w->path, drv, INFINITY, &w->stage)) != FT_OK)
         return rc;
     w->staged = 1;
-    char **co = ft_io_creation_options(drv, o->co, w->type);
+    char **co = NULL;
+    if ((rc = ft_io_creation_options(drv, o->co, w->type, &co)) != FT_OK)
+        return rc;
     co = CSLSetNameValue(co, "BIGTIFF", "IF_SAFER");
     ft_io_gdal_reset();
     w->ds = GDALCreate(drv, w->stage.target, (int)w->nx, (int)w->ny, (int)w->nbands, w->type, co);

@@ -1,7 +1,7 @@
 /* fracterra — io/raster_write.c: ft_grids as the bands of one raster, atomically (ft_io_write_grid writes
  * one band; raster_write_bands.c checks and writes several through ft_io_write_bands below).
  *
- * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + DEFLATE, .asc Arc/Info ASCII,
+ * The driver comes from the extension (.tif/.tiff GeoTIFF tiled + ZSTD or DEFLATE, .asc Arc/Info ASCII,
  * others looked up among GDAL's drivers, no extension = GeoTIFF) or is named by the caller. Drivers that can
  * only CreateCopy (AAIGrid and others) get a copy of an in-memory dataset. Masked and non-finite cells
  * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
@@ -75,37 +75,73 @@ int ft_io_output_type(int requested, GDALDataType *t)
     return FT_OK;
 }
 
+/* The GeoTIFF codec of a write that names none: FRACTERRA_GTIFF_COMPRESS (environment or GDAL config option)
+ * when set, else ZSTD when this GDAL's GeoTIFF driver has it, else DEFLATE. */
+static int default_codec(GDALDriverH drv, const char **codec)
+{
+    const char *list = GDALGetMetadataItem(drv, GDAL_DMD_CREATIONOPTIONLIST, NULL);
+    int have_zstd = list != NULL && strstr(list, "<Value>ZSTD</Value>") != NULL;
+    const char *want = CPLGetConfigOption("FRACTERRA_GTIFF_COMPRESS", NULL);
+    *codec = have_zstd ? "ZSTD" : "DEFLATE";
+    if (want == NULL || want[0] == '\0')
+        return FT_OK;
+    if (EQUAL(want, "DEFLATE") || (EQUAL(want, "ZSTD") && have_zstd)) {
+        *codec = EQUAL(want, "ZSTD") ? "ZSTD" : "DEFLATE";
+        return FT_OK;
+    }
+    if (EQUAL(want, "ZSTD"))
+        return ft_error(FT_E_UNSUPPORTED, "FRACTERRA_GTIFF_COMPRESS=ZSTD: this GDAL's GeoTIFF driver has no ZSTD");
+    return ft_error(FT_E_INVALID, "FRACTERRA_GTIFF_COMPRESS='%s': expected ZSTD or DEFLATE", want);
+}
+
 /* GeoTIFF defaults, overridden by the caller's: tiled, BigTIFF when needed, compressed on every core
- * (NUM_THREADS) with a floating-point or integer predictor and DEFLATE level 1: every GeoTIFF reader can
- * open it (ZSTD, 0.7x its CPU time on 4096² Float32 surfaces, cannot be read by libtiff builds without
- * ZSTD; library callers can ask for it in the creation options), and level 1 costs half the CPU time of level 6 for files
- * 1 % larger. A level is set only for the default codec. */
-char **ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t)
+ * (NUM_THREADS) with the floating-point or integer predictor and ZSTD level 1 (DEFLATE level 1 where GDAL
+ * has no ZSTD, or when FRACTERRA_GTIFF_COMPRESS=DEFLATE asks for it, for readers on a libtiff without
+ * ZSTD). Measured on 4096² Float32 fBm surfaces (docs/bench.md): ZSTD-1 + predictor 3 gives the file size
+ * of DEFLATE-1 + predictor 3 (47.6 against 47.4 MB) for ~0.55x its CPU time; predictor 2 is 12 % larger,
+ * LZW 29 % larger and slower. A caller's ZLEVEL alone asks for DEFLATE at that level. */
+int ft_io_creation_options(GDALDriverH drv, const char *const *co, GDALDataType t, char ***out)
 {
     char **o = NULL;
+    *out = NULL;
     int gtiff = EQUAL(GDALGetDriverShortName(drv), "GTiff");
-    const char *codec = "DEFLATE";
+    int caller_codec = 0, caller_zlevel = 0;
+    for (size_t i = 0; co != NULL && co[i] != NULL; i++) {
+        char *key = NULL;
+        CPLParseNameValue(co[i], &key);
+        caller_codec |= key != NULL && EQUAL(key, "COMPRESS");
+        caller_zlevel |= key != NULL && EQUAL(key, "ZLEVEL");
+        CPLFree(key);
+    }
+    const char *codec = NULL;
+    if (gtiff && !caller_codec) {
+        int rc = FT_OK;
+        if (caller_zlevel)
+            codec = "DEFLATE"; /* at the caller's level */
+        else
+            rc = default_codec(drv, &codec);
+        if (rc != FT_OK)
+            return rc;
+    }
     if (gtiff) {
         o = CSLSetNameValue(o, "TILED", "YES");
-        o = CSLSetNameValue(o, "COMPRESS", codec);
         o = CSLSetNameValue(o, "PREDICTOR", is_float(t) ? "3" : "2");
         o = CSLSetNameValue(o, "BIGTIFF", "IF_SAFER");
         o = CSLSetNameValue(o, "NUM_THREADS", "ALL_CPUS");
+        if (codec != NULL) {
+            o = CSLSetNameValue(o, "COMPRESS", codec);
+            o = CSLSetNameValue(o, EQUAL(codec, "ZSTD") ? "ZSTD_LEVEL" : "ZLEVEL", "1");
+        }
     }
-    int caller_codec = 0;
     for (size_t i = 0; co != NULL && co[i] != NULL; i++) {
         char *key = NULL;
         const char *val = CPLParseNameValue(co[i], &key);
         if (key != NULL && val != NULL)
             o = CSLSetNameValue(o, key, val);
-        caller_codec |= key != NULL && EQUAL(key, "COMPRESS");
         CPLFree(key);
     }
-    if (gtiff && !caller_codec) {
-        if (CSLFetchNameValue(o, "ZLEVEL") == NULL)
-            o = CSLSetNameValue(o, "ZLEVEL", "1");
-    }
-    return o;
+    *out = o;
+    return FT_OK;
 }
 
 void ft_io_set_nodata(GDALRasterBandH b, GDALDataType t, double v)
@@ -154,8 +190,8 @@ static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
     for (size_t row = 0; row < g->ny && rc == FT_OK; row += chunk) {
         size_t rows = row + chunk <= g->ny ? chunk : g->ny - row, base = row * g->nx, n = rows * g->nx;
         if (as_float) {
-            size_t bad = 0;
-            for (size_t k = 0; k < n; k++)
+            size_t bad = 0; /* a band without nodata has no invalid cell (any_invalid said so) */
+            for (size_t k = 0; w->use_nodata[band] && k < n; k++)
                 bad += cell_invalid(g, base + k);
             float *f = buf, nd = (float)w->nodata[band];
             if (bad == 0) { /* GDAL only reads the buffer of a write: the grid itself */
@@ -302,9 +338,11 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
         w.use_nodata[k] = bands[k]->has_nodata || any_invalid(bands[k]);
         w.nodata[k] = bands[k]->has_nodata ? bands[k]->nodata_value : ft_io_default_nodata(w.type);
     }
-    char **co = ft_io_creation_options(drv, o.co, w.type);
+    char **co = NULL;
+    rc = ft_io_creation_options(drv, o.co, w.type, &co);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
-    rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
+    if (rc == FT_OK)
+        rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
     CSLDestroy(co);
     int end = ft_io_stage_end(&st, rc == FT_OK);
     if (rc == FT_OK)

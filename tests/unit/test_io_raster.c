@@ -430,6 +430,75 @@ static void test_driver_choice(void **state)
     ft_grid_free(g);
 }
 
+/* The file's COMPRESSION and PREDICTOR as GDAL reports them ("" when absent). */
+static void file_codec(const char *path, char codec[32], char pred[8])
+{
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    assert_non_null(ds);
+    const char *c = GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE");
+    const char *p = GDALGetMetadataItem(ds, "PREDICTOR", "IMAGE_STRUCTURE");
+    snprintf(codec, 32, "%s", c ? c : "");
+    snprintf(pred, 8, "%s", p ? p : "");
+    GDALClose(ds);
+}
+
+/* GeoTIFF codec: ZSTD + predictor by default (this GDAL has ZSTD), DEFLATE with a caller's ZLEVEL or with
+ * FRACTERRA_GTIFF_COMPRESS, the caller's COMPRESS over both, a bad variable an error with nothing
+ * written; cells identical. */
+static void test_default_codec(void **state)
+{
+    (void)state;
+    ft_grid *g = read_ok(VOLCANO, 1);
+    char codec[32], pred[8];
+    const char *path = ft_test_tmp("z.tif");
+    unsetenv("FRACTERRA_GTIFF_COMPRESS");
+    write_ok(path, g, NULL);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "ZSTD");
+    assert_string_equal(pred, "3");
+    ft_grid *b = read_ok(path, 1);
+    assert_grids_equal(g, b, 0.0);
+    ft_grid_free(b);
+    ft_write_grid_opts o = FT_WRITE_GRID_OPTS_DEFAULT;
+    o.type = GDT_Int16;
+    write_ok(path, g, &o);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "ZSTD");
+    assert_string_equal(pred, "2");
+
+    const char *const zlevel[] = {"ZLEVEL=9", NULL}; /* a DEFLATE level alone asks for DEFLATE */
+    o = (ft_write_grid_opts)FT_WRITE_GRID_OPTS_DEFAULT;
+    o.co = zlevel;
+    write_ok(path, g, &o);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "DEFLATE");
+
+    setenv("FRACTERRA_GTIFF_COMPRESS", "deflate", 1);
+    write_ok(path, g, NULL);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "DEFLATE");
+    assert_string_equal(pred, "3");
+    b = read_ok(path, 1);
+    assert_grids_equal(g, b, 0.0);
+    ft_grid_free(b);
+    const char *const lzw[] = {"COMPRESS=LZW", NULL};
+    o = (ft_write_grid_opts)FT_WRITE_GRID_OPTS_DEFAULT;
+    o.co = lzw;
+    write_ok(path, g, &o);
+    file_codec(path, codec, pred);
+    assert_string_equal(codec, "LZW");
+
+    setenv("FRACTERRA_GTIFF_COMPRESS", "JPEG", 1);
+    assert_int_equal(ft_io_write_grid(ft_test_tmp("bad.tif"), g, NULL), FT_E_INVALID);
+    assert_non_null(strstr(ft_last_error(), "FRACTERRA_GTIFF_COMPRESS='JPEG'"));
+    assert_int_equal(access(ft_test_tmp("bad.tif"), F_OK), -1);
+    write_ok(ft_test_tmp("v.asc"), g, NULL); /* other drivers do not look at it */
+    unsetenv("FRACTERRA_GTIFF_COMPRESS");
+    assert_int_equal(access(ft_test_tmp("v.prj"), F_OK), 0);
+    assert_int_equal(ft_test_dir_count(), 3); /* z.tif, v.asc, v.prj */
+    ft_grid_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -442,6 +511,7 @@ int main(void)
         cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_write_failures_leave_nothing),
         cmocka_unit_test(test_driver_choice),
+        cmocka_unit_test(test_default_codec),
     };
     return FT_TEST_RUN_IO(tests, FT_TEST_DIR_SHARED);
 }
