@@ -40,6 +40,7 @@ enum {
     OPT_SUMMIT,
     OPT_VIEW,
     OPT_MAP,
+    OPT_ALLOW_CROSSINGS,
 };
 
 typedef struct {
@@ -106,6 +107,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
     case OPT_SUMMIT: return cli_parse_double(cmd, "--summit", arg, 0.0, INFINITY, CLI_CLOSED, &a->dem.summit);
     case OPT_VIEW: a->view_path = arg; return CLI_CONTINUE;
     case OPT_MAP: a->map_path = arg; return CLI_CONTINUE;
+    case OPT_ALLOW_CROSSINGS: m->allow_crossings = 1; return CLI_CONTINUE;
     case 'l': a->layer = arg; return CLI_CONTINUE;
     case 'w': a->where = arg; return CLI_CONTINUE;
     case 'f': a->driver = arg; return CLI_CONTINUE;
@@ -383,6 +385,9 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
                "%zu vertices\n",
                out, st->n, st->n ? st->levels[0].elev : NAN, st->n ? st->levels[st->n - 1].elev : NAN, st->interval,
                st->spacing, ft_mountain_method_name(m->method), (unsigned long long)m->seed, stack_vertices(st));
+        if (!m->allow_crossings && m->method != FT_MOUNTAIN_SIMPLE)
+            printf("crossing guard: %zu moves, %zu halved or quartered, %zu dropped\n", st->guard_moves,
+                   st->guard_reduced, st->guard_dropped);
         if (a->dem_path)
             printf("wrote %s: %zu x %zu cells of %g\n", a->dem_path, r->dem->nx, r->dem->ny, r->dem->gt[1]);
         if (a->view_path)
@@ -419,6 +424,15 @@ static int report(const cli_command *cmd, const mountain_args *a, const char *in
         json_object_object_add(o, "n", json_object_new_int(m->fourier.n));
     }
     json_object_object_add(o, "seed", json_object_new_uint64(m->seed));
+    json_object_object_add(o, "allow_crossings", json_object_new_boolean(m->allow_crossings));
+    json_object *guard = NULL;
+    if (!m->allow_crossings && m->method != FT_MOUNTAIN_SIMPLE) { /* simple moves no vertex */
+        guard = json_object_new_object();
+        json_object_object_add(guard, "moves", json_object_new_uint64(st->guard_moves));
+        json_object_object_add(guard, "reduced", json_object_new_uint64(st->guard_reduced));
+        json_object_object_add(guard, "dropped", json_object_new_uint64(st->guard_dropped));
+    }
+    json_object_object_add(o, "crossing_guard", guard);
     json_object_object_add(o, "levels", json_object_new_uint64(st->n));
     json_object_object_add(o, "elevations", level_array(st, 0));
     json_object_object_add(o, "vertices", level_array(st, 1));
@@ -535,6 +549,7 @@ static int run_mountain(const cli_command *cmd, int argc, char **argv)
         {"summit", required_argument, NULL, OPT_SUMMIT},
         {"view", required_argument, NULL, OPT_VIEW},
         {"map", required_argument, NULL, OPT_MAP},
+        {"allow-crossings", no_argument, NULL, OPT_ALLOW_CROSSINGS},
         {"layer", required_argument, NULL, 'l'},
         {"where", required_argument, NULL, 'w'},
         {"format", required_argument, NULL, 'f'},
@@ -564,16 +579,18 @@ const cli_command cli_cmd_mountain = {
     "fracterra mountain SEED OUT [--interval DZ] [--spacing D] [--seed-elevation Z] [--levels-up N]\n"
     "       [--levels-down N] [--method simple|midpoint|fourier|improved] [--join dprime|mitre|bevel|round]\n"
     "       [--dprime K] [--dsecond K] [--theta MIN,MAX] [--f0 F] [--n N] [--seed N] [--lines]\n"
-    "       [--dem OUT.tif] [--cell C] [--summit K] [--view OUT.png] [--map OUT.svg|png|pdf] [--layer NAME]\n"
+    "       [--allow-crossings] [--dem OUT.tif] [--cell C] [--summit K] [--view OUT.png] [--map OUT.svg|png|pdf] [--layer NAME]\n"
     "       [--where SQL] [-f DRIVER] [--json]",
     "Grows every contour of a mountain from the seed contour(s) of SEED with the contour generation method of\n"
     "Misawa, Chiba & Saito: each contour is the one below it shrunk inward by the spacing d (offset edges,\n"
     "corners joined, loops and vanished islands removed), one interval higher; --levels-down contours grown\n"
     "outward form the mountain's foot (seeds that meet merge). The improved method (the default) injects\n"
     "randomness at every step: shrinking, randomized phases of the high-frequency P-type Fourier descriptors,\n"
-    "removal of nearly collinear vertices, random midpoint displacement of long segments (each displaced point\n"
-    "moves only as far as it crosses no contour of its level nor the contour below). The same seed gives\n"
-    "the same contours, byte for byte. Method, parameters and figures: docs/contour-mountain.md.\n\n"
+    "removal of nearly collinear vertices, random midpoint displacement of long segments. Every vertex the\n"
+    "midpoint displacement or the phase randomization moves goes all, half, a quarter of the way or not at\n"
+    "all, as far as it crosses no contour of its level nor the contour below (the report counts the moves\n"
+    "reduced and dropped); --allow-crossings makes every move in full, leaving the crossings to the loop\n"
+    "removal and the clipping into the contour below. The same seed gives the same contours, byte for byte. Method, parameters and figures: docs/contour-mountain.md.\n\n"
     "SEED is any OGR layer of polygons, or of lines whose parts are closed rings (GMT text: a segment whose last\n"
     "vertex repeats its first). OUT is a contour layer, one polygon (outer ring and holes) per feature with the\n"
     "elevation in a real field `elev`, as `gdal_contour -p -amin elev` writes (with --lines one line per ring),\n"
@@ -603,6 +620,8 @@ const cli_command cli_cmd_mountain = {
     "      --n N              fourier, improved: resample each contour to N segments for the descriptor,\n"
     "                         >= 8 (default 1024)\n"
     "      --seed N           random seed (default 1; printed in the JSON)\n"
+    "      --allow-crossings  midpoint, fourier, improved: the raw algorithm, every move made in full even where\n"
+    "                         contours then cross (repaired by loop removal and clipping only)\n"
     "      --lines            write each ring as a line feature instead of polygons\n"
     "      --dem OUT.tif      also write the DEM interpolated between the contours (as GRASS r.surf.contour)\n"
     "      --cell C           the DEM's cell size (default: the lowest contour's larger extent / 512)\n"
@@ -613,7 +632,8 @@ const cli_command cli_cmd_mountain = {
     "  -w, --where SQL        only the features of SEED matching this OGR attribute filter\n"
     "  -f, --format DRIVER    OGR driver of OUT (default: from its extension; .gmt/.xy/.txt: GMT text)\n"
     "  -j, --json             print {\"input\", \"output\", \"method\", \"join\", \"interval\", \"spacing\",\n"
-    "                         \"seed_elevation\", \"dprime\", \"seed\", \"levels\", \"elevations\", \"vertices\",\n"
+    "                         \"seed_elevation\", \"dprime\", \"seed\", \"allow_crossings\",\n"
+    "                         \"crossing_guard\": {\"moves\", \"reduced\", \"dropped\"} (null if unguarded), \"levels\", \"elevations\", \"vertices\",\n"
     "                         \"polygons\", \"areas\" (per level), \"vertices_in\", \"vertices_out\", \"dem\",\n"
     "                         \"view\", \"map\", \"outputs\", ...}\n"
     "  -h, --help             print this help\n\n"

@@ -170,6 +170,11 @@ typedef struct {
                                      divider dimension over rulers d0 .. 4 d0 (§5: theta from the fractal
                                      dimension; docs/contour-mountain.md); 0 uses the range as given (the
                                      paper's fixed angles) */
+    int allow_crossings;        /**< 0 (default): the midpoint displacements and the phase randomizations
+                                     are guarded (a move that would cross another ring of the level or the
+                                     level below is reduced to half, a quarter or none); 1: the raw
+                                     algorithm (crossings repaired afterwards by the clean and nesting
+                                     steps only) */
     uint64_t seed;              /**< default 1 */
     ft_progress_fn progress;
     void *progress_arg;
@@ -178,8 +183,8 @@ typedef struct {
     {.struct_size = sizeof(ft_mountain_opts), .method = FT_MOUNTAIN_IMPROVED, .interval = 10.0, .spacing = 0.0,      \
      .seed_elevation = 0.0, .levels_up = -1, .levels_down = 0, .shrink = {.struct_size = sizeof(ft_shrink_opts),     \
      .join = FT_JOIN_DPRIME, .dprime = 0.0, .quad_segs = 8, .min_area = 0.5}, .dsecond = 0.5, .theta_min = 20.0,     \
-     .theta_max = 40.0, .fourier = FT_FOURIER_OPTS_DEFAULT, .collinear_deg = 0.0, .match_dim = 1, .seed = 1,         \
-     .progress = NULL, .progress_arg = NULL}
+     .theta_max = 40.0, .fourier = FT_FOURIER_OPTS_DEFAULT, .collinear_deg = 0.0, .match_dim = 1,                    \
+     .allow_crossings = 0, .seed = 1, .progress = NULL, .progress_arg = NULL}
 
 FT_API const char *ft_mountain_method_name(ft_mountain_method m);
 /** The d' (a multiple of d) ft_mountain_generate applies when shrink.dprime is 0: 3 for the improved
@@ -201,6 +206,9 @@ typedef struct {
     double spacing;   /**< d used (ground units) */
     double interval;  /**< elevation step */
     double dprime;    /**< d' used, as a multiple of d (0 when no generator made the stack) */
+    size_t guard_moves;   /**< vertices the generator's guarded steps moved (0 unguarded or not generated) */
+    size_t guard_reduced; /**< of which the crossing guard moved only half or a quarter of the way */
+    size_t guard_dropped; /**< of which it left at their base position */
 } ft_contour_stack;
 
 FT_API void ft_contour_stack_free(ft_contour_stack *s);

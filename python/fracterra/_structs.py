@@ -494,10 +494,11 @@ class ft_mountain_opts(_Opts):
     _fields_ = [("struct_size", _sz), ("method", _int), ("interval", _dbl), ("spacing", _dbl), ("seed_elevation", _dbl),
                 ("levels_up", _int), ("levels_down", _int), ("shrink", ft_shrink_opts), ("dsecond", _dbl),
                 ("theta_min", _dbl), ("theta_max", _dbl), ("fourier", ft_fourier_opts), ("collinear_deg", _dbl),
-                ("match_dim", _int), ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
+                ("match_dim", _int), ("allow_crossings", _int), ("seed", _u64), ("progress", PROGRESS), ("progress_arg", _vp)]
     _defaults_ = dict(method=3, interval=10.0, spacing=0.0, seed_elevation=0.0, levels_up=-1, levels_down=0,
                       shrink=dict(join=0, dprime=0.0, quad_segs=8, min_area=0.5), dsecond=0.5, theta_min=20.0,
-                      theta_max=40.0, fourier=dict(n=1024, f0=256), collinear_deg=0.0, match_dim=1, seed=1)
+                      theta_max=40.0, fourier=dict(n=1024, f0=256), collinear_deg=0.0, match_dim=1,
+                      allow_crossings=0, seed=1)
 
 
 @_mirror
@@ -510,7 +511,7 @@ class ft_contour_level(c.Structure):
 class ft_contour_stack(c.Structure):
     _c_name_ = "ft_contour_stack"
     _fields_ = [("levels", _P(ft_contour_level)), ("n", _sz), ("spacing", _dbl), ("interval", _dbl),
-                ("dprime", _dbl)]
+                ("dprime", _dbl), ("guard_moves", _sz), ("guard_reduced", _sz), ("guard_dropped", _sz)]
 
 
 @_mirror

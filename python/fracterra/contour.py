@@ -44,13 +44,14 @@ def _levels(stack):
 
 def mountain(path, *, method="improved", interval=10.0, spacing=0.0, seed_elevation=None, levels_up=-1,
              levels_down=0, join="dprime", dprime=0.0, dsecond=0.5, theta=(20.0, 40.0), n=1024, f0=256,
-             match_dim=True, seed=1, dem=False, cell=0.0, summit=0.5, layer=None, where=None, progress=None,
+             match_dim=True, allow_crossings=False, seed=1, dem=False, cell=0.0, summit=0.5, layer=None, where=None, progress=None,
              progress_arg=None):
     """Grows every contour of a mountain from the seed polygon(s) of a vector layer, as
     `fracterra mountain`. seed_elevation None = the layer's `elev` field when every feature holds the
     same number, else 0 (the CLI's rule). Returns (levels, dem, info): levels a list of (elevation,
     [(outer, [holes])]) with rings as (n, 2) arrays, dem a Grid (when dem=True, as --dem) or None,
-    info a dict with the spacing d and d' used."""
+    info a dict with the spacing d and d' used and the crossing guard's counts (guard_moves,
+    guard_reduced, guard_dropped; allow_crossings=True makes every move in full, as --allow-crossings)."""
     o = S.ft_mountain_opts.default()
     o.method = parse_enum(lib.ft_mountain_method_parse, method, "method")
     o.interval, o.spacing = float(interval), float(spacing)
@@ -60,6 +61,7 @@ def mountain(path, *, method="improved", interval=10.0, spacing=0.0, seed_elevat
     o.theta_min, o.theta_max = (float(t) for t in theta)
     o.fourier.n, o.fourier.f0 = int(n), int(f0)
     o.match_dim = 1 if match_dim else 0
+    o.allow_crossings = 1 if allow_crossings else 0
     o.seed = int(seed)
     dopts = S.ft_contour_dem_opts.default()
     dopts.cell, dopts.summit = float(cell), float(summit)
@@ -82,7 +84,8 @@ def mountain(path, *, method="improved", interval=10.0, spacing=0.0, seed_elevat
             grid = grid_from_c(g)
         st = stack.contents
         return _levels(st), grid, {"spacing": st.spacing, "interval": st.interval, "dprime": st.dprime,
-                                   "seed_elevation": o.seed_elevation}
+                                   "seed_elevation": o.seed_elevation, "guard_moves": st.guard_moves,
+                                   "guard_reduced": st.guard_reduced, "guard_dropped": st.guard_dropped}
     finally:
         lib.ft_contour_stack_free(stack)
         lib.ft_polygon_set_free(ps)

@@ -199,6 +199,9 @@ def test_mountain_levels_and_dem(cli, data, tmp_path):
     assert info["seed_elevation"] == js["seed_elevation"] and printed(info["spacing"]) == js["spacing"]
     assert [e for e, _ in levels] == js["elevations"]
     assert [sum(len(o) + sum(len(h) for h in hs) for o, hs in polys) for _, polys in levels] == js["vertices"]
+    g = js["crossing_guard"]
+    assert (info["guard_moves"], info["guard_reduced"], info["guard_dropped"]) == (g["moves"], g["reduced"],
+                                                                                   g["dropped"])
     z, valid, gt = read_band(tmp_path / "m.tif")
     assert gt == dem.geotransform
     gm = np.ones(dem.z.shape, bool) if dem.mask is None else dem.mask

@@ -101,4 +101,18 @@ double ft_contour_grid(ft_chain *const *rings, size_t nrings, double scale);
 int ft_contour_guard_displaced(ft_chain **rings, const ft_chain *const *used, size_t nr, const ft_polygon_set *below,
                                ft_line_guard_stats *stats);
 
+/** rings[0..nr) moved from bases[0..nr) (vertex for vertex: same count and closedness), each replaced by its
+ *  guarded version (FT_GUARD_REDUCE): every vertex moves from its base towards its place in the ring only as
+ *  far as it touches no other segment of the rings nor of the rings of below (may be NULL), which stay
+ *  fixed. Takes bases (freed, also on failure). stats (may be NULL) is added to. */
+int ft_contour_guard_rings(ft_chain **rings, ft_chain **bases, size_t nr, const ft_polygon_set *below,
+                           ft_line_guard_stats *stats);
+
+/* ---- Fourier phase randomization with its base (fourier_descriptor.c) ---------------------------- */
+
+/** ft_contour_fourier_randomize, and (base not NULL) *base: the resampled input ring (before the phases are
+ *  randomized), vertex j of *base being where vertex j of *out was drawn from (reversed with it). */
+int ft_contour_fourier_randomize_paired(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
+                                        uint64_t stream, ft_chain **base, ft_chain **out);
+
 #endif /* FRACTERRA_CONTOUR_INTERNAL_H */

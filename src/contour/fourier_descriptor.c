@@ -28,6 +28,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
+#include "contour/contour_internal.h"
 #include "fracterra/contour.h"
 #include "fft/fft.h"
 
@@ -94,6 +95,14 @@ static int check_input(const ft_chain *ring, const ft_fourier_opts *o, ft_chain 
 int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
                                  uint64_t stream, ft_chain **out)
 {
+    return ft_contour_fourier_randomize_paired(ring, opts, seed, stream, NULL, out);
+}
+
+int ft_contour_fourier_randomize_paired(const ft_chain *ring, const ft_fourier_opts *opts, uint64_t seed,
+                                        uint64_t stream, ft_chain **base, ft_chain **out)
+{
+    if (base != NULL)
+        *base = NULL;
     ft_fourier_opts o = FT_FOURIER_OPTS_DEFAULT;
     if (FT_OPTS_TAKE(o, opts, ft_fourier_opts) != FT_OK)
         return FT_E_INVALID;
@@ -105,12 +114,18 @@ int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *op
     size_t n = (size_t)o.n;
     double h = perimeter / (double)n;
     fftw_complex *z = ft_fft_alloc_complex(n), *c = ft_fft_alloc_complex(n);
-    ft_chain *res = ft_chain_create(n, 1);
-    if (z == NULL || c == NULL || res == NULL) {
+    ft_chain *res = ft_chain_create(n, 1), *b = base != NULL ? ft_chain_create(n, 1) : NULL;
+    if (z == NULL || c == NULL || res == NULL || (base != NULL && b == NULL)) {
         rc = FT_E_NOMEM;
         goto done;
     }
     resample_ring(ring, n, h, z);
+    for (size_t j = 0; b != NULL && j < n; j++) {
+        b->x[j] = z[j][0];
+        b->y[j] = z[j][1];
+    }
+    if (b != NULL)
+        b->n = n;
     double mx = 0.0, my = 0.0;
     for (size_t j = 0; j < n; j++) {
         mx += z[j][0];
@@ -168,8 +183,11 @@ int ft_contour_fourier_randomize(const ft_chain *ring, const ft_fourier_opts *op
         res->y[j] += my - cy;
     }
     double a_in = ft_chain_signed_area(ring), a_out = ft_chain_signed_area(res);
-    if ((a_in > 0.0 && a_out < 0.0) || (a_in < 0.0 && a_out > 0.0))
+    if ((a_in > 0.0 && a_out < 0.0) || (a_in < 0.0 && a_out > 0.0)) {
         ft_chain_reverse(res);
+        if (b != NULL)
+            ft_chain_reverse(b); /* vertex j of res still comes from vertex j of b */
+    }
     rc = ft_chain_check_finite(res);
 
 done:
@@ -177,8 +195,11 @@ done:
     ft_fft_free(c);
     if (rc != FT_OK) {
         ft_chain_free(res);
+        ft_chain_free(b);
         return rc;
     }
+    if (base != NULL)
+        *base = b;
     *out = res;
     return FT_OK;
 }

@@ -48,6 +48,14 @@
  * bisection on [0, 90] degrees as the smallest that leaves 20 % of the segments longer than 2 d0 (none is
  * removed if they already are). collinear_deg > 0 fixes the angle instead.
  *
+ * Crossing guard (issue 15; allow_crossings = 0, the default). The midpoint displacement and the phase
+ * randomization each move vertices from a base (the undisplaced ring with the added vertices on it; the
+ * resampled ring the randomization starts from) to the drawn positions; contour/guard_displace.c moves every
+ * vertex all, half, a quarter of the way or not at all, as far as it touches no other ring of the level and
+ * no ring of the level below (line/move_guard.c, FT_GUARD_REDUCE). The counts go to the stack
+ * (guard_moves, guard_reduced, guard_dropped). The cleaning and nesting below still run: they catch what
+ * the guard cannot see (rings that touch before the move, the collinear removal after the randomization).
+ *
  * Nesting. The stochastic steps may push a contour out of the one below it. Every new level is therefore
  * kept as it is if it lies inside the level below eroded by eps = 0.02 d (a GEOS buffer; a prepared
  * covers test), and otherwise replaced by its intersection with it; going down, it must cover the level
@@ -137,6 +145,8 @@ typedef struct {
     int match;                /* theta scaled ring by ring to match dim_target */
     double dim_target;        /* the seed's divider dimension over d0 .. 4 d0 */
     ft_line_dim_opts dim_opts;
+    int guard;                /* the displacements and randomizations guarded against crossings */
+    ft_line_guard_stats stats; /* what the guard did, over every level */
     ft_geos g;
 } generator;
 
@@ -265,7 +275,7 @@ static int displace_ring(generator *gen, const ft_chain *ring, uint64_t stream, 
 }
 
 /* Midpoint displacement of every ring of P (§4.1), guarded against the rings of P and of the level below
- * (always: mountain has no raw mode), cleaned; with thin, each ring is first thinned by Douglas-Peucker at the
+ * (unless allow_crossings), cleaned; with thin, each ring is first thinned by Douglas-Peucker at the
  * thinning tolerance (the shrink's joins multiply vertices). */
 static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_set *below, int level, int thin,
                      ft_polygon_set **out)
@@ -287,14 +297,14 @@ static int displaced(generator *gen, const ft_polygon_set *p, const ft_polygon_s
             rc = displace_ring(gen, ring, stream_id(level, k, OP_MIDPOINT), &r.c[r.n]);
         r.n += rc == FT_OK;
     }
-    if (rc == FT_OK) {
+    if (rc == FT_OK && gen->guard) {
         const ft_chain **ring = ft_calloc(nr + 1, sizeof *ring);
         if (ring == NULL)
             rc = FT_E_NOMEM;
         for (size_t k = 0; rc == FT_OK && k < nr; k++)
             ring[k] = used[k] != NULL ? used[k] : ft_polygon_set_ring(p, k);
         if (rc == FT_OK)
-            rc = ft_contour_guard_displaced(r.c, ring, r.n, below, NULL);
+            rc = ft_contour_guard_displaced(r.c, ring, r.n, below, &gen->stats);
         free(ring);
     }
     if (rc == FT_OK)
@@ -350,29 +360,37 @@ static int collinear_removed(generator *gen, const ft_chain *f, ft_chain **out)
     return FT_OK;
 }
 
-/* Phase randomization of every ring of S (§4.2), then collinear removal (§4.3, improved), cleaned. */
-static int randomized(generator *gen, const ft_polygon_set *s, int level, ft_polygon_set **out)
+/* Phase randomization of every ring of S (§4.2), guarded against the rings of S and of the level below
+ * (unless allow_crossings: each vertex moves from its place on the resampled ring towards its randomized
+ * one only as far as it crosses nothing), then collinear removal (§4.3, improved), cleaned. */
+static int randomized(generator *gen, const ft_polygon_set *s, const ft_polygon_set *below, int level,
+                      ft_polygon_set **out)
 {
     size_t nr = ft_polygon_set_ring_count(s);
     rings r = {ft_calloc(nr + 1, sizeof(ft_chain *)), 0};
-    if (r.c == NULL)
-        return FT_E_NOMEM;
-    int rc = FT_OK;
+    ft_chain **base = ft_calloc(nr + 1, sizeof *base); /* the resampled rings (guarded) */
+    int rc = r.c != NULL && base != NULL ? FT_OK : FT_E_NOMEM;
     for (size_t k = 0; rc == FT_OK && k < nr; k++) {
-        ft_chain *f = NULL;
-        rc = ft_contour_fourier_randomize(ft_polygon_set_ring(s, k), &gen->fourier, gen->seed, stream_id(level, k, OP_FOURIER),
-                                          &f);
-        if (rc == FT_OK && gen->method == FT_MOUNTAIN_IMPROVED) {
-            ft_chain *c = NULL;
-            rc = collinear_removed(gen, f, &c);
-            ft_chain_free(f);
-            f = c;
+        rc = ft_contour_fourier_randomize_paired(ft_polygon_set_ring(s, k), &gen->fourier, gen->seed,
+                                                 stream_id(level, k, OP_FOURIER), gen->guard ? &base[k] : NULL,
+                                                 &r.c[r.n]);
+        r.n += rc == FT_OK;
+    }
+    if (rc == FT_OK && gen->guard)
+        rc = ft_contour_guard_rings(r.c, base, r.n, below, &gen->stats); /* takes the bases */
+    for (size_t k = 0; rc == FT_OK && gen->method == FT_MOUNTAIN_IMPROVED && k < r.n; k++) {
+        ft_chain *c = NULL;
+        rc = collinear_removed(gen, r.c[k], &c);
+        if (rc == FT_OK) {
+            ft_chain_free(r.c[k]);
+            r.c[k] = c;
         }
-        if (rc == FT_OK)
-            r.c[r.n++] = f;
     }
     if (rc == FT_OK)
         rc = clean_rings(gen, &r, out);
+    for (size_t k = 0; base != NULL && k < nr; k++)
+        ft_chain_free(base[k]);
+    free(base);
     rings_free(&r);
     return rc;
 }
@@ -469,7 +487,7 @@ static int next_level(generator *gen, const ft_polygon_set *p, int level, int up
     int rc = ft_contour_shrink(cur, up ? gen->d : -gen->d, &gen->shrink, &step[0]);
     if (rc == FT_OK)
         cur = step[0];
-    if (rc == FT_OK && cur->n > 0 && randomize && (rc = randomized(gen, cur, level, &step[1])) == FT_OK)
+    if (rc == FT_OK && cur->n > 0 && randomize && (rc = randomized(gen, cur, p, level, &step[1])) == FT_OK)
         cur = step[1];
     if (rc == FT_OK && cur->n > 0 && displace &&
         (rc = displaced(gen, cur, p, level, gen->method == FT_MOUNTAIN_MIDPOINT, &step[2])) == FT_OK)
@@ -530,6 +548,9 @@ static int check_opts(const ft_mountain_opts *o)
     if (!(o->collinear_deg >= 0.0 && o->collinear_deg < 180.0))
         return ft_error(FT_E_INVALID, "collinear_deg must be in [0,180) degrees (0 = default), got %g",
                         o->collinear_deg);
+    if (o->allow_crossings != 0 && o->allow_crossings != 1)
+        return ft_error(FT_E_INVALID, "allow_crossings must be 0 (guarded) or 1 (the raw algorithm), got %d",
+                        o->allow_crossings);
     if (o->match_dim != 0 && o->match_dim != 1)
         return ft_error(FT_E_INVALID, "match_dim must be 0 (theta as given) or 1 (theta from the seed's dimension), "
                         "got %d", o->match_dim);
@@ -646,6 +667,7 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
     gen.fourier = o.fourier;
     gen.collinear = o.collinear_deg;
     gen.seed = o.seed;
+    gen.guard = !o.allow_crossings;
     if (o.match_dim && o.method == FT_MOUNTAIN_IMPROVED) {
         ft_line_dim_opts lo = FT_LINE_DIM_OPTS_DEFAULT;
         lo.min_scale = 0.5 * gen.mid.max_seg; /* d0 */
@@ -738,6 +760,9 @@ int ft_mountain_generate(const ft_polygon_set *seed, const ft_mountain_opts *opt
     s->spacing = gen.d;
     s->dprime = gen.shrink.dprime;
     s->interval = o.interval;
+    s->guard_moves = gen.stats.moves;
+    s->guard_reduced = gen.stats.reduced;
+    s->guard_dropped = gen.stats.dropped;
     free(below.v);
     free(above.v);
     *out = s;

@@ -162,6 +162,48 @@ static void test_dprime_reported_as_applied(void **state)
     json_object_put(o);
 }
 
+/* The crossing guard is reported: the Fourier method moves every vertex of every randomized ring (counted,
+ * some reduced or dropped on this seed, never more than moved); --allow-crossings reports no guard, and
+ * its contours differ from the guarded ones; the text report has the guard's line. */
+static void test_crossing_guard_report(void **state)
+{
+    (void)state;
+    const char *out = ft_test_tmp("guard.geojson");
+    json_object *o = FT_TEST_RUN_JSON("mountain", SEED, out, "--method", "fourier", "--f0", "16", "--levels-up",
+                                      "8", "--seed", "2", "--json");
+    assert_false(json_object_get_boolean(ft_test_json_key(o, "allow_crossings")));
+    json_object *g = ft_test_json_key(o, "crossing_guard");
+    assert_non_null(g);
+    int64_t moves = ft_test_json_int(g, "moves"), reduced = ft_test_json_int(g, "reduced"),
+            dropped = ft_test_json_int(g, "dropped");
+    print_message("fourier, f0 16, 8 levels up: %lld moves, %lld reduced, %lld dropped\n", (long long)moves,
+                  (long long)reduced, (long long)dropped);
+    assert_int_equal(moves, 8 * 1024); /* one ring per level, n = 1024 */
+    assert_true(reduced + dropped > 0 && reduced + dropped <= moves);
+    int64_t levels = ft_test_json_int(o, "levels");
+    json_object_put(o);
+    size_t na = 0, nb = 0;
+    char *a = ft_test_read_file(out, &na);
+    unlink(out);
+    o = FT_TEST_RUN_JSON("mountain", SEED, out, "--method", "fourier", "--f0", "16", "--levels-up", "8", "--seed",
+                         "2", "--allow-crossings", "--json");
+    assert_true(json_object_get_boolean(ft_test_json_key(o, "allow_crossings")));
+    assert_null(ft_test_json_key(o, "crossing_guard"));
+    assert_int_equal(ft_test_json_int(o, "levels"), levels);
+    json_object_put(o);
+    char *b = ft_test_read_file(out, &nb); /* the same file name: only the contours can differ */
+    assert_true(na != nb || memcmp(a, b, na) != 0);
+    free(a);
+    free(b);
+    ft_run_result r;
+    assert_int_equal(ft_run(&r, "mountain", SEED, ft_test_tmp("text.geojson"), "--method", "midpoint", "--levels-up",
+                            "3", NULL),
+                     0);
+    assert_int_equal(r.status, 0);
+    assert_non_null(strstr(r.out, "crossing guard: "));
+    ft_run_free(&r);
+}
+
 /* Same seed, same bytes (the same file name, so that the layer names agree); another seed, other
  * contours; --lines writes rings as lines. */
 static void test_same_seed_same_output(void **state)
@@ -293,7 +335,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mountain_end_to_end), cmocka_unit_test(test_dprime_reported_as_applied),
-        cmocka_unit_test(test_same_seed_same_output),
+        cmocka_unit_test(test_same_seed_same_output), cmocka_unit_test(test_crossing_guard_report),
         cmocka_unit_test(test_text_seed),           cmocka_unit_test(test_geographic_seed_refused),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_help),

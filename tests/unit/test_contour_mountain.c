@@ -231,7 +231,7 @@ static void test_methods_valid_nested(void **state)
 {
     (void)state;
     for (int m = 0; m <= FT_MOUNTAIN_IMPROVED; m++) {
-        size_t total_levels = 0;
+        size_t total_levels = 0, guard[3] = {0, 0, 0};
         for (uint64_t seed = 1; seed <= 20; seed++) {
             ft_polygon_set *s = set_of(blob(24, 0.0, 0.0, 6.0, 0.3, seed), NULL);
             ft_mountain_opts o = FT_MOUNTAIN_OPTS_DEFAULT;
@@ -248,12 +248,25 @@ static void test_methods_valid_nested(void **state)
             check_stack(st, &o, what);
             assert_int_equal(seed_index(st, o.seed_elevation), 2);
             assert_true(st->n >= 5);
+            assert_true(st->guard_reduced + st->guard_dropped <= st->guard_moves);
             total_levels += st->n;
+            guard[0] += st->guard_moves;
+            guard[1] += st->guard_reduced;
+            guard[2] += st->guard_dropped;
             ft_contour_stack_free(st);
+            if (seed == 1) { /* the raw algorithm: nothing guarded, still valid and nested (clean, clipping) */
+                o.allow_crossings = 1;
+                st = generate(s, &o);
+                snprintf(what, sizeof what, "%s seed 1 raw", ft_mountain_method_name(o.method));
+                check_stack(st, &o, what);
+                assert_int_equal(st->guard_moves, 0);
+                ft_contour_stack_free(st);
+            }
             ft_polygon_set_free(s);
         }
-        print_message("%-8s 20 seeds: %zu levels, all valid and nested\n",
-                      ft_mountain_method_name((ft_mountain_method)m), total_levels);
+        print_message("%-8s 20 seeds: %zu levels, all valid and nested; guard: %zu moves, %zu reduced, %zu dropped\n",
+                      ft_mountain_method_name((ft_mountain_method)m), total_levels, guard[0], guard[1], guard[2]);
+        assert_true(m == FT_MOUNTAIN_SIMPLE ? guard[0] == 0 : guard[0] > 0); /* simple moves no vertex */
     }
 }
 
@@ -446,6 +459,7 @@ static void test_bad_input(void **state)
     BAD(fourier.f0, 513, "f0");
     BAD(collinear_deg, -1.0, "collinear");
     BAD(match_dim, 2, "match_dim");
+    BAD(allow_crossings, 2, "allow_crossings");
     BAD(method, (ft_mountain_method)7, "method");
 #undef BAD
     /* a bow tie is no polygon; a NaN vertex is named */
