@@ -337,14 +337,17 @@ static void block_accumulate(const ft_clarke_model *m, const sim_grid *s, const 
     }
 }
 
-/* c >= 0 with var(G + cF) = sd², and the shift that gives the original mean. */
+/* c >= 0 with var(G + cF) = sd² (power-law noise; 1 for the measured spectrum, whose variogram is the
+ * DEM's), and the shift that gives the original mean. */
 static void solve_scale(const ft_clarke_model *m, const block_sums *b, double *c, double *shift)
 {
     double mg = b->sg / b->n, mf = b->sf / b->n;
     double vg = b->sgg / b->n - mg * mg, vf = b->sff / b->n - mf * mf, cov = b->sgf / b->n - mg * mf;
     double target = m->sd * m->sd;
     *c = 0.0;
-    if (vf > 0.0) {
+    if (m->noise == FT_CLARKE_NOISE_SPECTRUM) { /* F is in the DEM's units already (clarke_variogram.c) */
+        *c = 1.0;
+    } else if (vf > 0.0) {
         double disc = cov * cov - vf * (vg - target);
         double root = disc >= 0.0 ? (-cov + sqrt(disc)) / vf : 0.0;
         *c = root > 0.0 ? root : 0.0;
