@@ -34,7 +34,8 @@
 #define MATCH_MAX_GAIN 4.0
 
 typedef struct {
-    size_t nlag;                        /* lags 1 .. nlag cells */
+    size_t nlag;                        /* lags 1 .. nlag cells; only those of used[] are measured */
+    unsigned char used[MATCH_MAX_LAG + 1];
     double dem[MATCH_MAX_LAG + 1];      /* the DEM residual's pooled variogram */
     double wx[MATCH_MAX_LAG + 1];       /* share of row pairs at each lag */
     double cos_x[MATCH_MAX_LAG + 1], cos_y[MATCH_MAX_LAG + 1];
@@ -87,6 +88,7 @@ static uint8_t *valid_mask(const ft_grid *dem)
 typedef struct {
     uint16_t *lo;
     float *t;
+    float *p;     /* each wave's variance, per iteration */
     double *logp; /* log of each ring's power, per iteration */
 } bin_table;
 
@@ -120,7 +122,8 @@ static int bin_table_init(const ft_clarke_model *m, const clarke_frame *fr, bin_
     size_t nx = m->nx, ny = m->ny, hx = nx / 2 + 1;
     bt->lo = ft_malloc(hx * ny * sizeof *bt->lo);
     bt->t = bt->lo ? ft_malloc(hx * ny * sizeof *bt->t) : NULL;
-    bt->logp = bt->t ? ft_malloc(m->nspectrum * sizeof *bt->logp) : NULL;
+    bt->p = bt->t ? ft_malloc(hx * ny * sizeof *bt->p) : NULL;
+    bt->logp = bt->p ? ft_malloc(m->nspectrum * sizeof *bt->logp) : NULL;
     if (bt->logp == NULL)
         return ft_last_error_code();
     for (size_t ky = 0; ky < ny; ky++)
@@ -142,32 +145,48 @@ static void bin_table_free(bin_table *bt)
 {
     free(bt->lo);
     free(bt->t);
+    free(bt->p);
     free(bt->logp);
 }
 
-/* Per-wave variance of F (c = 1) summed into marginals over the rows (sx[k]) and the columns (sy[|l|]). */
+/* Per-wave variance of F (c = 1) summed into marginals over the rows (sx[k]) and the columns (sy[|l|]).
+ * Each sum runs in a fixed order: the same bits on any thread count. */
 static void marginals(const ft_clarke_model *m, bin_table *bt, double *sx, double *sy)
 {
-    size_t nx = m->nx, ny = m->ny, hx = nx / 2 + 1;
+    const long nx = (long)m->nx, ny = (long)m->ny, hx = nx / 2 + 1;
     for (size_t i = 0; i < m->nspectrum; i++)
         bt->logp[i] = log(m->spectrum_power[i]);
-    memset(sx, 0, hx * sizeof *sx);
-    memset(sy, 0, (ny / 2 + 1) * sizeof *sy);
-    for (size_t ky = 0; ky < ny; ky++) {
-        int l = clarke_signed_l(ky, ny);
-        for (size_t kx = 0; kx < hx; kx++) {
-            size_t i = ky * hx + kx;
+#pragma omp parallel for schedule(static)
+    for (long ky = 0; ky < ny; ky++)
+        for (long kx = 0; kx < hx; kx++) {
+            size_t i = (size_t)(ky * hx + kx);
             uint16_t lo = bt->lo[i];
-            if (lo == BIN_NONE)
+            if (lo == BIN_NONE) {
+                bt->p[i] = 0.0f;
                 continue;
+            }
             double t = bt->t[i];
             double lp = lo == BIN_BELOW ? bt->logp[0] + t
-                        : t > 0.0f ? (1.0 - t) * bt->logp[lo] + t * bt->logp[lo + 1] : bt->logp[lo];
-            double p = exp(lp);
-            double v = clarke_bin_kind(kx, ky, nx, ny) == CLARKE_BIN_SELF ? p : 0.5 * p;
-            sx[kx] += v;
-            sy[(size_t)abs(l)] += v;
+                        : t > 0.0 ? (1.0 - t) * bt->logp[lo] + t * bt->logp[lo + 1] : bt->logp[lo];
+            int self = clarke_bin_kind((size_t)kx, (size_t)ky, (size_t)nx, (size_t)ny) == CLARKE_BIN_SELF;
+            bt->p[i] = (float)(self ? exp(lp) : 0.5 * exp(lp));
         }
+#pragma omp parallel for schedule(static)
+    for (long kx = 0; kx < hx; kx++) {
+        double sum = 0.0;
+        for (long ky = 0; ky < ny; ky++)
+            sum += bt->p[ky * hx + kx];
+        sx[kx] = sum;
+    }
+    const long hy = ny / 2 + 1;
+#pragma omp parallel for schedule(static)
+    for (long al = 0; al < hy; al++) {
+        double sum = 0.0;
+        long rows[2] = {al, (ny - al) % ny};
+        for (int r = 0; r < (al == 0 || rows[1] == al ? 1 : 2); r++)
+            for (long kx = 0; kx < hx; kx++)
+                sum += bt->p[rows[r] * hx + kx];
+        sy[al] = sum;
     }
 }
 
@@ -177,6 +196,8 @@ static void model_variogram(const ft_clarke_model *m, const match_lags *ml, cons
 {
     size_t hx = m->nx / 2 + 1, hy = m->ny / 2 + 1;
     for (size_t h = 1; h <= ml->nlag; h++) {
+        if (!ml->used[h])
+            continue;
         double gx = 0.0, gy = 0.0;
         for (size_t k = 1; k < hx; k++)
             gx += sx[k] * (1.0 - cos(2.0 * M_PI * (double)k * (double)h / (double)m->nx));
@@ -197,13 +218,23 @@ int clarke_match_variogram(ft_clarke_model *m, const clarke_frame *fr, const ft_
     uint8_t *ok = valid_mask(dem);
     if (ok == NULL)
         return ft_last_error_code();
+    /* every lag to 8, then about 8 per octave: the correction interpolates between them */
+    memset(ml.used, 0, sizeof ml.used);
+    for (size_t h = 1; h <= ml.nlag; h++)
+        ml.used[h] = h <= 8 || h == ml.nlag || h % (size_t)(1u << (int)floor(log2((double)h) - 2.0)) == 0;
+    const long nlag = (long)ml.nlag;
+#pragma omp parallel for schedule(dynamic)
+    for (long h = 1; h <= nlag; h++)
+        if (ml.used[h])
+            ml.dem[h] = residual_variogram(dem, ok, res, rs, (size_t)h, &ml.wx[h]);
     for (size_t h = 1; h <= ml.nlag; h++) {
-        ml.dem[h] = residual_variogram(dem, ok, res, rs, h, &ml.wx[h]);
-        if (!(ml.dem[h] > 0.0)) { /* too few pairs to compare: keep the measured rings */
+        if (ml.used[h] && !(ml.dem[h] > 0.0)) { /* too few pairs to compare: stop before */
             ml.nlag = h - 1;
             break;
         }
     }
+    while (ml.nlag > 0 && !ml.used[ml.nlag])
+        ml.nlag--;
     free(ok);
     if (ml.nlag < 2)
         return FT_OK;
@@ -228,9 +259,15 @@ int clarke_match_variogram(ft_clarke_model *m, const clarke_frame *fr, const ft_
         for (size_t i = 0; i < m->nspectrum; i++) {
             /* the ring's half wavelength in cells, on the pooled cell size of its lags */
             double h = 0.5 * m->spectrum_wavelength[i] / sqrt(cell_x * cell_y);
-            size_t lo = h < 1.0 ? 1 : h >= (double)ml.nlag ? ml.nlag : (size_t)h;
-            size_t hi = lo < ml.nlag ? lo + 1 : lo;
-            double t = hi > lo ? fmin(1.0, fmax(0.0, h - (double)lo)) : 0.0;
+            size_t lo = 1, hi = 1;
+            while (hi < ml.nlag && (double)hi < h) {
+                lo = hi++;
+                while (hi < ml.nlag && !ml.used[hi])
+                    hi++;
+            }
+            if (h <= 1.0 || h >= (double)ml.nlag)
+                lo = hi = h <= 1.0 ? 1 : ml.nlag;
+            double t = hi > lo ? fmin(1.0, fmax(0.0, log(h / (double)lo) / log((double)hi / (double)lo))) : 0.0;
             double q = (1.0 - t) * log(ml.dem[lo] / model[lo]) + t * log(ml.dem[hi] / model[hi]);
             if (!isfinite(q))
                 continue;
