@@ -22,8 +22,10 @@
  *    is 1 / ((k/Lx)² + (l/Ly)²)^½. Since power ~ wavelength^beta means P(f) ~ f^-beta, the dimension of
  *    a 2-D isotropic fBm surface is D = (8 - beta) / 2; Clarke's eq. viii, 3 - beta/2, is the variogram
  *    relation and is kept only as D_clarke_eq8, labelled as such (seeds README);
- *  - c: the scale of F that makes var(T) + var(H) + c² var(F) the original variance, var(F) being the
- *    regression's power summed over the waves not in H (the simulation re-solves c on its realization).
+ *  - c: with the power-law noise, the scale of F that makes var(T) + var(H) + c² var(F) the original
+ *    variance, var(F) being the regression's power summed over the waves not in H (the simulation re-solves
+ *    c on its realization); with the measured spectrum (clarke_spectrum.c, corrected to the DEM's variogram
+ *    by clarke_variogram.c, H refitted by least squares on a grid with nodata) c = 1.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */

@@ -15,7 +15,8 @@
  *    extrapolation. Amplitudes follow the regression exactly (eq. xiv gives them from P; Clarke kept the
  *    empirical signs, here phases are random).
  * F then loses its own least-squares plane (T is the model's only plane). T is evaluated at the new
- * cell centres. Then, over the cells covering the fitted extent, c solves
+ * cell centres. With the measured spectrum c = 1 (F has the DEM's variogram: clarke_variogram.c); with
+ * the power law, over the cells covering the fitted extent, c solves
  * var(T + H + cF) = sd² (the positive root of the quadratic, 0 if there is none) and a constant shift
  * makes the mean the original's: Clarke scaled F "to make the new surface mean and variance similar to
  * the original".
