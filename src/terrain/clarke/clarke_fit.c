@@ -614,13 +614,41 @@ static void take_harmonics(ft_clarke_model *m, harmonic_scan *hs)
 
 /* ---- H on a grid with nodata: least squares over the valid cells ---- */
 
-/* The column of the design matrix of unknown j at cell (col, row): a_i cos(theta_i), b_i sin(theta_i). */
-static double lsq_term(const ft_clarke_model *m, size_t j, size_t col, size_t row)
+/* cos and sin of each harmonic's phase along the columns and the rows, so that the design matrix's terms
+ * a_i cos(theta_i), b_i sin(theta_i), theta_i = 2 pi (k col / nx + l row / ny), cost no trigonometry per cell. */
+typedef struct {
+    double *cc, *sc, *cr, *sr; /* [harmonic * nx + col], [harmonic * ny + row] */
+} lsq_tables;
+
+static int lsq_tables_init(const ft_clarke_model *m, lsq_tables *t)
 {
-    const ft_clarke_harmonic *h = &m->harmonics[j / 2];
-    double theta = 2.0 * M_PI * ((double)h->k * (double)col / (double)m->nx +
-                                 (double)h->l * (double)row / (double)m->ny);
-    return j % 2 == 0 ? cos(theta) : sin(theta);
+    size_t nh = m->nharmonics;
+    t->cc = ft_malloc((2 * nh * (m->nx + m->ny) + 1) * sizeof(double)); /* + 1: no harmonic is no error */
+    if (t->cc == NULL)
+        return ft_last_error_code();
+    t->sc = t->cc + nh * m->nx;
+    t->cr = t->sc + nh * m->nx;
+    t->sr = t->cr + nh * m->ny;
+    for (size_t i = 0; i < nh; i++) {
+        for (size_t col = 0; col < m->nx; col++) {
+            double a = 2.0 * M_PI * (double)m->harmonics[i].k * (double)col / (double)m->nx;
+            t->cc[i * m->nx + col] = cos(a);
+            t->sc[i * m->nx + col] = sin(a);
+        }
+        for (size_t row = 0; row < m->ny; row++) {
+            double a = 2.0 * M_PI * (double)m->harmonics[i].l * (double)row / (double)m->ny;
+            t->cr[i * m->ny + row] = cos(a);
+            t->sr[i * m->ny + row] = sin(a);
+        }
+    }
+    return FT_OK;
+}
+
+/* Unknown j at cell (col, row): cos(theta_{j/2}) for even j, sin for odd j. */
+static double lsq_term(const ft_clarke_model *m, const lsq_tables *t, size_t j, size_t col, size_t row)
+{
+    size_t i = j / 2, c = i * m->nx + col, r = i * m->ny + row;
+    return j % 2 == 0 ? t->cc[c] * t->cr[r] - t->sc[c] * t->sr[r] : t->sc[c] * t->cr[r] + t->cc[c] * t->sr[r];
 }
 
 /* Solves a x = y (n x n, row-major, overwritten) by Gaussian elimination with partial pivoting; 0 if singular. */
@@ -656,15 +684,18 @@ static int solve_small(double *a, double *y, size_t n)
     return 1;
 }
 
+#define LSQ_MAX_HARMONICS 64 /* more (a cutoff far below 2.5 %): the FFT's coefficients are kept */
+
 /* On a grid with nodata, the FFT of the trend-filled residual gives each wave of H the amplitude it has
  * over the whole grid, about the valid share of its amplitude over the DEM: the rest stays in z - T - H,
  * correlated with H, and a simulation (H plus random phases) loses it. The coefficients a, b of H's modes
  * are refitted jointly by least squares on the valid cells (the sine of a self-conjugate mode is 0 on the
- * grid and is left at 0). Unchanged if the system is singular. */
-static int harmonics_least_squares(const ft_grid *dem, ft_clarke_model *m, const double *res, size_t rs)
+ * grid and is left at 0). Unchanged if the system is singular or H has more than LSQ_MAX_HARMONICS waves. */
+static int harmonics_least_squares(const ft_grid *dem, ft_clarke_model *m, const lsq_tables *tb,
+                                   const double *res, size_t rs)
 {
     size_t n = 2 * m->nharmonics;
-    if (n == 0 || m->nodata_filled == 0)
+    if (n == 0 || m->nodata_filled == 0 || m->nharmonics > LSQ_MAX_HARMONICS)
         return FT_OK;
     double *a = ft_calloc(n * n + 2 * n, sizeof *a);
     if (a == NULL)
@@ -675,13 +706,16 @@ static int harmonics_least_squares(const ft_grid *dem, ft_clarke_model *m, const
             if (!ft_grid_is_valid(dem, col, row) || !isfinite(dem->z[row * dem->nx + col]))
                 continue;
             for (size_t j = 0; j < n; j++)
-                t[j] = lsq_term(m, j, col, row);
+                t[j] = lsq_term(m, tb, j, col, row);
             for (size_t i = 0; i < n; i++) {
                 y[i] += t[i] * res[row * rs + col];
-                for (size_t j = 0; j < n; j++)
+                for (size_t j = i; j < n; j++)
                     a[i * n + j] += t[i] * t[j];
             }
         }
+    for (size_t i = 0; i < n; i++) /* the lower triangle */
+        for (size_t j = 0; j < i; j++)
+            a[i * n + j] = a[j * n + i];
     for (size_t j = 1; j < n; j += 2) /* a sine that is 0 everywhere: keep b = 0 */
         if (!(a[j * n + j] > 1e-9)) {
             for (size_t k = 0; k < n; k++)
@@ -700,7 +734,8 @@ static int harmonics_least_squares(const ft_grid *dem, ft_clarke_model *m, const
 }
 
 /* z - T - H at the valid cells (0 elsewhere), row stride rs. */
-static void residual_minus_harmonics(const ft_grid *dem, const ft_clarke_model *m, double *res, size_t rs)
+static void residual_minus_harmonics(const ft_grid *dem, const ft_clarke_model *m, const lsq_tables *tb, double *res,
+                                     size_t rs)
 {
     for (size_t row = 0; row < dem->ny; row++)
         for (size_t col = 0; col < dem->nx; col++) {
@@ -709,8 +744,8 @@ static void residual_minus_harmonics(const ft_grid *dem, const ft_clarke_model *
                 continue;
             }
             for (size_t i = 0; i < m->nharmonics; i++)
-                res[row * rs + col] -= m->harmonics[i].a * lsq_term(m, 2 * i, col, row) +
-                                       m->harmonics[i].b * lsq_term(m, 2 * i + 1, col, row);
+                res[row * rs + col] -= m->harmonics[i].a * lsq_term(m, tb, 2 * i, col, row) +
+                                       m->harmonics[i].b * lsq_term(m, tb, 2 * i + 1, col, row);
         }
 }
 
@@ -737,10 +772,14 @@ static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, cons
         rc = clarke_measure_spectrum(m, fr, wave_power);
     if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
         rc = residual_fill(dem, m, b0c, 0, buf, ft_fft_real_stride(dem->nx));
+    lsq_tables tb = {0};
     if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
-        rc = harmonics_least_squares(dem, m, buf, ft_fft_real_stride(dem->nx));
+        rc = lsq_tables_init(m, &tb);
     if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
-        residual_minus_harmonics(dem, m, buf, ft_fft_real_stride(dem->nx));
+        rc = harmonics_least_squares(dem, m, &tb, buf, ft_fft_real_stride(dem->nx));
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        residual_minus_harmonics(dem, m, &tb, buf, ft_fft_real_stride(dem->nx));
+    free(tb.cc);
     if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
         rc = clarke_match_variogram(m, fr, dem, buf, ft_fft_real_stride(dem->nx));
     if (rc == FT_OK) {
