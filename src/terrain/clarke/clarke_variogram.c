@@ -12,10 +12,11 @@
  * A stationary field of the grid's plane waves, wave w of variance v_w and integer frequency (k_w, l_w),
  * has the expected variogram along rows gamma_x(h) = sum_w v_w (1 - cos(2 pi k_w h / nx)) (and along
  * columns with l_w, ny): Wiener-Khinchin on the periodic grid. Rows and columns are pooled with the DEM's
- * pair counts. Each ring's power is multiplied, a few times over, by the ratio of the DEM's variogram (of
- * z - T - H, valid pairs) to the model's at the lag of half the ring's wavelength in cells (where the
- * ring's waves weigh most: 1 - cos is largest at half a period); rings longer than twice the last lag
- * take the ratio at the last lag. The iteration is the multiplicative spectral correction of iterated
+ * pair counts. Each ring's power is multiplied, MATCH_ITERATIONS times, by the square root of the ratio
+ * of the DEM's variogram (of z - T - H, valid pairs) to the model's at the lag of half the ring's
+ * wavelength in cells (where the ring's waves weigh most: 1 - cos is largest at half a period), at most
+ * a factor 2 per step and MATCH_MAX_GAIN in all from the measured ring; rings longer than twice the last
+ * lag take the ratio at the last lag. Lags: every one to 8 cells, then about 8 per octave. The iteration is the multiplicative spectral correction of iterated
  * amplitude-adjusted surrogates (Schreiber & Schmitz 1996, Phys. Rev. Lett. 77, 635), on the variogram.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
