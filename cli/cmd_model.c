@@ -302,8 +302,10 @@ static const cli_command cmd_model_simulate = {
     "simulate a DEM from a Clarke model",
     "fracterra model simulate MODEL.json OUT [--refine K] [--extent E] [--seed N] [-f DRIVER] [--json]",
     "Inverts a model written by `fracterra model fit -o`: the trend T and the kept harmonics H are rebuilt,\n"
-    "fractal noise F with the fitted power per harmonic and random phases is added, and c is chosen so that\n"
-    "the cells over the fitted extent have the original's mean and standard deviation (Clarke's procedure).\n"
+    "fractal noise F with the model's power per harmonic and random phases is added, and a shift gives the\n"
+    "original's mean. With the measured spectrum (the default) F already has the DEM's variogram (c = 1);\n"
+    "with a power-law model c is chosen so that the cells over the fitted extent have the original's\n"
+    "standard deviation (Clarke's procedure).\n"
     "The output keeps the model's CRS; its cells are K times smaller with --refine K.\n\n"
     "Options:\n"
     "  --refine K        K times more cells along each axis over the same extent, in [1,64] (default 1)\n"

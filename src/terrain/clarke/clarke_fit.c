@@ -22,8 +22,10 @@
  *    is 1 / ((k/Lx)² + (l/Ly)²)^½. Since power ~ wavelength^beta means P(f) ~ f^-beta, the dimension of
  *    a 2-D isotropic fBm surface is D = (8 - beta) / 2; Clarke's eq. viii, 3 - beta/2, is the variogram
  *    relation and is kept only as D_clarke_eq8, labelled as such (seeds README);
- *  - c: the scale of F that makes var(T) + var(H) + c² var(F) the original variance, var(F) being the
- *    regression's power summed over the waves not in H (the simulation re-solves c on its realization).
+ *  - c: with the power-law noise, the scale of F that makes var(T) + var(H) + c² var(F) the original
+ *    variance, var(F) being the regression's power summed over the waves not in H (the simulation re-solves
+ *    c on its realization); with the measured spectrum (clarke_spectrum.c, corrected to the DEM's variogram
+ *    by clarke_variogram.c, H refitted by least squares on a grid with nodata) c = 1.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -545,16 +547,31 @@ static void remove_harmonics(const ft_clarke_model *m, fftw_complex *spec)
 /* The power of every wave of F's own part of the residual, z - T - H (the grid modes of H removed), on
  * the periodogram under the fit's taper, divided by the taper's mean square; NaN where the half-spectrum
  * holds no wave of its own or the power is 0. buf: the FFT buffer (overwritten). */
-static int noise_wave_powers(const ft_grid *dem, const ft_clarke_model *m, double b0c, int taper, double *buf,
-                             double *wave_power)
+/* z - T - H with H's grid modes removed (untapered; nodata cells hold -H), row stride rs, into buf. */
+static int residual_without_harmonics(const ft_grid *dem, const ft_clarke_model *m, double b0c, double *buf)
 {
-    size_t nx = m->nx, ny = m->ny, hx = nx / 2 + 1, rs = ft_fft_real_stride(nx);
+    size_t nx = m->nx, ny = m->ny, rs = ft_fft_real_stride(nx);
     fftw_complex *spec = (fftw_complex *)(void *)buf;
     int rc = transform_residual(dem, m, b0c, 0, buf);
     if (rc != FT_OK)
         return rc;
     remove_harmonics(m, spec);
     if ((rc = ft_fft_c2r_2d(ny, nx, spec, buf)) != FT_OK)
+        return rc;
+    double n = (double)nx * (double)ny; /* FFTW's inverse is unnormalised */
+    for (size_t row = 0; row < ny; row++)
+        for (size_t col = 0; col < nx; col++)
+            buf[row * rs + col] /= n;
+    return FT_OK;
+}
+
+static int noise_wave_powers(const ft_grid *dem, const ft_clarke_model *m, double b0c, int taper, double *buf,
+                             double *wave_power)
+{
+    size_t nx = m->nx, ny = m->ny, hx = nx / 2 + 1, rs = ft_fft_real_stride(nx);
+    fftw_complex *spec = (fftw_complex *)(void *)buf;
+    int rc = residual_without_harmonics(dem, m, b0c, buf);
+    if (rc != FT_OK)
         return rc;
     double *wx = taper_table(nx, taper), *wy = wx ? taper_table(ny, taper) : NULL;
     if (wy == NULL) {
@@ -564,7 +581,7 @@ static int noise_wave_powers(const ft_grid *dem, const ft_clarke_model *m, doubl
     double n = (double)nx * (double)ny, norm = taper ? taper_power(nx, ny) : 1.0;
     for (size_t row = 0; row < ny; row++)
         for (size_t col = 0; col < nx; col++)
-            buf[row * rs + col] *= wy[row] * wx[col] / n; /* FFTW's inverse is unnormalised */
+            buf[row * rs + col] *= wy[row] * wx[col];
     free(wx);
     free(wy);
     if ((rc = ft_fft_r2c_2d(ny, nx, buf, spec)) != FT_OK)
@@ -595,6 +612,143 @@ static void take_harmonics(ft_clarke_model *m, harmonic_scan *hs)
         m->harmonic_share += m->harmonics[i].share;
 }
 
+/* ---- H on a grid with nodata: least squares over the valid cells ---- */
+
+/* cos and sin of each harmonic's phase along the columns and the rows, so that the design matrix's terms
+ * a_i cos(theta_i), b_i sin(theta_i), theta_i = 2 pi (k col / nx + l row / ny), cost no trigonometry per cell. */
+typedef struct {
+    double *cc, *sc, *cr, *sr; /* [harmonic * nx + col], [harmonic * ny + row] */
+} lsq_tables;
+
+static int lsq_tables_init(const ft_clarke_model *m, lsq_tables *t)
+{
+    size_t nh = m->nharmonics;
+    t->cc = ft_malloc((2 * nh * (m->nx + m->ny) + 1) * sizeof(double)); /* + 1: no harmonic is no error */
+    if (t->cc == NULL)
+        return ft_last_error_code();
+    t->sc = t->cc + nh * m->nx;
+    t->cr = t->sc + nh * m->nx;
+    t->sr = t->cr + nh * m->ny;
+    for (size_t i = 0; i < nh; i++) {
+        for (size_t col = 0; col < m->nx; col++) {
+            double a = 2.0 * M_PI * (double)m->harmonics[i].k * (double)col / (double)m->nx;
+            t->cc[i * m->nx + col] = cos(a);
+            t->sc[i * m->nx + col] = sin(a);
+        }
+        for (size_t row = 0; row < m->ny; row++) {
+            double a = 2.0 * M_PI * (double)m->harmonics[i].l * (double)row / (double)m->ny;
+            t->cr[i * m->ny + row] = cos(a);
+            t->sr[i * m->ny + row] = sin(a);
+        }
+    }
+    return FT_OK;
+}
+
+/* Unknown j at cell (col, row): cos(theta_{j/2}) for even j, sin for odd j. */
+static double lsq_term(const ft_clarke_model *m, const lsq_tables *t, size_t j, size_t col, size_t row)
+{
+    size_t i = j / 2, c = i * m->nx + col, r = i * m->ny + row;
+    return j % 2 == 0 ? t->cc[c] * t->cr[r] - t->sc[c] * t->sr[r] : t->sc[c] * t->cr[r] + t->cc[c] * t->sr[r];
+}
+
+/* Solves a x = y (n x n, row-major, overwritten) by Gaussian elimination with partial pivoting; 0 if singular. */
+static int solve_small(double *a, double *y, size_t n)
+{
+    for (size_t c = 0; c < n; c++) {
+        size_t p = c;
+        for (size_t r = c + 1; r < n; r++)
+            if (fabs(a[r * n + c]) > fabs(a[p * n + c]))
+                p = r;
+        if (!(fabs(a[p * n + c]) > 1e-9 * (double)n))
+            return 0;
+        for (size_t k = 0; k < n && p != c; k++) {
+            double t = a[c * n + k];
+            a[c * n + k] = a[p * n + k];
+            a[p * n + k] = t;
+        }
+        double t = y[c];
+        y[c] = y[p];
+        y[p] = t;
+        for (size_t r = c + 1; r < n; r++) {
+            double f = a[r * n + c] / a[c * n + c];
+            for (size_t k = c; k < n; k++)
+                a[r * n + k] -= f * a[c * n + k];
+            y[r] -= f * y[c];
+        }
+    }
+    for (size_t c = n; c-- > 0;) {
+        for (size_t k = c + 1; k < n; k++)
+            y[c] -= a[c * n + k] * y[k];
+        y[c] /= a[c * n + c];
+    }
+    return 1;
+}
+
+#define LSQ_MAX_HARMONICS 64 /* more (a cutoff far below 2.5 %): the FFT's coefficients are kept */
+
+/* On a grid with nodata, the FFT of the trend-filled residual gives each wave of H the amplitude it has
+ * over the whole grid, about the valid share of its amplitude over the DEM: the rest stays in z - T - H,
+ * correlated with H, and a simulation (H plus random phases) loses it. The coefficients a, b of H's modes
+ * are refitted jointly by least squares on the valid cells (the sine of a self-conjugate mode is 0 on the
+ * grid and is left at 0). Unchanged if the system is singular or H has more than LSQ_MAX_HARMONICS waves. */
+static int harmonics_least_squares(const ft_grid *dem, ft_clarke_model *m, const lsq_tables *tb,
+                                   const double *res, size_t rs)
+{
+    size_t n = 2 * m->nharmonics;
+    if (n == 0 || m->nodata_filled == 0 || m->nharmonics > LSQ_MAX_HARMONICS)
+        return FT_OK;
+    double *a = ft_calloc(n * n + 2 * n, sizeof *a);
+    if (a == NULL)
+        return ft_last_error_code();
+    double *y = a + n * n, *t = y + n;
+    for (size_t row = 0; row < dem->ny; row++)
+        for (size_t col = 0; col < dem->nx; col++) {
+            if (!ft_grid_is_valid(dem, col, row) || !isfinite(dem->z[row * dem->nx + col]))
+                continue;
+            for (size_t j = 0; j < n; j++)
+                t[j] = lsq_term(m, tb, j, col, row);
+            for (size_t i = 0; i < n; i++) {
+                y[i] += t[i] * res[row * rs + col];
+                for (size_t j = i; j < n; j++)
+                    a[i * n + j] += t[i] * t[j];
+            }
+        }
+    for (size_t i = 0; i < n; i++) /* the lower triangle */
+        for (size_t j = 0; j < i; j++)
+            a[i * n + j] = a[j * n + i];
+    for (size_t j = 1; j < n; j += 2) /* a sine that is 0 everywhere: keep b = 0 */
+        if (!(a[j * n + j] > 1e-9)) {
+            for (size_t k = 0; k < n; k++)
+                a[j * n + k] = a[k * n + j] = 0.0;
+            a[j * n + j] = 1.0;
+            y[j] = 0.0;
+        }
+    if (solve_small(a, y, n))
+        for (size_t i = 0; i < m->nharmonics; i++) {
+            m->harmonics[i].a = y[2 * i];
+            m->harmonics[i].b = y[2 * i + 1];
+            m->harmonics[i].power = y[2 * i] * y[2 * i] + y[2 * i + 1] * y[2 * i + 1];
+        }
+    free(a);
+    return FT_OK;
+}
+
+/* z - T - H at the valid cells (0 elsewhere), row stride rs. */
+static void residual_minus_harmonics(const ft_grid *dem, const ft_clarke_model *m, const lsq_tables *tb, double *res,
+                                     size_t rs)
+{
+    for (size_t row = 0; row < dem->ny; row++)
+        for (size_t col = 0; col < dem->nx; col++) {
+            if (!ft_grid_is_valid(dem, col, row) || !isfinite(dem->z[row * dem->nx + col])) {
+                res[row * rs + col] = 0.0;
+                continue;
+            }
+            for (size_t i = 0; i < m->nharmonics; i++)
+                res[row * rs + col] -= m->harmonics[i].a * lsq_term(m, tb, 2 * i, col, row) +
+                                       m->harmonics[i].b * lsq_term(m, tb, 2 * i + 1, col, row);
+        }
+}
+
 static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, const clarke_frame *fr,
                         const ft_clarke_opts *o)
 {
@@ -616,11 +770,25 @@ static int fit_spectrum(const ft_grid *dem, ft_clarke_model *m, double b0c, cons
         rc = noise_wave_powers(dem, m, b0c, o->taper, buf, wave_power);
     if (rc == FT_OK)
         rc = clarke_measure_spectrum(m, fr, wave_power);
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        rc = residual_fill(dem, m, b0c, 0, buf, ft_fft_real_stride(dem->nx));
+    lsq_tables tb = {0};
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        rc = lsq_tables_init(m, &tb);
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        rc = harmonics_least_squares(dem, m, &tb, buf, ft_fft_real_stride(dem->nx));
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        residual_minus_harmonics(dem, m, &tb, buf, ft_fft_real_stride(dem->nx));
+    free(tb.cc);
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        rc = clarke_match_variogram(m, fr, dem, buf, ft_fft_real_stride(dem->nx));
     if (rc == FT_OK) {
         double cell = fmin(fr->lx / (double)m->nx, fr->ly / (double)m->ny);
         rc = clarke_spectrum_regimes(m, o->min_wavelength * cell * (1.0 - 1e-9));
     }
-    if (rc == FT_OK)
+    if (rc == FT_OK && m->noise == FT_CLARKE_NOISE_SPECTRUM)
+        m->c = 1.0; /* the matched spectrum is F itself */
+    else if (rc == FT_OK)
         scale_c(m, fr, hs.total_var);
     free(ri.log_wavelength);
     free(ri.log_power);

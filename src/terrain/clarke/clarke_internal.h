@@ -47,6 +47,10 @@ double clarke_power(const ft_clarke_model *m, double wavelength);
 int clarke_measure_spectrum(ft_clarke_model *m, const clarke_frame *fr, const double *wave_power);
 /* The regimes and breaks of the rings of at least min_wl ground units into m->regimes, m->breaks. */
 int clarke_spectrum_regimes(ft_clarke_model *m, double min_wl);
+/* Corrects m->spectrum_power so that the variogram F implies at lags of 1 .. min(64, side/2) cells is the
+ * variogram of res (z - T - H, row stride rs) over the DEM's valid pairs (clarke_variogram.c). */
+int clarke_match_variogram(ft_clarke_model *m, const clarke_frame *fr, const ft_grid *dem, const double *res,
+                           size_t rs);
 /* The power of one plane wave of this wavelength in the F the model simulates (m->noise). */
 double clarke_noise_power(const ft_clarke_model *m, double wavelength);
 /* FT_E_INVALID naming the bad value unless the noise, spectrum and regimes of m are usable. */

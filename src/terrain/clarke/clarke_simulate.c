@@ -15,7 +15,8 @@
  *    extrapolation. Amplitudes follow the regression exactly (eq. xiv gives them from P; Clarke kept the
  *    empirical signs, here phases are random).
  * F then loses its own least-squares plane (T is the model's only plane). T is evaluated at the new
- * cell centres. Then, over the cells covering the fitted extent, c solves
+ * cell centres. With the measured spectrum c = 1 (F has the DEM's variogram: clarke_variogram.c); with
+ * the power law, over the cells covering the fitted extent, c solves
  * var(T + H + cF) = sd² (the positive root of the quadratic, 0 if there is none) and a constant shift
  * makes the mean the original's: Clarke scaled F "to make the new surface mean and variance similar to
  * the original".
@@ -337,14 +338,17 @@ static void block_accumulate(const ft_clarke_model *m, const sim_grid *s, const 
     }
 }
 
-/* c >= 0 with var(G + cF) = sd², and the shift that gives the original mean. */
+/* c >= 0 with var(G + cF) = sd² (power-law noise; 1 for the measured spectrum, whose variogram is the
+ * DEM's), and the shift that gives the original mean. */
 static void solve_scale(const ft_clarke_model *m, const block_sums *b, double *c, double *shift)
 {
     double mg = b->sg / b->n, mf = b->sf / b->n;
     double vg = b->sgg / b->n - mg * mg, vf = b->sff / b->n - mf * mf, cov = b->sgf / b->n - mg * mf;
     double target = m->sd * m->sd;
     *c = 0.0;
-    if (vf > 0.0) {
+    if (m->noise == FT_CLARKE_NOISE_SPECTRUM) { /* F is in the DEM's units already (clarke_variogram.c) */
+        *c = 1.0;
+    } else if (vf > 0.0) {
         double disc = cov * cov - vf * (vg - target);
         double root = disc >= 0.0 ? (-cov + sqrt(disc)) / vf : 0.0;
         *c = root > 0.0 ? root : 0.0;
