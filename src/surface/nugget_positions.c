@@ -26,6 +26,7 @@
 #define NS 28          /* position-noise sds tried, geometric between the smallest and a third of the largest lag */
 #define DETECT_F 3.0
 #define DETECT_SHARE 0.02
+#define XY_F 4.0       /* the position noise is kept when it adds F >= XY_F to the z-only model */
 
 /* E|d + δ|^(2H), δ ~ N(0, s² I₂). */
 double ft_nugget_eiv_moment(double H, double d, double s)
@@ -119,6 +120,12 @@ static double eiv_profile(eiv_data *p, double s_fixed, double *H, double *s, dou
 int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
                             ft_noise_model *m)
 {
+    return ft_nugget_fit_positions_mode(d, q, n, sigma_z, sigma_xy, 0, m);
+}
+
+int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
+                                 int z_only, ft_noise_model *m)
+{
     if (d == NULL || q == NULL || m == NULL)
         return ft_error(FT_E_INVALID, "position-noise fit: NULL argument");
     if (!(sigma_z >= 0.0) || !isfinite(sigma_z) || !(sigma_xy >= 0.0) || !isfinite(sigma_xy))
@@ -139,7 +146,21 @@ int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double s
         buf[i] = 1.0 / (q[i] * q[i]);
     eiv_data p = {d, q, buf, n, sigma_z > 0.0 ? 2.0 * sigma_z * sigma_z : -1.0, buf + n};
     double H1 = NAN, s1 = 0.0, c0 = 0.0, a = 0.0;
-    double rss1 = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
+    double rss1 = eiv_profile(&p, z_only ? 0.0 : sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
+    /* Model choice: the z-only model (s = 0) unless the position noise reduces the RSS significantly
+     * (F >= XY_F on its one parameter). White z noise alone is a constant the counters' default lags
+     * can carry; a spurious small s would make the caller widen the lags (points_dim.c). */
+    if (s1 > 0.0 && !(sigma_xy > 0.0) && n > 5) {
+        double Hz = NAN, sz = 0.0, c0z = 0.0, az = 0.0;
+        double rssz = eiv_profile(&p, 0.0, &Hz, &sz, &c0z, &az);
+        if (isfinite(rssz) && (rss1 <= 0.0 ? rssz <= 0.0 : (rssz - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
+            rss1 = rssz;
+            H1 = Hz;
+            s1 = 0.0;
+            c0 = c0z;
+            a = az;
+        }
+    }
     double H0 = NAN, s0 = 0.0, c00, a0;
     p.c0_fixed = 0.0;
     double rss0 = eiv_profile(&p, 0.0, &H0, &s0, &c00, &a0);

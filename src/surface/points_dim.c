@@ -18,6 +18,7 @@
 
 #include "internal.h"
 #include "points_internal.h"
+#include "surface/grid_internal.h"
 
 /* "0.5 (12 pairs), 0.7 (40 pairs)" for the lags that are not kept, into buf. */
 static void list_dropped(const ft_points_counters *c, char *buf, size_t size)
@@ -90,6 +91,8 @@ static double sample_se(const ft_points_counters *c, const ft_dim_result *r)
 
 #define FLOOR_RATIO 1.0 /* the fit starts where the power law exceeds FLOOR_RATIO x what the noise adds */
 #define XY_FLOOR 3.0    /* and above XY_FLOOR x a given position-noise sd */
+#define ZONLY_RATIO 0.25 /* z noise alone (a constant, removed exactly in expectation): from ZONLY_RATIO x it */
+#define ZONLY_LAGS 3     /* the default lags kept for z noise alone when this many are above that floor */
 
 /* The method's statistic without the counters' z-noise correction. */
 static double raw_value(const ft_points_lag *l, ft_points_method m)
@@ -101,7 +104,7 @@ static double raw_value(const ft_points_lag *l, ft_points_method m)
 }
 
 /* The noise model of the kept lags (nugget_positions.c): fitted to the mean squared differences. */
-static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m)
+static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, int z_only, ft_noise_model *m)
 {
     double *d = ft_malloc(2 * c->n * sizeof *d);
     if (d == NULL)
@@ -115,7 +118,7 @@ static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, f
             q[n++] = l->B / l->C;
         }
     }
-    int rc = ft_nugget_fit_positions(d, q, n, o->noise_sigma, o->noise_sigma_xy, m);
+    int rc = ft_nugget_fit_positions_mode(d, q, n, o->noise_sigma, o->noise_sigma_xy, z_only, m);
     free(d);
     return rc;
 }
@@ -124,8 +127,8 @@ static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, f
  * power law; exact in expectation, where a ratio on |Δz| would carry the Jensen gap of the mixture over true
  * distances), as the method's statistic of a Gaussian difference of that variance: E|X| = sqrt(2/π v),
  * sd|X| = sqrt((1 - 2/π) v); and the floor. */
-static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m,
-                           ft_loglog **out)
+static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, int z_only,
+                           ft_noise_model *m, ft_loglog **out)
 {
     ft_loglog *t = ft_loglog_create(c->n);
     if (t == NULL)
@@ -141,7 +144,7 @@ static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts
         double clean = l->B / l->C - (total - signal); /* the observed mean Δz² less the modelled noise */
         if (!(v > 0.0) || !(signal > 0.0) || !(total > 0.0) || !(clean > 0.0))
             continue;
-        if (signal < FLOOR_RATIO * (total - signal))
+        if (signal < (z_only ? ZONLY_RATIO : FLOOR_RATIO) * (total - signal))
             floor = l->dist * (1.0 + 1e-9);
         rc = ft_loglog_push(t, l->dist, sqrt(gauss * clean), l->C);
     }
@@ -179,18 +182,18 @@ static int fit_plain(const ft_loglog *t, const ft_points_dim_opts *o, double lo,
 
 /* The fit with the noise model: noise on x, y and z detected (or given) in the mean squared differences,
  * removed from the statistic, the fit from the floor up; what was done in the warnings. */
-static int fit_points(const ft_points_counters *c, const ft_loglog *t, const ft_points_dim_opts *o,
+static int fit_points(const ft_points_counters *c, const ft_loglog *t, const ft_points_dim_opts *o, int z_only,
                       ft_dim_result **out)
 {
     ft_noise_model m = {0};
-    if (o->noise_mode < 0 || fit_model(c, o, &m) != FT_OK || !m.detected) {
+    if (o->noise_mode < 0 || fit_model(c, o, z_only, &m) != FT_OK || !m.detected) {
         int rc = fit_plain(t, o, 0.0, out);
         if (rc == FT_OK)
             (*out)->nugget = m;
         return rc;
     }
     ft_loglog *ct = NULL;
-    int rc = corrected_table(c, o, &m, &ct);
+    int rc = corrected_table(c, o, z_only, &m, &ct);
     if (rc != FT_OK)
         return rc;
     size_t need = o->fit.min_points > 3 ? o->fit.min_points : 3, above = 0;
@@ -243,9 +246,27 @@ static int count(const ft_points *p, const ft_points_dim_opts *o, ft_points_coun
     return rc;
 }
 
+/* Least-squares slope of log value on log scale over the whole table (NaN with fewer than 2 rows). */
+static double table_slope(const ft_loglog *t)
+{
+    double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    for (size_t i = 0; i < t->n; i++) {
+        double x = log(t->rows[i].scale), y = log(t->rows[i].value);
+        n += 1.0;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    double det = n * sxx - sx * sx;
+    return n >= 2.0 && det > 0.0 ? (n * sxy - sx * sy) / det : NAN;
+}
+
 /* Default lags and a nugget (or a position-noise floor) near the top of their range: the lags extended
  * to EXTEND_LAG x the mean spacing, at most a quarter of the bounding box's shorter side. Returns the new
- * largest lag, or 0 to keep the counters. */
+ * largest lag, or 0 to keep the counters. A default-lag plot flatter than H = FLAT_H (its least-squares
+ * slope) extends them too: noise covering every default lag (position noise wider than the largest) looks
+ * like that, and a nugget model fitted to it can put all of it in c0 and miss the test. */
 #define EXTEND_LAG 32.0
 #define FLAT_H 0.15
 static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, const ft_points_counters *c,
@@ -259,14 +280,34 @@ static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, 
     double top = c->lags[c->n - 1].lag;
     if (!(hi > 2.0 * top))
         return 0.0;
-    if (3.0 * o->noise_sigma_xy * 4.0 > top)
+    if (3.0 * o->noise_sigma_xy * 4.0 > top || table_slope(t) < FLAT_H)
         return hi;
-    (void)t;
     ft_noise_model m;
-    /* A plot as flat as H < FLAT_H over the default lags: the noise may dominate all of them. */
-    if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
+    if (fit_model(c, o, 0, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
         return 0.0;
     return hi;
+}
+
+/* Which counters the fit uses once the lags were extended (def: the default lags, ext: the extended ones):
+ * the default ones (returns 1) when the model fitted to the extended lags finds no noise (the extension only
+ * serves the noise fit), or finds white z noise alone (no position noise kept, none given) that leaves at
+ * least ZONLY_LAGS default lags with a power law of ZONLY_RATIO x the nugget or more (the z-only model fitted
+ * to them): a nugget is a constant the default lags carry, and their fit avoids the bend of one
+ * realization's plot at the larger lags (*z_only = 1: the fit holds the position noise at 0). */
+static int keep_default_lags(const ft_points_counters *def, const ft_points_counters *ext, const ft_points_dim_opts *o,
+                             int *z_only)
+{
+    ft_noise_model m;
+    *z_only = 0;
+    if (fit_model(ext, o, 0, &m) != FT_OK || !m.detected)
+        return 1;
+    if (o->noise_sigma_xy > 0.0 || m.s > 0.0 || fit_model(def, o, 1, &m) != FT_OK || !m.detected)
+        return 0;
+    int above = 0;
+    for (size_t k = 0; k < def->n; k++)
+        above += def->lags[k].status == FT_LAG_KEPT && m.a * pow(def->lags[k].dist, 2.0 * m.H) >= ZONLY_RATIO * m.c0;
+    *z_only = above >= ZONLY_LAGS;
+    return *z_only;
 }
 
 int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out)
@@ -285,19 +326,28 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         return ft_error(FT_E_INVALID, "scattered points: noise_mode must be 0 or -1, got %d", o.noise_mode);
     ft_points_counters *c = NULL;
     ft_loglog *t = NULL;
-    int rc = count(p, &o, &c, &t);
+    int rc = count(p, &o, &c, &t), z_only = 0;
     double ext = rc == FT_OK ? extended_max_lag(p, &o, c, t) : 0.0;
     if (ext > 0.0) {
         ft_points_dim_opts o2 = o;
         o2.min_lag = o.min_lag > 0.0 ? o.min_lag : c->lags[0].lag;
         o2.max_lag = ext;
-        ft_points_counters_free(c);
-        ft_loglog_free(t);
-        c = NULL;
-        rc = count(p, &o2, &c, &t);
+        ft_points_counters *c2 = NULL;
+        ft_loglog *t2 = NULL;
+        rc = count(p, &o2, &c2, &t2);
+        if (rc == FT_OK && keep_default_lags(c, c2, &o, &z_only)) {
+            ext = 0.0;
+            ft_points_counters_free(c2);
+            ft_loglog_free(t2);
+        } else {
+            ft_points_counters_free(c);
+            ft_loglog_free(t);
+            c = c2;
+            t = t2;
+        }
     }
     if (rc == FT_OK)
-        rc = fit_points(c, t, &o, out);
+        rc = fit_points(c, t, &o, z_only, out);
     if (rc == FT_OK && ext > 0.0)
         rc = ft_dim_result_warn(*out, "noise model: the default lags (to %g x the mean spacing) were extended to "
                                 "%g (%g x the spacing %g) to fit past the noise", 4.0, ext, ext / c->spacing,
