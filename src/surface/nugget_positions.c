@@ -12,7 +12,10 @@
  * to d^(2H) as s -> 0 and to the constant a s^(2H) 2^H Γ(1 + H) as d -> 0: position noise flattens
  * the plot toward small lags like a nugget, but fades with d). The fit profiles H and s on grids, c0 >= 0
  * and a by weighted linear least squares (weights 1/q²), and compares with the pure power law by an F
- * test on the two extra parameters.
+ * test on the two extra parameters. Of the two noise terms only those the data ask for are kept: the
+ * z-only model (s = 0) unless s adds F >= XY_F, then the position-only model (c0 = 0) unless c0 adds
+ * F >= XY_F (nested models, one parameter each): a free c0 trades against s and on rough surfaces can take
+ * many times the z noise, over-correcting the lags near the floor.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -159,6 +162,22 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
             s1 = 0.0;
             c0 = c0z;
             a = az;
+        }
+    }
+    /* And the position-only model (c0 = 0) unless the nugget reduces the RSS by F >= XY_F: on rough
+     * surfaces a free c0 trades against s and can take far more than the z noise. */
+    if (s1 > 0.0 && c0 > 0.0 && !(sigma_z > 0.0) && n > 5) {
+        double Hx = NAN, sx = 0.0, c0x = 0.0, ax = 0.0, keep = p.c0_fixed;
+        p.c0_fixed = 0.0;
+        double rssx = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &Hx, &sx, &c0x, &ax);
+        p.c0_fixed = keep;
+        if (isfinite(rssx) && sx > 0.0 &&
+            (rss1 <= 0.0 ? rssx <= 0.0 : (rssx - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
+            rss1 = rssx;
+            H1 = Hx;
+            s1 = sx;
+            c0 = 0.0;
+            a = ax;
         }
     }
     double H0 = NAN, s0 = 0.0, c00, a0;
