@@ -150,10 +150,17 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
     eiv_data p = {d, q, buf, n, sigma_z > 0.0 ? 2.0 * sigma_z * sigma_z : -1.0, buf + n};
     double H1 = NAN, s1 = 0.0, c0 = 0.0, a = 0.0;
     double rss1 = eiv_profile(&p, z_only ? 0.0 : sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
+    double H0 = NAN, s0 = 0.0, c00, a0, c0_given = p.c0_fixed;
+    p.c0_fixed = 0.0;
+    double rss0 = eiv_profile(&p, 0.0, &H0, &s0, &c00, &a0);
+    p.c0_fixed = c0_given;
+    /* A full model that does not beat the pure power law (F < DETECT_F) is not detected, and neither is
+     * any of its nested models: no choice to make. */
+    int choose = isfinite(rss1) && rss1 > 0.0 && ((rss0 - rss1) / 2.0) / (rss1 / (double)(n - 4)) >= DETECT_F;
     /* Model choice: the z-only model (s = 0) unless the position noise reduces the RSS significantly
      * (F >= XY_F on its one parameter). White z noise alone is a constant the counters' default lags
      * can carry; a spurious small s would make the caller widen the lags (points_dim.c). */
-    if (s1 > 0.0 && !(sigma_xy > 0.0) && n > 5) {
+    if (choose && s1 > 0.0 && !(sigma_xy > 0.0) && n > 5) {
         double Hz = NAN, sz = 0.0, c0z = 0.0, az = 0.0;
         double rssz = eiv_profile(&p, 0.0, &Hz, &sz, &c0z, &az);
         if (isfinite(rssz) && (rss1 <= 0.0 ? rssz <= 0.0 : (rssz - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
@@ -166,11 +173,11 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
     }
     /* And the position-only model (c0 = 0) unless the nugget reduces the RSS by F >= XY_F: on rough
      * surfaces a free c0 trades against s and can take far more than the z noise. */
-    if (s1 > 0.0 && c0 > 0.0 && !(sigma_z > 0.0) && n > 5) {
-        double Hx = NAN, sx = 0.0, c0x = 0.0, ax = 0.0, keep = p.c0_fixed;
+    if (choose && s1 > 0.0 && c0 > 0.0 && !(sigma_z > 0.0) && n > 5) {
+        double Hx = NAN, sx = 0.0, c0x = 0.0, ax = 0.0;
         p.c0_fixed = 0.0;
         double rssx = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &Hx, &sx, &c0x, &ax);
-        p.c0_fixed = keep;
+        p.c0_fixed = c0_given;
         if (isfinite(rssx) && sx > 0.0 &&
             (rss1 <= 0.0 ? rssx <= 0.0 : (rssx - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
             rss1 = rssx;
@@ -180,9 +187,6 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
             a = ax;
         }
     }
-    double H0 = NAN, s0 = 0.0, c00, a0;
-    p.c0_fixed = 0.0;
-    double rss0 = eiv_profile(&p, 0.0, &H0, &s0, &c00, &a0);
     free(buf);
     if (!isfinite(rss1))
         return ft_error(FT_E_NUMERIC, "position-noise fit: no increasing power law fits the %zu lags", n);
