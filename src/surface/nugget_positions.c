@@ -13,9 +13,9 @@
  * the plot toward small lags like a nugget, but fades with d). The fit profiles H and s on grids, c0 >= 0
  * and a by weighted linear least squares (weights 1/q²), and compares with the pure power law by an F
  * test on the two extra parameters. Of the two noise terms only those the data ask for are kept: the
- * z-only model (s = 0) unless s adds F >= XY_F, then the position-only model (c0 = 0) unless c0 adds
- * F >= XY_F (nested models, one parameter each): a free c0 trades against s and on rough surfaces can take
- * many times the z noise, over-correcting the lags near the floor.
+ * z-only model (s = 0) unless s adds F >= XY_F, then, for H < XY_ONLY_H, the position-only model (c0 = 0)
+ * unless c0 adds F >= XY_F (nested models, one parameter each): a free c0 trades against s and on rough
+ * surfaces can take many times the z noise, over-correcting the lags near the floor.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -29,6 +29,7 @@
 #define NS 28          /* position-noise sds tried, geometric between the smallest and a third of the largest lag */
 #define DETECT_F 3.0
 #define DETECT_SHARE 0.02
+#define XY_ONLY_H 0.5  /* the position-only model is tried below this H only */
 #define XY_F 4.0       /* the position noise is kept when it adds F >= XY_F to the z-only model */
 
 /* E|d + δ|^(2H), δ ~ N(0, s² I₂). */
@@ -171,9 +172,11 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
             a = az;
         }
     }
-    /* And the position-only model (c0 = 0) unless the nugget reduces the RSS by F >= XY_F: on rough
-     * surfaces a free c0 trades against s and can take far more than the z noise. */
-    if (choose && s1 > 0.0 && c0 > 0.0 && !(sigma_z > 0.0) && n > 5) {
+    /* And on rough surfaces (H < XY_ONLY_H) the position-only model (c0 = 0) unless the nugget reduces the
+     * RSS by F >= XY_F: there a free c0 trades against s and can take far more than the z noise. On smooth
+     * ones the position noise's excess, σ_p² (2H)² a d^(2H-2) to second order, is nearly a constant itself,
+     * and a small s passes for white z noise (c0 would be dropped from z-only data). */
+    if (choose && s1 > 0.0 && c0 > 0.0 && H1 < XY_ONLY_H && !(sigma_z > 0.0) && n > 5) {
         double Hx = NAN, sx = 0.0, c0x = 0.0, ax = 0.0;
         p.c0_fixed = 0.0;
         double rssx = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &Hx, &sx, &c0x, &ax);
