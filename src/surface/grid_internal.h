@@ -114,9 +114,6 @@ double ft_nugget_wls(const double *x, const double *q, const double *w, size_t n
  * then golden section); scratch holds 2 n values. Returns the weighted RSS (INFINITY: no a > 0 anywhere). */
 double ft_nugget_profile(const double *lr, const double *q, const double *w, size_t n, double c0_fixed, double emin,
                          double emax, double *scratch, double *e, double *c0, double *a);
-/* ft_nugget_fit_positions (nugget_positions.c) with the position noise held at 0 when z_only is 1. */
-int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
-                                 int z_only, ft_noise_model *m);
 /* The spectrum's fit with a white-noise floor, P(f) = N0 + A f^-beta (spectrum_floor.c): N0 detected (or
  * given by no->sigma_z: N0 = sigma_z²) and removed, the fit kept below the frequency where the power law
  * falls to N0; result->nugget holds the model and "warnings" say what was done. */

@@ -124,12 +124,6 @@ static double eiv_profile(eiv_data *p, double s_fixed, double *H, double *s, dou
 int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
                             ft_noise_model *m)
 {
-    return ft_nugget_fit_positions_mode(d, q, n, sigma_z, sigma_xy, 0, m);
-}
-
-int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, double sigma_z, double sigma_xy,
-                                 int z_only, ft_noise_model *m)
-{
     if (d == NULL || q == NULL || m == NULL)
         return ft_error(FT_E_INVALID, "position-noise fit: NULL argument");
     if (!(sigma_z >= 0.0) || !isfinite(sigma_z) || !(sigma_xy >= 0.0) || !isfinite(sigma_xy))
@@ -150,7 +144,7 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
         buf[i] = 1.0 / (q[i] * q[i]);
     eiv_data p = {d, q, buf, n, sigma_z > 0.0 ? 2.0 * sigma_z * sigma_z : -1.0, buf + n};
     double H1 = NAN, s1 = 0.0, c0 = 0.0, a = 0.0;
-    double rss1 = eiv_profile(&p, z_only ? 0.0 : sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
+    double rss1 = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
     double H0 = NAN, s0 = 0.0, c00, a0, c0_given = p.c0_fixed;
     p.c0_fixed = 0.0;
     double rss0 = eiv_profile(&p, 0.0, &H0, &s0, &c00, &a0);
@@ -160,7 +154,7 @@ int ft_nugget_fit_positions_mode(const double *d, const double *q, size_t n, dou
     int choose = isfinite(rss1) && rss1 > 0.0 && ((rss0 - rss1) / 2.0) / (rss1 / (double)(n - 4)) >= DETECT_F;
     /* Model choice: the z-only model (s = 0) unless the position noise reduces the RSS significantly
      * (F >= XY_F on its one parameter). White z noise alone is a constant the counters' default lags
-     * can carry; a spurious small s would make the caller widen the lags (points_dim.c). */
+     * can carry. */
     if (choose && s1 > 0.0 && !(sigma_xy > 0.0) && n > 5) {
         double Hz = NAN, sz = 0.0, c0z = 0.0, az = 0.0;
         double rssz = eiv_profile(&p, 0.0, &Hz, &sz, &c0z, &az);

@@ -18,7 +18,6 @@
 
 #include "internal.h"
 #include "points_internal.h"
-#include "surface/grid_internal.h"
 
 /* "0.5 (12 pairs), 0.7 (40 pairs)" for the lags that are not kept, into buf. */
 static void list_dropped(const ft_points_counters *c, char *buf, size_t size)
@@ -91,8 +90,6 @@ static double sample_se(const ft_points_counters *c, const ft_dim_result *r)
 
 #define FLOOR_RATIO 1.0 /* the fit starts where the power law exceeds FLOOR_RATIO x what the noise adds */
 #define XY_FLOOR 3.0    /* and above XY_FLOOR x a given position-noise sd */
-#define ZONLY_RATIO 0.25 /* z noise alone (a constant, removed exactly in expectation): from ZONLY_RATIO x it */
-#define ZONLY_LAGS 3     /* the default lags kept for z noise alone when this many are above that floor */
 
 /* The method's statistic without the counters' z-noise correction. */
 static double raw_value(const ft_points_lag *l, ft_points_method m)
@@ -104,7 +101,7 @@ static double raw_value(const ft_points_lag *l, ft_points_method m)
 }
 
 /* The noise model of the kept lags (nugget_positions.c): fitted to the mean squared differences. */
-static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, int z_only, ft_noise_model *m)
+static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m)
 {
     double *d = ft_malloc(2 * c->n * sizeof *d);
     if (d == NULL)
@@ -118,7 +115,7 @@ static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, i
             q[n++] = l->B / l->C;
         }
     }
-    int rc = ft_nugget_fit_positions_mode(d, q, n, o->noise_sigma, o->noise_sigma_xy, z_only, m);
+    int rc = ft_nugget_fit_positions(d, q, n, o->noise_sigma, o->noise_sigma_xy, m);
     free(d);
     return rc;
 }
@@ -127,8 +124,8 @@ static int fit_model(const ft_points_counters *c, const ft_points_dim_opts *o, i
  * power law; exact in expectation, where a ratio on |Δz| would carry the Jensen gap of the mixture over true
  * distances), as the method's statistic of a Gaussian difference of that variance: E|X| = sqrt(2/π v),
  * sd|X| = sqrt((1 - 2/π) v); and the floor. */
-static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, int z_only,
-                           ft_noise_model *m, ft_loglog **out)
+static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts *o, ft_noise_model *m,
+                           ft_loglog **out)
 {
     ft_loglog *t = ft_loglog_create(c->n);
     if (t == NULL)
@@ -144,7 +141,7 @@ static int corrected_table(const ft_points_counters *c, const ft_points_dim_opts
         double clean = l->B / l->C - (total - signal); /* the observed mean Δz² less the modelled noise */
         if (!(v > 0.0) || !(signal > 0.0) || !(total > 0.0) || !(clean > 0.0))
             continue;
-        if (signal < (z_only ? ZONLY_RATIO : FLOOR_RATIO) * (total - signal))
+        if (signal < FLOOR_RATIO * (total - signal))
             floor = l->dist * (1.0 + 1e-9);
         rc = ft_loglog_push(t, l->dist, sqrt(gauss * clean), l->C);
     }
@@ -182,18 +179,18 @@ static int fit_plain(const ft_loglog *t, const ft_points_dim_opts *o, double lo,
 
 /* The fit with the noise model: noise on x, y and z detected (or given) in the mean squared differences,
  * removed from the statistic, the fit from the floor up; what was done in the warnings. */
-static int fit_points(const ft_points_counters *c, const ft_loglog *t, const ft_points_dim_opts *o, int z_only,
+static int fit_points(const ft_points_counters *c, const ft_loglog *t, const ft_points_dim_opts *o,
                       ft_dim_result **out)
 {
     ft_noise_model m = {0};
-    if (o->noise_mode < 0 || fit_model(c, o, z_only, &m) != FT_OK || !m.detected) {
+    if (o->noise_mode < 0 || fit_model(c, o, &m) != FT_OK || !m.detected) {
         int rc = fit_plain(t, o, 0.0, out);
         if (rc == FT_OK)
             (*out)->nugget = m;
         return rc;
     }
     ft_loglog *ct = NULL;
-    int rc = corrected_table(c, o, z_only, &m, &ct);
+    int rc = corrected_table(c, o, &m, &ct);
     if (rc != FT_OK)
         return rc;
     size_t need = o->fit.min_points > 3 ? o->fit.min_points : 3, above = 0;
@@ -283,31 +280,17 @@ static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, 
     if (3.0 * o->noise_sigma_xy * 4.0 > top || table_slope(t) < FLAT_H)
         return hi;
     ft_noise_model m;
-    if (fit_model(c, o, 0, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
+    if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
         return 0.0;
     return hi;
 }
 
-/* Which counters the fit uses once the lags were extended (def: the default lags, ext: the extended ones):
- * the default ones (returns 1) when the model fitted to the extended lags finds no noise (the extension only
- * serves the noise fit), or finds white z noise alone (no position noise kept, none given) that leaves at
- * least ZONLY_LAGS default lags with a power law of ZONLY_RATIO x the nugget or more (the z-only model fitted
- * to them): a nugget is a constant the default lags carry, and their fit avoids the bend of one
- * realization's plot at the larger lags (*z_only = 1: the fit holds the position noise at 0). */
-static int keep_default_lags(const ft_points_counters *def, const ft_points_counters *ext, const ft_points_dim_opts *o,
-                             int *z_only)
+/* The default lags are kept (returns 1) when the model fitted to the extended ones finds no noise there:
+ * the extension only serves the noise fit. */
+static int keep_default_lags(const ft_points_counters *ext, const ft_points_dim_opts *o)
 {
     ft_noise_model m;
-    *z_only = 0;
-    if (fit_model(ext, o, 0, &m) != FT_OK || !m.detected)
-        return 1;
-    if (o->noise_sigma_xy > 0.0 || m.s > 0.0 || fit_model(def, o, 1, &m) != FT_OK || !m.detected)
-        return 0;
-    int above = 0;
-    for (size_t k = 0; k < def->n; k++)
-        above += def->lags[k].status == FT_LAG_KEPT && m.a * pow(def->lags[k].dist, 2.0 * m.H) >= ZONLY_RATIO * m.c0;
-    *z_only = above >= ZONLY_LAGS;
-    return *z_only;
+    return fit_model(ext, o, &m) != FT_OK || !m.detected;
 }
 
 int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out)
@@ -326,7 +309,7 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         return ft_error(FT_E_INVALID, "scattered points: noise_mode must be 0 or -1, got %d", o.noise_mode);
     ft_points_counters *c = NULL;
     ft_loglog *t = NULL;
-    int rc = count(p, &o, &c, &t), z_only = 0;
+    int rc = count(p, &o, &c, &t);
     double ext = rc == FT_OK ? extended_max_lag(p, &o, c, t) : 0.0;
     if (ext > 0.0) {
         ft_points_dim_opts o2 = o;
@@ -335,7 +318,7 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         ft_points_counters *c2 = NULL;
         ft_loglog *t2 = NULL;
         rc = count(p, &o2, &c2, &t2);
-        if (rc == FT_OK && keep_default_lags(c, c2, &o, &z_only)) {
+        if (rc == FT_OK && keep_default_lags(c2, &o)) {
             ext = 0.0;
             ft_points_counters_free(c2);
             ft_loglog_free(t2);
@@ -347,7 +330,7 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         }
     }
     if (rc == FT_OK)
-        rc = fit_points(c, t, &o, z_only, out);
+        rc = fit_points(c, t, &o, out);
     if (rc == FT_OK && ext > 0.0)
         rc = ft_dim_result_warn(*out, "noise model: the default lags (to %g x the mean spacing) were extended to "
                                 "%g (%g x the spacing %g) to fit past the noise", 4.0, ext, ext / c->spacing,
