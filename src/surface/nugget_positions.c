@@ -12,7 +12,10 @@
  * to d^(2H) as s -> 0 and to the constant a s^(2H) 2^H Γ(1 + H) as d -> 0: position noise flattens
  * the plot toward small lags like a nugget, but fades with d). The fit profiles H and s on grids, c0 >= 0
  * and a by weighted linear least squares (weights 1/q²), and compares with the pure power law by an F
- * test on the two extra parameters.
+ * test on the two extra parameters. Of the two noise terms only those the data ask for are kept: the
+ * z-only model (s = 0) unless s adds F >= XY_F, then, for H < XY_ONLY_H, the position-only model (c0 = 0)
+ * unless c0 adds F >= XY_F (nested models, one parameter each): a free c0 trades against s and on rough
+ * surfaces can take many times the z noise, over-correcting the lags near the floor.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -26,6 +29,8 @@
 #define NS 28          /* position-noise sds tried, geometric between the smallest and a third of the largest lag */
 #define DETECT_F 3.0
 #define DETECT_SHARE 0.02
+#define XY_ONLY_H 0.5  /* the position-only model is tried below this H only */
+#define XY_F 4.0       /* the position noise is kept when it adds F >= XY_F to the z-only model */
 
 /* E|d + δ|^(2H), δ ~ N(0, s² I₂). */
 double ft_nugget_eiv_moment(double H, double d, double s)
@@ -140,9 +145,45 @@ int ft_nugget_fit_positions(const double *d, const double *q, size_t n, double s
     eiv_data p = {d, q, buf, n, sigma_z > 0.0 ? 2.0 * sigma_z * sigma_z : -1.0, buf + n};
     double H1 = NAN, s1 = 0.0, c0 = 0.0, a = 0.0;
     double rss1 = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &H1, &s1, &c0, &a);
-    double H0 = NAN, s0 = 0.0, c00, a0;
+    double H0 = NAN, s0 = 0.0, c00, a0, c0_given = p.c0_fixed;
     p.c0_fixed = 0.0;
     double rss0 = eiv_profile(&p, 0.0, &H0, &s0, &c00, &a0);
+    p.c0_fixed = c0_given;
+    /* A full model that does not beat the pure power law (F < DETECT_F) is not detected, and neither is
+     * any of its nested models: no choice to make. */
+    int choose = isfinite(rss1) && rss1 > 0.0 && ((rss0 - rss1) / 2.0) / (rss1 / (double)(n - 4)) >= DETECT_F;
+    /* Model choice: the z-only model (s = 0) unless the position noise reduces the RSS significantly
+     * (F >= XY_F on its one parameter). White z noise alone is a constant the counters' default lags
+     * can carry. */
+    if (choose && s1 > 0.0 && !(sigma_xy > 0.0) && n > 5) {
+        double Hz = NAN, sz = 0.0, c0z = 0.0, az = 0.0;
+        double rssz = eiv_profile(&p, 0.0, &Hz, &sz, &c0z, &az);
+        if (isfinite(rssz) && (rss1 <= 0.0 ? rssz <= 0.0 : (rssz - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
+            rss1 = rssz;
+            H1 = Hz;
+            s1 = 0.0;
+            c0 = c0z;
+            a = az;
+        }
+    }
+    /* And on rough surfaces (H < XY_ONLY_H) the position-only model (c0 = 0) unless the nugget reduces the
+     * RSS by F >= XY_F: there a free c0 trades against s and can take far more than the z noise. On smooth
+     * ones the position noise's excess, σ_p² (2H)² a d^(2H-2) to second order, is nearly a constant itself,
+     * and a small s passes for white z noise (c0 would be dropped from z-only data). */
+    if (choose && s1 > 0.0 && c0 > 0.0 && H1 < XY_ONLY_H && !(sigma_z > 0.0) && n > 5) {
+        double Hx = NAN, sx = 0.0, c0x = 0.0, ax = 0.0;
+        p.c0_fixed = 0.0;
+        double rssx = eiv_profile(&p, sigma_xy > 0.0 ? sqrt(2.0) * sigma_xy : -1.0, &Hx, &sx, &c0x, &ax);
+        p.c0_fixed = c0_given;
+        if (isfinite(rssx) && sx > 0.0 &&
+            (rss1 <= 0.0 ? rssx <= 0.0 : (rssx - rss1) / (rss1 / (double)(n - 4)) < XY_F)) {
+            rss1 = rssx;
+            H1 = Hx;
+            s1 = sx;
+            c0 = 0.0;
+            a = ax;
+        }
+    }
     free(buf);
     if (!isfinite(rss1))
         return ft_error(FT_E_NUMERIC, "position-noise fit: no increasing power law fits the %zu lags", n);

@@ -243,9 +243,27 @@ static int count(const ft_points *p, const ft_points_dim_opts *o, ft_points_coun
     return rc;
 }
 
+/* Least-squares slope of log value on log scale over the whole table (NaN with fewer than 2 rows). */
+static double table_slope(const ft_loglog *t)
+{
+    double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    for (size_t i = 0; i < t->n; i++) {
+        double x = log(t->rows[i].scale), y = log(t->rows[i].value);
+        n += 1.0;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    double det = n * sxx - sx * sx;
+    return n >= 2.0 && det > 0.0 ? (n * sxy - sx * sy) / det : NAN;
+}
+
 /* Default lags and a nugget (or a position-noise floor) near the top of their range: the lags extended
  * to EXTEND_LAG x the mean spacing, at most a quarter of the bounding box's shorter side. Returns the new
- * largest lag, or 0 to keep the counters. */
+ * largest lag, or 0 to keep the counters. A default-lag plot flatter than H = FLAT_H (its least-squares
+ * slope) extends them too: noise covering every default lag (position noise wider than the largest) looks
+ * like that, and a nugget model fitted to it can put all of it in c0 and miss the test. */
 #define EXTEND_LAG 32.0
 #define FLAT_H 0.15
 static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, const ft_points_counters *c,
@@ -259,14 +277,20 @@ static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, 
     double top = c->lags[c->n - 1].lag;
     if (!(hi > 2.0 * top))
         return 0.0;
-    if (3.0 * o->noise_sigma_xy * 4.0 > top)
+    if (3.0 * o->noise_sigma_xy * 4.0 > top || table_slope(t) < FLAT_H)
         return hi;
-    (void)t;
     ft_noise_model m;
-    /* A plot as flat as H < FLAT_H over the default lags: the noise may dominate all of them. */
     if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
         return 0.0;
     return hi;
+}
+
+/* The default lags are kept (returns 1) when the model fitted to the extended ones finds no noise there:
+ * the extension only serves the noise fit. */
+static int keep_default_lags(const ft_points_counters *ext, const ft_points_dim_opts *o)
+{
+    ft_noise_model m;
+    return fit_model(ext, o, &m) != FT_OK || !m.detected;
 }
 
 int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft_dim_result **out)
@@ -291,10 +315,19 @@ int ft_surface_dim_points(const ft_points *p, const ft_points_dim_opts *opts, ft
         ft_points_dim_opts o2 = o;
         o2.min_lag = o.min_lag > 0.0 ? o.min_lag : c->lags[0].lag;
         o2.max_lag = ext;
-        ft_points_counters_free(c);
-        ft_loglog_free(t);
-        c = NULL;
-        rc = count(p, &o2, &c, &t);
+        ft_points_counters *c2 = NULL;
+        ft_loglog *t2 = NULL;
+        rc = count(p, &o2, &c2, &t2);
+        if (rc == FT_OK && keep_default_lags(c2, &o)) {
+            ext = 0.0;
+            ft_points_counters_free(c2);
+            ft_loglog_free(t2);
+        } else {
+            ft_points_counters_free(c);
+            ft_loglog_free(t);
+            c = c2;
+            t = t2;
+        }
     }
     if (rc == FT_OK)
         rc = fit_points(c, t, &o, out);

@@ -87,6 +87,38 @@ static void test_positions_recovered(void **state)
     assert_near(m.sigma_xy, 6.0 / sqrt(2.0), 0.6);
 }
 
+/* The model choice: with z noise alone the position noise is not kept (s exactly 0), with position noise
+ * alone on a rough surface the nugget is not (c0 exactly 0); the values carry a 1% deterministic ripple so that the residuals
+ * of every model are not zero. */
+static void test_positions_model_choice(void **state)
+{
+    (void)state;
+    double d[20], qz[20], qxy[20];
+    ft_noise_model z = {0}, xy = {0};
+    z.c0 = 50.0;
+    z.a = xy.a = 3.0;
+    z.H = 0.6;
+    xy.H = 0.35; /* the position-only model is tried on rough surfaces (H < 0.5) */
+    xy.s = 6.0;
+    for (int k = 0; k < 20; k++) {
+        d[k] = 2.0 * pow(2.0, 6.0 * k / 19.0);
+        double ripple = 1.0 + 0.01 * sin(2.3 * k);
+        qz[k] = ft_nugget_model_value(&z, d[k]) * ripple;
+        qxy[k] = ft_nugget_model_value(&xy, d[k]) * ripple;
+    }
+    ft_noise_model m;
+    assert_int_equal(ft_nugget_fit_positions(d, qz, 20, 0.0, 0.0, &m), 0);
+    assert_true(m.detected);
+    assert_true(m.s == 0.0);
+    assert_near(m.sigma_z, 5.0, 0.5);
+    assert_near(m.H, 0.6, 0.03);
+    assert_int_equal(ft_nugget_fit_positions(d, qxy, 20, 0.0, 0.0, &m), 0);
+    assert_true(m.detected);
+    assert_true(m.c0 == 0.0);
+    assert_near(m.sigma_xy, 6.0 / sqrt(2.0), 0.6);
+    assert_near(m.H, 0.35, 0.03);
+}
+
 /* Exact fBm, 512² (fracterra's synthesis); white N(0, sigma²) noise at snr_db of that sd when noisy. */
 static ft_grid *fbm(double D, uint64_t seed, double snr_db, double *sigma)
 {
@@ -375,7 +407,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nugget_recovered), cmocka_unit_test(test_eiv_moment),
-        cmocka_unit_test(test_positions_recovered), cmocka_unit_test(test_grid_white_noise),
+        cmocka_unit_test(test_positions_recovered), cmocka_unit_test(test_positions_model_choice),
+        cmocka_unit_test(test_grid_white_noise),
         cmocka_unit_test(test_grid_known_sigma), cmocka_unit_test(test_grid_spectrum_floor), cmocka_unit_test(test_real_dem_noise),
         cmocka_unit_test(test_dim_map_noise_flags),
         cmocka_unit_test(test_bad_input),
