@@ -32,8 +32,14 @@
 #define XY_ONLY_H 0.5  /* the position-only model is tried below this H only */
 #define XY_F 4.0       /* the position noise is kept when it adds F >= XY_F to the z-only model */
 
-/* E|d + δ|^(2H), δ ~ N(0, s² I₂). */
-double ft_nugget_eiv_moment(double H, double d, double s)
+/* The factor of the Kummer branch that depends on (H, s) only: s^2H 2^H Γ(1+H). */
+static double eiv_scale(double H, double s)
+{
+    return pow(s, 2.0 * H) * pow(2.0, H) * tgamma(1.0 + H);
+}
+
+/* E|d + δ|^(2H), δ ~ N(0, s² I₂), with scale = eiv_scale(H, s) (computed once per (H, s) by the fits). */
+static double eiv_moment_scaled(double H, double d, double s, double scale)
 {
     if (!(s > 0.0))
         return pow(d, 2.0 * H);
@@ -56,7 +62,13 @@ double ft_nugget_eiv_moment(double H, double d, double s)
             break;
     }
     m = exp(-x) * sum;
-    return pow(s, 2.0 * H) * pow(2.0, H) * tgamma(1.0 + H) * m;
+    return scale * m;
+}
+
+/* E|d + δ|^(2H), δ ~ N(0, s² I₂). */
+double ft_nugget_eiv_moment(double H, double d, double s)
+{
+    return eiv_moment_scaled(H, d, s, s > 0.0 ? eiv_scale(H, s) : 0.0);
 }
 
 typedef struct {
@@ -69,8 +81,9 @@ typedef struct {
 /* RSS of the weighted LS of q on (1, g) with c0 >= 0 and a > 0 (INFINITY otherwise). */
 static double eiv_rss(eiv_data *p, double H, double s, double *c0_out, double *a_out)
 {
+    double scale = s > 0.0 ? eiv_scale(H, s) : 0.0;
     for (size_t i = 0; i < p->n; i++)
-        p->g[i] = ft_nugget_eiv_moment(H, p->d[i], s);
+        p->g[i] = eiv_moment_scaled(H, p->d[i], s, scale);
     return ft_nugget_wls(p->g, p->q, p->w, p->n, p->c0_fixed, c0_out, a_out);
 }
 

@@ -271,18 +271,17 @@ static double extended_max_lag(const ft_points *p, const ft_points_dim_opts *o, 
 {
     if (o->noise_mode < 0 || o->lags != NULL || o->max_lag > 0.0)
         return 0.0;
+    double top = c->lags[c->n - 1].lag;
+    if (!(3.0 * o->noise_sigma_xy * 4.0 > top || table_slope(t) < FLAT_H)) {
+        ft_noise_model m;
+        if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
+            return 0.0;
+    }
+    /* the bounding box only once the extension is wanted: a pass over every point */
     double x0, y0, x1, y1;
     ft_points_bbox(p, &x0, &y0, &x1, &y1);
     double cap = 0.25 * fmin(x1 - x0, y1 - y0), hi = fmin(EXTEND_LAG * c->spacing, cap);
-    double top = c->lags[c->n - 1].lag;
-    if (!(hi > 2.0 * top))
-        return 0.0;
-    if (3.0 * o->noise_sigma_xy * 4.0 > top || table_slope(t) < FLAT_H)
-        return hi;
-    ft_noise_model m;
-    if (fit_model(c, o, &m) != FT_OK || !(m.detected || m.H < FLAT_H))
-        return 0.0;
-    return hi;
+    return hi > 2.0 * top ? hi : 0.0;
 }
 
 /* The default lags are kept (returns 1) when the model fitted to the extended ones finds no noise there:
