@@ -138,9 +138,26 @@ static void test_model_round_trip(void **state)
     for (size_t i = 0; i < g->nx * g->ny; i++)
         ss += (g->z[i] - s / (g->nx * g->ny)) * (g->z[i] - s / (g->nx * g->ny));
     assert_true(fabs(s / (g->nx * g->ny) - mean) < 0.02 * mean);
-    assert_true(fabs(sqrt(ss / (g->nx * g->ny)) / sd - 1.0) < 0.02);
+    /* The measured spectrum (the default) is not rescaled to the original's variance: c = 1, its variogram
+     * is the DEM's, so the sd agrees statistically (+2.6 to +3.1 % over seeds 1-8 on this DEM), not
+     * exactly. Clarke's power law solves c for var = sd²: that one agrees to rounding (below). */
+    assert_true(fabs(sqrt(ss / (g->nx * g->ny)) / sd - 1.0) < 0.05);
     ft_grid_free(g);
     ft_grid_free(v);
+
+    const char *fit_law[] = {"model", "fit", VOLCANO, "-o", model, "--noise", "power-law", "--json", NULL};
+    json_object_put(ft_test_run_json(fit_law));
+    const char *simulate_law[] = {"model", "simulate", model, sim, "--refine", "2", "--seed", "5", "--json", NULL};
+    json_object_put(ft_test_run_json(simulate_law));
+    g = read_grid(sim);
+    s = ss = 0.0;
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        s += g->z[i];
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        ss += (g->z[i] - s / (g->nx * g->ny)) * (g->z[i] - s / (g->nx * g->ny));
+    assert_true(fabs(s / (g->nx * g->ny) - mean) < 0.02 * mean);
+    assert_true(fabs(sqrt(ss / (g->nx * g->ny)) / sd - 1.0) < 0.02);
+    ft_grid_free(g);
 }
 
 static void test_model_luxembourg(void **state)
