@@ -18,6 +18,15 @@ static inline int ft_edit_check_chain(const char *op, const ft_chain *in, ft_cha
     return ft_chain_check_operand(op, in, out);
 }
 
+/** The arguments of a weeding (weed.c, weed_shape.c): a readable chain and 0 <= min_seg finite. */
+static inline int ft_edit_check_weed(const ft_chain *in, double min_seg, ft_chain **out)
+{
+    int rc = ft_edit_check_chain("weed", in, out);
+    if (rc == FT_OK && (!(min_seg >= 0.0) || !isfinite(min_seg)))
+        rc = ft_error(FT_E_INVALID, "weeding length (sm) must be finite and >= 0, got %g", min_seg);
+    return rc;
+}
+
 /** The segment window of Dutton's tolerances: st > 0 (may be INFINITY), 0 <= sm finite, sm <= st. */
 static inline int ft_edit_check_window(double st, double sm)
 {

@@ -43,11 +43,9 @@ static void weed_greedy(ft_chain *c, double m2, double ex, double ey)
 
 int ft_line_weed(const ft_chain *in, double min_seg, ft_chain **out)
 {
-    int rc = ft_edit_check_chain("weed", in, out);
+    int rc = ft_edit_check_weed(in, min_seg, out);
     if (rc != FT_OK)
         return rc;
-    if (!(min_seg >= 0.0) || !isfinite(min_seg))
-        return ft_error(FT_E_INVALID, "weeding length (sm) must be finite and >= 0, got %g", min_seg);
     ft_chain *c = ft_chain_copy(in);
     if (c == NULL)
         return FT_E_NOMEM;

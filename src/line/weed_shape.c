@@ -58,11 +58,9 @@ static size_t weed_pass(const ft_chain *c, double m2, unsigned char *drop, unsig
 
 int ft_line_weed_shape(const ft_chain *in, double min_seg, ft_chain **out)
 {
-    int rc = ft_edit_check_chain("weed", in, out);
+    int rc = ft_edit_check_weed(in, min_seg, out);
     if (rc != FT_OK)
         return rc;
-    if (!(min_seg >= 0.0) || !isfinite(min_seg))
-        return ft_error(FT_E_INVALID, "weeding length (sm) must be finite and >= 0, got %g", min_seg);
     ft_chain *c = ft_chain_copy(in);
     unsigned char *drop = ft_malloc(in->n ? 2 * in->n : 1);
     if (c == NULL || drop == NULL) {
