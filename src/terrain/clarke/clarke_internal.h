@@ -51,6 +51,10 @@ int clarke_spectrum_regimes(ft_clarke_model *m, double min_wl);
  * variogram of res (z - T - H, row stride rs) over the DEM's valid pairs (clarke_variogram.c). */
 int clarke_match_variogram(ft_clarke_model *m, const clarke_frame *fr, const ft_grid *dem, const double *res,
                            size_t rs);
+/* Where wavelength falls among the measured rings (nspectrum >= 2): 1 at or beyond the longest, -1 at or
+ * below the shortest, else 0 with rings *lo and *lo + 1 around it and t its log-wavelength weight toward
+ * *lo + 1. */
+int clarke_ring_bracket(const ft_clarke_model *m, double wavelength, size_t *lo, double *t);
 /* The power of one plane wave of this wavelength in the F the model simulates (m->noise). */
 double clarke_noise_power(const ft_clarke_model *m, double wavelength);
 /* FT_E_INVALID naming the bad value unless the noise, spectrum and regimes of m are usable. */

@@ -140,28 +140,43 @@ int clarke_spectrum_regimes(ft_clarke_model *m, double min_wl)
     return rc;
 }
 
+int clarke_ring_bracket(const ft_clarke_model *m, double wavelength, size_t *lo, double *t)
+{
+    size_t n = m->nspectrum;
+    const double *w = m->spectrum_wavelength;
+    if (wavelength >= w[n - 1])
+        return 1;
+    if (wavelength <= w[0])
+        return -1;
+    size_t a = 0, b = n - 1;
+    while (b - a > 1) {
+        size_t mid = a + (b - a) / 2;
+        if (w[mid] <= wavelength)
+            a = mid;
+        else
+            b = mid;
+    }
+    *lo = a;
+    *t = log(wavelength / w[a]) / log(w[b] / w[a]);
+    return 0;
+}
+
 double clarke_noise_power(const ft_clarke_model *m, double wavelength)
 {
     size_t n = m->nspectrum;
     if (m->noise != FT_CLARKE_NOISE_SPECTRUM || n < 2)
         return clarke_power(m, wavelength);
     const double *w = m->spectrum_wavelength, *p = m->spectrum_power;
-    if (wavelength >= w[n - 1])
+    size_t lo = 0;
+    double t = 0.0;
+    int where = clarke_ring_bracket(m, wavelength, &lo, &t);
+    if (where > 0)
         return p[n - 1];
-    if (wavelength <= w[0]) { /* finer than the DEM's rings: the finest regime's law through the finest ring */
+    if (where < 0) { /* finer than the DEM's rings: the finest regime's law through the finest ring */
         double slope = m->nregimes > 0 ? m->regimes[0].slope : m->slope;
         return p[0] * pow(wavelength / w[0], slope);
     }
-    size_t lo = 0, hi = n - 1;
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (w[mid] <= wavelength)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    double t = log(wavelength / w[lo]) / log(w[hi] / w[lo]);
-    return exp((1.0 - t) * log(p[lo]) + t * log(p[hi]));
+    return exp((1.0 - t) * log(p[lo]) + t * log(p[lo + 1]));
 }
 
 int clarke_check_spectrum(const ft_clarke_model *m)

@@ -95,26 +95,19 @@ typedef struct {
 
 static void bin_place(const ft_clarke_model *m, double wl, uint16_t *lo, float *t)
 {
-    size_t n = m->nspectrum;
-    const double *w = m->spectrum_wavelength;
-    if (wl >= w[n - 1]) {
-        *lo = (uint16_t)(n - 1);
+    size_t a = 0;
+    double ta = 0.0;
+    int where = clarke_ring_bracket(m, wl, &a, &ta);
+    if (where > 0) {
+        *lo = (uint16_t)(m->nspectrum - 1);
         *t = 0.0f;
-    } else if (wl <= w[0]) {
+    } else if (where < 0) {
         double slope = m->nregimes > 0 ? m->regimes[0].slope : m->slope;
         *lo = BIN_BELOW;
-        *t = (float)(slope * log(wl / w[0]));
+        *t = (float)(slope * log(wl / m->spectrum_wavelength[0]));
     } else {
-        size_t a = 0, b = n - 1;
-        while (b - a > 1) {
-            size_t mid = a + (b - a) / 2;
-            if (w[mid] <= wl)
-                a = mid;
-            else
-                b = mid;
-        }
         *lo = (uint16_t)a;
-        *t = (float)(log(wl / w[a]) / log(w[b] / w[a]));
+        *t = (float)ta;
     }
 }
 
