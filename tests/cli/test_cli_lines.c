@@ -591,6 +591,8 @@ static void test_bad_input_every_command(void **state)
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--weed", "enhance", in, "o.geojson", "--weed");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--keep-shape chooses how --weed drops vertices", "enhance", in, "o.geojson",
                            "--sm", "1", "--keep-shape");
+    FT_TEST_EXPECT_FAILURE(2, "enhance", "--keep-vertices keeps the input's vertices in one pass: --iterations must "
+                           "be 1, got 3", "enhance", in, "o.geojson", "--keep-vertices", "--iterations", "3");
     FT_TEST_EXPECT_FAILURE(1, "enhance", "sd 0 (the input's own dimension) needs the calibrated mode", "enhance", in,
                            "o.geojson", "--sd", "input", "--literal-sd");
     FT_TEST_EXPECT_FAILURE(2, "enhance", "--sd", "enhance", in, "o.geojson", "--sd", "inputs");
@@ -755,33 +757,39 @@ static void test_newfoundland_sequence(void **state)
     assert_true(fabs(dweed - d158) < 0.10);
     assert_true(fabs(dsmooth - d158) < 0.10);
 
-    /* The paper's choice, SD = the outline's own D (--sd input), weeding that keeps the shape: the weeding
-     * loses no D (measured +0.002; Dutton's greedy weeding -0.008), the counts stay near the paper's
-     * (measured 158 -> 328 -> 302 -> 604), every stage within 0.07 of the outline (measured -0.036, -0.034,
-     * -0.053: not 0.03, docs/line-newfoundland.md) */
+    /* The paper's sequence keeping D (issue 15: within 0.03 of the outline at each stage): SD = the outline's
+     * own D (--sd input), the enhancement leaving the 158 vertices in place (--keep-vertices), weeding that
+     * keeps the shape, smoothing once at roundness 0.25. Measured over 24 starts: 1.504 -> 1.509 -> 1.508 ->
+     * 1.494, counts 158 -> 328 -> 322 -> 644. Dutton's own pass, which moves the 158 vertices, falls 0.036 at
+     * the enhanced stage (the cause, docs/line-newfoundland.md): checked below too. */
     const char *penh = ft_test_tmp("nf_p_enh.geojson"), *pweed = ft_test_tmp("nf_p_weed.geojson");
-    const char *psmooth = ft_test_tmp("nf_p_smooth.geojson");
+    const char *psmooth = ft_test_tmp("nf_p_smooth.geojson"), *pmove = ft_test_tmp("nf_p_move.geojson");
     gen = ft_test_tmp("nf158.geojson"); /* ft_test_tmp's buffers are reused */
     size_t pe = vertices_out(FT_TEST_RUN_JSON("enhance", gen, penh, "--sd", "input", "--uc", "0.7", "--sm", sm,
-                                              "--json"));
+                                              "--keep-vertices", "--json"));
     size_t pw = vertices_out(FT_TEST_RUN_JSON("weed", penh, pweed, "--min-segment", sm, "--keep-shape", "--json"));
-    size_t ps = vertices_out(FT_TEST_RUN_JSON("smooth", pweed, psmooth, "--sm", sm, "--json"));
+    size_t ps = vertices_out(FT_TEST_RUN_JSON("smooth", pweed, psmooth, "--sm", sm, "--roundness", "0.25", "--json"));
+    json_object *mv = FT_TEST_RUN_JSON("enhance", gen, pmove, "--sd", "input", "--uc", "0.7", "--sm", sm, "--json");
+    assert_int_equal(ft_test_json_int(mv, "vertices_out"), pe);
+    json_object_put(mv);
     double pde = dim_on_rulers(penh, table, NULL), pdw = dim_on_rulers(pweed, table, NULL),
-           pds = dim_on_rulers(psmooth, table, NULL);
-    fprintf(stderr, "Newfoundland, SD = D_in, shape-keeping weeding: %zu pts D %.3f -> %zu pts D %.3f -> %zu pts "
-            "D %.3f -> %zu pts D %.3f\n", n158, d158, pe, pde, pw, pdw, ps, pds);
+           pds = dim_on_rulers(psmooth, table, NULL), pdm = dim_on_rulers(pmove, table, NULL);
+    fprintf(stderr, "Newfoundland, SD = D_in, input vertices kept, shape-keeping weeding, roundness 0.25: %zu pts "
+            "D %.3f -> %zu pts D %.3f -> %zu pts D %.3f -> %zu pts D %.3f (vertices moved: D %.3f)\n", n158, d158,
+            pe, pde, pw, pdw, ps, pds, pdm);
     assert_true(pe > 1.8 * n158 && pe <= 2.15 * n158);
     assert_true(pw < pe && pw > 0.8 * pe);
     assert_true(ps > 1.8 * pw && ps <= 2 * pw);
-    assert_true(fabs(pdw - pde) < 0.015);
-    assert_true(fabs(pde - d158) < 0.07 && fabs(pdw - d158) < 0.07 && fabs(pds - d158) < 0.07);
+    assert_true(fabs(pde - d158) < 0.03 && fabs(pdw - d158) < 0.03 && fabs(pds - d158) < 0.03);
+    assert_true(d158 - pdm > 0.03);
 
     /* the same in one command */
     gen = ft_test_tmp("nf158.geojson"); /* ft_test_tmp's buffers are reused */
     json_object *o = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_one.geojson"), "--sd", "1.3", "--uc", "0.7",
                                       "--sm", sm, "--weed", "--smooth", "1", "--json");
     json_object *p = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_p_one.geojson"), "--sd", "input", "--uc", "0.7",
-                                      "--sm", sm, "--weed", "--keep-shape", "--smooth", "1", "--json");
+                                      "--sm", sm, "--keep-vertices", "--weed", "--keep-shape", "--smooth", "1", "--roundness",
+                                      "0.25", "--json");
     json_object *pst = ft_test_json_key(p, "stages");
     assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 1), "vertices"), pw);
     assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 2), "vertices"), ps);
