@@ -163,9 +163,9 @@ const cli_command cli_cmd_enhance = {
     "enhance",
     "Dutton's fractal enhancement of generalized lines and polygon boundaries",
     "fracterra enhance INPUT OUTPUT [--sd D [--literal-sd] | --target-dim D] [--uc U] [--input-dim D] [--st LEN]\n"
-    "                                [--sm LEN] [--iterations N | --keep-vertices] [--weed [--keep-shape]] [--smooth K] [--roundness R] [--repair]\n"
-    "                                [--allow-crossings] [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER]\n"
-    "                                [--json]",
+    "                                [--sm LEN] [--iterations N | --keep-vertices] [--weed [--keep-shape]]\n"
+    "                                [--smooth K] [--roundness R] [--repair] [--allow-crossings] [--no-coverage]\n"
+    "                                [--layer NAME] [--where SQL] [-f DRIVER] [--json]",
     "Puts self-similar detail back into generalized lines (Dutton 1981, docs/line-enhance.md): at each\n"
     "iteration every interior vertex V splits its two segments at their midpoints M1, M2 and moves towards\n"
     "the apex of a triangle on M1 M2 with a fixed apex angle, keeping the ratio of the legs; UC scales that\n"
@@ -212,8 +212,7 @@ const cli_command cli_cmd_enhance = {
     "Example (Dutton's Newfoundland: SM 1% of a 510 km wide map, ST very large):\n"
     "  fracterra simplify tests/data/gshhg_newfoundland_utm21n.geojson nf158.geojson --vertices 158\n"
     "  fracterra enhance nf158.geojson nf-enhanced.geojson --sd 1.3 --uc 0.7 --sm 5100 --weed --smooth 1\n"
-    "  keeping D at each stage (docs/line-newfoundland.md):\n"
-    "  fracterra enhance nf158.geojson nf-d.geojson --sd input --uc 0.7 --sm 5100 --keep-vertices --weed\n"
-    "                    --keep-shape --smooth 1 --roundness 0.25\n",
+    "  the same keeping D at each stage (docs/line-newfoundland.md):\n"
+    "  fracterra enhance nf158.geojson nf-d.geojson --sd 1.3 --uc 0.7 --sm 5100 --keep-vertices --weed --smooth 1\n",
     run_enhance,
 };
