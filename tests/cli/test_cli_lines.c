@@ -783,6 +783,7 @@ static void test_newfoundland_sequence(void **state)
                                       "--sm", sm, "--weed", "--smooth", "1", "--json");
     json_object *p = FT_TEST_RUN_JSON("enhance", gen, ft_test_tmp("nf_p_one.geojson"), "--sd", "1.3", "--uc", "0.7",
                                       "--sm", sm, "--keep-vertices", "--weed", "--smooth", "1", "--json");
+    assert_true(json_object_get_boolean(ft_test_json_key(p, "keep_vertices")));
     json_object *pst = ft_test_json_key(p, "stages");
     assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 1), "vertices"), pw);
     assert_int_equal(ft_test_json_int(ft_test_json_at(pst, 2), "vertices"), ps);
