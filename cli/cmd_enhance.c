@@ -17,7 +17,8 @@ enum { /* long-only option codes, clear of line_edit.h's */
     OPT_INPUT_DIM,
     OPT_LITERAL_SD,
     OPT_ALLOW_CROSSINGS,
-    OPT_KEEP_SHAPE
+    OPT_KEEP_SHAPE,
+    OPT_KEEP_VERTICES
 };
 
 typedef struct {
@@ -71,6 +72,7 @@ static int on_option(const cli_command *cmd, int opt, const char *arg, void *ctx
         return cli_parse_double(cmd, "--roundness", arg, 0.0, 1.0, CLI_OPEN_LO, &a->smooth.roundness);
     case 'W': a->weed = 1; return CLI_CONTINUE;
     case OPT_KEEP_SHAPE: a->keep_shape = 1; return CLI_CONTINUE;
+    case OPT_KEEP_VERTICES: a->dutton.keep_vertices = 1; return CLI_CONTINUE;
     case 'R': a->repair = 1; return CLI_CONTINUE;
     default: return cli_usage_error(cmd, "unexpected option");
     }
@@ -81,6 +83,9 @@ static int check_args(const cli_command *cmd, enhance_args *a)
     if (a->dutton.sm >= a->dutton.st)
         return cli_usage_error(cmd, "--sm %g must be below --st %g: no segment could be altered", a->dutton.sm,
                                a->dutton.st);
+    if (a->dutton.keep_vertices && a->dutton.iterations != 1)
+        return cli_usage_error(cmd, "--keep-vertices keeps the input's vertices in one pass: --iterations must be 1, "
+                               "got %d", a->dutton.iterations);
     if (a->keep_shape && !a->weed)
         return cli_usage_error(cmd, "--keep-shape chooses how --weed drops vertices: give --weed");
     if (a->weed && a->dutton.sm <= 0.0)
@@ -102,6 +107,7 @@ static json_object *params_json(const enhance_args *a)
     json_object_object_add(p, "iterations", json_object_new_int(a->dutton.iterations));
     json_object_object_add(p, "literal_sd", json_object_new_boolean(a->dutton.literal_sd));
     json_object_object_add(p, "allow_crossings", json_object_new_boolean(a->dutton.allow_crossings));
+    json_object_object_add(p, "keep_vertices", json_object_new_boolean(a->dutton.keep_vertices));
     json_object_object_add(p, "weed", json_object_new_boolean(a->weed));
     json_object_object_add(p, "keep_shape", json_object_new_boolean(a->keep_shape));
     json_object_object_add(p, "smooth", json_object_new_int(a->smooth.passes));
@@ -120,6 +126,7 @@ static int run_enhance(const cli_command *cmd, int argc, char **argv)
         {"repair", no_argument, NULL, 'R'},          {"target-dim", required_argument, NULL, OPT_TARGET_DIM},
         {"input-dim", required_argument, NULL, OPT_INPUT_DIM}, {"literal-sd", no_argument, NULL, OPT_LITERAL_SD},
         {"allow-crossings", no_argument, NULL, OPT_ALLOW_CROSSINGS}, {"keep-shape", no_argument, NULL, OPT_KEEP_SHAPE},
+        {"keep-vertices", no_argument, NULL, OPT_KEEP_VERTICES},
         LINE_IO_LONGOPTS,
         CLI_OPT_HELP,                                CLI_OPT_END,
     };
@@ -156,9 +163,9 @@ const cli_command cli_cmd_enhance = {
     "enhance",
     "Dutton's fractal enhancement of generalized lines and polygon boundaries",
     "fracterra enhance INPUT OUTPUT [--sd D [--literal-sd] | --target-dim D] [--uc U] [--input-dim D] [--st LEN]\n"
-    "                                [--sm LEN] [--iterations N] [--weed [--keep-shape]] [--smooth K] [--roundness R] [--repair]\n"
-    "                                [--allow-crossings] [--no-coverage] [--layer NAME] [--where SQL] [-f DRIVER]\n"
-    "                                [--json]",
+    "                                [--sm LEN] [--iterations N | --keep-vertices] [--weed [--keep-shape]]\n"
+    "                                [--smooth K] [--roundness R] [--repair] [--allow-crossings] [--no-coverage]\n"
+    "                                [--layer NAME] [--where SQL] [-f DRIVER] [--json]",
     "Puts self-similar detail back into generalized lines (Dutton 1981, docs/line-enhance.md): at each\n"
     "iteration every interior vertex V splits its two segments at their midpoints M1, M2 and moves towards\n"
     "the apex of a triangle on M1 M2 with a fixed apex angle, keeping the ratio of the legs; UC scales that\n"
@@ -186,6 +193,10 @@ const cli_command cli_cmd_enhance = {
     "      --target-dim D   the divider dimension wanted, whatever UC (--sd and D_in are then not used)\n"
     "      --input-dim D    D_in for UC < 1 instead of measuring it\n"
     "      --allow-crossings  the raw algorithm: every move made in full, even where lines then cross\n"
+    "      --keep-vertices  one pass that leaves the input's vertices in place: a new midpoint M of P N goes\n"
+    "                       to M - (dP + dN)/2, dP and dN the moves the pass above gives P and N (so M sits\n"
+    "                       where it would relative to them); the input's large-scale shape, and its\n"
+    "                       divider D at rulers of its own segments and above, are kept. --iterations 1\n"
     "  -u, --uc U           uniformity coefficient in [-1,1]: the fraction of the move (negative: the opposite\n"
     "                       way, exaggerating); default 1\n"
     "  -t, --st LEN         straightness tolerance: only segments shorter than LEN are altered; default inf\n"
@@ -200,6 +211,8 @@ const cli_command cli_cmd_enhance = {
     "      --repair         finally remove the loops of self-intersecting chains\n" LINE_IO_HELP "\n"
     "Example (Dutton's Newfoundland: SM 1% of a 510 km wide map, ST very large):\n"
     "  fracterra simplify tests/data/gshhg_newfoundland_utm21n.geojson nf158.geojson --vertices 158\n"
-    "  fracterra enhance nf158.geojson nf-enhanced.geojson --sd 1.3 --uc 0.7 --sm 5100 --weed --smooth 1\n",
+    "  fracterra enhance nf158.geojson nf-enhanced.geojson --sd 1.3 --uc 0.7 --sm 5100 --weed --smooth 1\n"
+    "  the same keeping D at each stage (docs/line-newfoundland.md):\n"
+    "  fracterra enhance nf158.geojson nf-d.geojson --sd 1.3 --uc 0.7 --sm 5100 --keep-vertices --weed --smooth 1\n",
     run_enhance,
 };

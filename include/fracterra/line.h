@@ -118,10 +118,14 @@ typedef struct {
                             calibration (it measures well below sd: 1.12 for 1.3); default 0 */
     int allow_crossings; /**< 1: the raw algorithm; 0 (default): a move that would make a segment cross or
                               touch another one of the chain (or layer) is halved, then dropped */
+    int keep_vertices; /**< 1: the input's vertices stay where they are; each new midpoint takes the place it
+                            has relative to its neighbours in Dutton's pass (Dutton's position minus the mean
+                            of its two neighbours' moves, same apex and uc). One pass only (iterations = 1).
+                            Default 0: Dutton's pass, which moves the input's vertices */
 } ft_dutton_opts;
 #define FT_DUTTON_OPTS_DEFAULT                                                                                       \
     {.struct_size = sizeof(ft_dutton_opts), .sd = 1.3, .uc = 1.0, .st = INFINITY, .sm = 0.0, .iterations = 1,        \
-     .target_dim = 0.0, .input_dim = 0.0, .literal_sd = 0, .allow_crossings = 0}
+     .target_dim = 0.0, .input_dim = 0.0, .literal_sd = 0, .allow_crossings = 0, .keep_vertices = 0}
 
 /** What an enhancement will do, resolved once for a chain or a whole layer (ft_dutton_plan_make). */
 typedef struct {
@@ -131,6 +135,7 @@ typedef struct {
     double uc, st, sm;
     double densify;    /**< calibrated mode: before a pass, a segment of length L >= 3 densify (and < st) is cut
                             into ceil(L / densify) equal pieces: the input's mean segment; 0 (literal): none */
+    int keep_vertices; /**< opts->keep_vertices: the pass moves only the new midpoints */
 } ft_dutton_plan;
 
 /** Resolves opts against the input chains (measures D_in if needed). FT_E_INVALID if the target cannot be

@@ -320,9 +320,10 @@ class ft_dutton_opts(_Opts):
     _c_name_ = "ft_dutton_opts"
     _c_default_ = "FT_DUTTON_OPTS_DEFAULT"
     _fields_ = [("struct_size", _sz), ("sd", _dbl), ("uc", _dbl), ("st", _dbl), ("sm", _dbl), ("iterations", _int),
-                ("target_dim", _dbl), ("input_dim", _dbl), ("literal_sd", _int), ("allow_crossings", _int)]
+                ("target_dim", _dbl), ("input_dim", _dbl), ("literal_sd", _int), ("allow_crossings", _int),
+                ("keep_vertices", _int)]
     _defaults_ = dict(sd=1.3, uc=1.0, st=INF, sm=0.0, iterations=1, target_dim=0.0, input_dim=0.0, literal_sd=0,
-                      allow_crossings=0)
+                      allow_crossings=0, keep_vertices=0)
 
 
 @_mirror

@@ -238,12 +238,14 @@ def _layer_step(step, coords, y, closed, opts):
 
 
 def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None,
-            input_dim=None, literal_sd=False, allow_crossings=False):
+            input_dim=None, literal_sd=False, allow_crossings=False, keep_vertices=False):
     """Dutton's fractal enhancement of one chain, as `fracterra enhance` (ft_line_enhance_layer): the
     target dimension D_in + uc (sd - D_in) with D_in measured (or input_dim), or target_dim; literal_sd:
     Dutton's literal apex angle; unless allow_crossings, moves that would make the chain touch itself
-    are reduced. Returns a new (n, 2) array (or (x, y) arrays). End points of open chains stay."""
-    o = _dutton(sd, uc, st, sm, iterations, target_dim, input_dim, literal_sd, allow_crossings)
+    are reduced; keep_vertices (one iteration): the input's vertices stay, each new midpoint M of P N goes
+    to M - (dP + dN) / 2 (--keep-vertices). Returns a new (n, 2) array (or (x, y) arrays). End points of
+    open chains stay."""
+    o = _dutton(sd, uc, st, sm, iterations, target_dim, input_dim, literal_sd, allow_crossings, keep_vertices)
     return _layer_step(_enhance_layer, coords, y, closed, o)
 
 
@@ -282,7 +284,7 @@ def boundary(coords, y=None, *, closed=True, dim, min, max=0.0, jitter=0.0, seed
 
 
 def _dutton(sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None, input_dim=None, literal_sd=False,
-            allow_crossings=False):
+            allow_crossings=False, keep_vertices=False):
     o = S.ft_dutton_opts.default()
     o.sd, o.uc, o.sm, o.iterations = float(sd), float(uc), float(sm), int(iterations)
     if st is not None:
@@ -293,6 +295,7 @@ def _dutton(sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None, inpu
         o.input_dim = float(input_dim)
     o.literal_sd = 1 if literal_sd else 0
     o.allow_crossings = 1 if allow_crossings else 0
+    o.keep_vertices = 1 if keep_vertices else 0
     return o
 
 

@@ -166,6 +166,19 @@ def test_chain_ops_answer_in_the_form_asked():
     assert np.array_equal(np.c_[sx, sy], ft.simplify(xy, tolerance=0.5))
 
 
+def test_enhance_keep_vertices_keeps_the_input_vertices():
+    t = np.linspace(0, 10, 50)
+    xy = np.c_[t, np.sin(t)]
+    e = ft.enhance(xy, sd=1.5, keep_vertices=True)
+    moved = ft.enhance(xy, sd=1.5)
+    assert len(e) == len(moved) == 2 * len(xy) - 1
+    assert np.array_equal(e[::2], xy)  # Dutton's pass moves them: the default does not keep them
+    assert not np.array_equal(moved[::2], xy)
+    assert not np.allclose(e[1::2], 0.5 * (xy[:-1] + xy[1:]))  # the midpoints carry the detail
+    with pytest.raises(ft.FracterraError):
+        ft.enhance(xy, sd=1.5, keep_vertices=True, iterations=2)
+
+
 def test_version_is_cmakes_project_version():
     import re
     root = os.path.join(os.path.dirname(__file__), os.pardir, os.pardir)

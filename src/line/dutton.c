@@ -16,6 +16,12 @@
  *     V's proportions, |M1 V*| / |V* M2| = |PV| / |VN|, and which lies on V's side of M1 M2.
  *     Negative UC moves V the opposite way by the same amount (Dutton's exaggeration).
  * So one iteration with ST = inf and SM = 0 turns an open chain of n vertices into 2n - 1 (a ring: 2n).
+ * keep_vertices (one pass only): the input's vertices stay, and each new midpoint M of P N goes where it is
+ * relative to its neighbours in the pass above: M - (dP + dN) / 2, dP and dN the moves P and N get there (0
+ * for a vertex that does not move). The pass's output minus its input vertices' moves, interpolated
+ * linearly along each segment: the same small-scale shape, but the scales of the input's segments and
+ * above, which the divider's coarse rulers see, are the input's own (issue 15: Dutton's first pass moves
+ * the 158 vertices of the Newfoundland outline and lowers D at 2-8 of its segments by 0.04).
  * By default theta is calibrated (dutton_calibrate.c) so that the chain's divider D over the scales the
  * enhancement generates is the target D_in + UC (SD - D_in) (SD itself at UC = 1), D_in the input's divider
  * dimension; literal_sd takes theta from SD by the relation above, which measures well below SD (1.12 for
@@ -82,6 +88,9 @@ static int check_opts(const ft_dutton_opts *o)
         return ft_error(FT_E_INVALID, "input_dim must be 0 (measured) or in [1,2], got %g", o->input_dim);
     if (o->iterations < 1 || o->iterations > MAX_ITERATIONS)
         return ft_error(FT_E_INVALID, "iterations must be in [1,%d], got %d", MAX_ITERATIONS, o->iterations);
+    if (o->keep_vertices && o->iterations != 1)
+        return ft_error(FT_E_INVALID, "keep_vertices keeps the input's vertices in one pass: iterations must be 1, "
+                        "got %d", o->iterations);
     return ft_edit_check_window(o->st, o->sm);
 }
 
@@ -129,7 +138,7 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     int rc = check_opts(o);
     if (rc != FT_OK)
         return rc;
-    *p = (ft_dutton_plan){ft_dutton_apex_angle(o->sd), NAN, NAN, o->uc, o->st, o->sm, 0.0};
+    *p = (ft_dutton_plan){ft_dutton_apex_angle(o->sd), NAN, NAN, o->uc, o->st, o->sm, 0.0, o->keep_vertices != 0};
     if (o->literal_sd || o->uc <= 0.0)
         return FT_OK; /* literal reading; uc = 0 moves nothing, uc < 0 exaggerates: no dimension target */
     double target = o->target_dim;
@@ -166,7 +175,23 @@ typedef struct {
     double cos_t, sin_t, uc;
     ft_edit_window w;
     int bend_straight; /* calibrated mode: straight junctions bend, to alternate sides */
+    int keep_vertices; /* only the new midpoints move */
 } pass_params;
+
+/* Where Dutton's pass puts vertex i (in place if it stays: an end, or a segment outside the window). */
+static void moved_vertex(const ft_chain *in, const unsigned char *split, const pass_params *pp, size_t i, double *ox,
+                         double *oy)
+{
+    size_t n = in->n;
+    int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
+    size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
+    double x = in->x[i], y = in->y[i];
+    if (has_prev && has_next && split[ip] && split[i])
+        ft_dutton_move(in->x[ip], in->y[ip], in->x[i], in->y[i], in->x[in_], in->y[in_], pp->cos_t, pp->sin_t,
+                       pp->uc, pp->bend_straight ? (i % 2 ? 1 : -1) : 0, &x, &y);
+    *ox = x;
+    *oy = y;
+}
 
 /* split[i] = 1 if segment i (vertex i to i+1, cyclically on a ring) is in the window. */
 static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
@@ -181,13 +206,10 @@ static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsig
 static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
                           size_t i, ft_chain *out, ft_chain *base, size_t k)
 {
-    size_t n = in->n;
-    int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
-    size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
+    size_t in_ = i + 1 < in->n ? i + 1 : 0;
     double x = in->x[i], y = in->y[i];
-    if (has_prev && has_next && split[ip] && split[i])
-        ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc,
-                       pp->bend_straight ? (i % 2 ? 1 : -1) : 0, &x, &y);
+    if (!pp->keep_vertices)
+        moved_vertex(in, split, pp, i, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
     if (base) {
@@ -196,11 +218,19 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
     }
     k++;
     if (i < nseg && split[i]) {
-        out->x[k] = 0.5 * (in->x[i] + in->x[in_]);
-        out->y[k] = 0.5 * (in->y[i] + in->y[in_]);
+        double mx = 0.5 * (in->x[i] + in->x[in_]), my = 0.5 * (in->y[i] + in->y[in_]);
+        out->x[k] = mx;
+        out->y[k] = my;
+        if (pp->keep_vertices) { /* M - (dP + dN) / 2 */
+            double px, py, nx, ny;
+            moved_vertex(in, split, pp, i, &px, &py);
+            moved_vertex(in, split, pp, in_, &nx, &ny);
+            out->x[k] = mx - 0.5 * ((px - in->x[i]) + (nx - in->x[in_]));
+            out->y[k] = my - 0.5 * ((py - in->y[i]) + (ny - in->y[in_]));
+        }
         if (base) {
-            base->x[k] = out->x[k];
-            base->y[k] = out->y[k];
+            base->x[k] = mx;
+            base->y[k] = my;
         }
         k++;
     }
@@ -328,7 +358,8 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
     int rc = ft_edit_check_chain("enhance", in, &dummy);
     if (rc != FT_OK)
         return rc;
-    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim)};
+    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim),
+                      p->keep_vertices};
     ft_chain *dense = NULL;
     if (p->densify > 0.0 && (rc = densify(in, p->densify, pp.w, &dense)) != FT_OK)
         return rc;

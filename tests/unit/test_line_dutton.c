@@ -381,6 +381,64 @@ static void test_sd_input(void **state)
     ft_chain_free(in);
 }
 
+/* keep_vertices: the input's vertices stay, and each new midpoint sits where it sits relative to its two
+ * neighbours in Dutton's pass: Dutton's midpoint minus the mean of the neighbours' moves, both taken from
+ * a plain Dutton pass of the same chain (SM lets about a third of the segments pass unsplit, so some vertices
+ * do not move there and some midpoints do not exist). */
+static void check_keep_vertices(const ft_chain *in, int literal)
+{
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.sd = 1.4;
+    o.uc = 0.7;
+    o.sm = 0.8;
+    o.literal_sd = literal;
+    o.allow_crossings = 1;
+    ft_chain *dut = NULL, *kv = NULL;
+    assert_int_equal(ft_line_enhance(in, &o, &dut), FT_OK);
+    o.keep_vertices = 1;
+    assert_int_equal(ft_line_enhance(in, &o, &kv), FT_OK);
+    assert_int_equal(kv->n, dut->n);
+    size_t n = in->n, nseg = in->closed ? n : n - 1, k = 0, moved = 0;
+    size_t *at = calloc(n, sizeof *at); /* output index of input vertex i */
+    assert_non_null(at);
+    for (size_t i = 0; i < n; i++) {
+        at[i] = k++;
+        if (i < nseg && dist(in->x[i], in->y[i], in->x[(i + 1) % n], in->y[(i + 1) % n]) >= o.sm)
+            k++;
+    }
+    assert_int_equal(k, kv->n);
+    for (size_t i = 0; i < n; i++) {
+        assert_true(kv->x[at[i]] == in->x[i] && kv->y[at[i]] == in->y[i]);
+        moved += dut->x[at[i]] != in->x[i] || dut->y[at[i]] != in->y[i];
+        size_t m = at[i] + 1, j = (i + 1) % n;
+        if (i >= nseg || m == (i + 1 < n ? at[i + 1] : kv->n))
+            continue; /* no midpoint after vertex i */
+        for (int d = 0; d < 2; d++) {
+            const double *ci = d ? in->y : in->x, *cd = d ? dut->y : dut->x, *ck = d ? kv->y : kv->x;
+            double want = cd[m] - 0.5 * ((cd[at[i]] - ci[i]) + (cd[at[j]] - ci[j]));
+            assert_true(fabs(ck[m] - want) <= 1e-12 * (1.0 + fabs(want)));
+        }
+    }
+    assert_true(moved > n / 3); /* Dutton's pass did move the vertices kept here */
+    free(at);
+    ft_chain_free(dut);
+    ft_chain_free(kv);
+}
+
+static void test_keep_vertices(void **state)
+{
+    (void)state;
+    ft_chain *open = wiggly(300, 11, 0), *ring = wiggly(300, 12, 1);
+    check_keep_vertices(open, 1);
+    check_keep_vertices(ring, 1);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.keep_vertices = 1;
+    o.iterations = 2;
+    expect_error(ring, &o, FT_E_INVALID, "iterations must be 1, got 2");
+    ft_chain_free(open);
+    ft_chain_free(ring);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -440,6 +498,7 @@ int main(void)
         cmocka_unit_test(test_straight_line_stays),
         cmocka_unit_test(test_divider_dimension_after_six_iterations),
         cmocka_unit_test(test_sd_input),
+        cmocka_unit_test(test_keep_vertices),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
