@@ -162,14 +162,9 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     return FT_OK;
 }
 
-typedef struct {
-    double cos_t, sin_t, uc;
-    ft_edit_window w;
-    int bend_straight; /* calibrated mode: straight junctions bend, to alternate sides */
-} pass_params;
+typedef ft_dutton_pass_params pass_params;
 
-/* split[i] = 1 if segment i (vertex i to i+1, cyclically on a ring) is in the window. */
-static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
+void ft_dutton_mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
 {
     size_t n = in->n;
 #pragma omp parallel for schedule(static) if (n >= PARALLEL_MIN)
@@ -181,13 +176,9 @@ static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsig
 static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
                           size_t i, ft_chain *out, ft_chain *base, size_t k)
 {
-    size_t n = in->n;
-    int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
-    size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
-    double x = in->x[i], y = in->y[i];
-    if (has_prev && has_next && split[ip] && split[i])
-        ft_dutton_move(in->x[ip], in->y[ip], x, y, in->x[in_], in->y[in_], pp->cos_t, pp->sin_t, pp->uc,
-                       pp->bend_straight ? (i % 2 ? 1 : -1) : 0, &x, &y);
+    size_t n = in->n, in_ = i + 1 < n ? i + 1 : 0;
+    double x, y;
+    ft_dutton_raw_vertex(in, split, pp, i, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
     if (base) {
@@ -242,7 +233,7 @@ static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **ba
         free(counts);
         return FT_E_NOMEM;
     }
-    mark_splits(in, nseg, pp->w, split);
+    ft_dutton_mark_splits(in, nseg, pp->w, split);
     size_t extra = 0;
     for (size_t i = 0; i < nseg; i++)
         extra += split[i];
@@ -314,6 +305,21 @@ static int densify(const ft_chain *in, double len, ft_edit_window w, ft_chain **
     return FT_OK;
 }
 
+int ft_dutton_pass_prepare(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_pass_params *pp, ft_chain **dense)
+{
+    *dense = NULL;
+    if (p == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL plan");
+    ft_chain *dummy = NULL;
+    int rc = ft_edit_check_chain("enhance", in, &dummy);
+    if (rc != FT_OK)
+        return rc;
+    *pp = (pass_params){cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim)};
+    if (p->densify > 0.0)
+        rc = densify(in, p->densify, pp->w, dense);
+    return rc;
+}
+
 int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
     if (raw == NULL)
@@ -321,16 +327,10 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
     *raw = NULL;
     if (base)
         *base = NULL;
-    const ft_dutton_plan *p = ctx;
-    if (p == NULL)
-        return ft_error(FT_E_INVALID, "enhance: NULL plan");
-    ft_chain *dummy = NULL;
-    int rc = ft_edit_check_chain("enhance", in, &dummy);
-    if (rc != FT_OK)
-        return rc;
-    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim)};
+    pass_params pp;
     ft_chain *dense = NULL;
-    if (p->densify > 0.0 && (rc = densify(in, p->densify, pp.w, &dense)) != FT_OK)
+    int rc = ft_dutton_pass_prepare(in, ctx, &pp, &dense);
+    if (rc != FT_OK)
         return rc;
     rc = enhance_pass(dense ? dense : in, &pp, base, raw);
     ft_chain_free(dense);
