@@ -20,7 +20,8 @@
  * enhancement generates is the target D_in + UC (SD - D_in) (SD itself at UC = 1), D_in the input's divider
  * dimension; literal_sd takes theta from SD by the relation above, which measures well below SD (1.12 for
  * 1.3). A pass proposes base positions (the input's vertices and midpoints) and raw ones (the moved
- * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing.
+ * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing
+ * (run fused into the pass by dutton_guarded.c, which computes the raw positions with ft_dutton_raw_vertex).
  *
  * Where V* is (Dutton: "solving trigonometric identities involving the law of sines, law of cosines").
  * Let a = |PV|, c = |VN|, b = |M1 M2| = |PN| / 2 and p = |M1 V*|, q = |V* M2| with p / q = a / c.

@@ -279,6 +279,11 @@ static void first_outputs(fused *F)
     }
 }
 
+int ft_dutton_plan_fusable(const ft_dutton_plan *p)
+{
+    return p != NULL; /* every pass of dutton.c moves only the input's vertices */
+}
+
 int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
                            ft_line_guard_stats *stats)
 {

@@ -77,6 +77,12 @@ static inline int ft_dutton_raw_vertex(const ft_chain *in, const unsigned char *
                           pp->uc, pp->bend_straight ? (i % 2 ? 1 : -1) : 0, x, y);
 }
 
+/** 1 if the fused guarded pass below does with plan p what ft_line_pass_enhance and the crossing guard do: the
+ *  pass moves only the input's vertices, never the new midpoints (their fixed places are what the fusion rests
+ *  on). A plan whose pass moves the midpoints must give 0 here (ft_line_run_passes then takes the unfused
+ *  guard). */
+int ft_dutton_plan_fusable(const ft_dutton_plan *p);
+
 /** One guarded pass of the enhancement over the chain set in[0..n) (guard fused into the pass,
  *  dutton_guarded.c): out[c] receives chain c's result (repeated vertices not yet removed); stats (may be
  *  NULL) is added to. On failure every out[c] is NULL. */

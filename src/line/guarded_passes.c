@@ -6,8 +6,8 @@
  * the moves of the whole set at once or takes the raw positions (guard = 0: the raw algorithm), then drops
  * repeated consecutive vertices (smoothing's uncut or halved-to-nothing corners; a ring's last vertex equal
  * to its first). The end points of an open chain are never dropped. A guarded pass of Dutton's enhancement
- * (ft_line_pass_enhance, FT_GUARD_REDUCE) runs with the guard fused into it (dutton_guarded.c): the same rule,
- * no base or raw chain.
+ * (ft_line_pass_enhance, FT_GUARD_REDUCE, a plan whose pass moves no midpoint: ft_dutton_plan_fusable) runs
+ * with the guard fused into it (dutton_guarded.c): the same rule, no base or raw chain.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -61,7 +61,7 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
 {
     ft_chain **base = ft_calloc(n ? n : 1, sizeof *base), **raw = ft_calloc(n ? n : 1, sizeof *raw);
     int rc = base == NULL || raw == NULL ? FT_E_NOMEM : FT_OK;
-    int fused = pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE;
+    int fused = pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE && ft_dutton_plan_fusable(ctx);
     if (rc == FT_OK && fused)
         rc = ft_dutton_pass_guarded((const ft_chain *const *)chains, n, ctx, base, stats);
     for (size_t c = 0; c < n && rc == FT_OK && !fused; c++)
