@@ -26,7 +26,8 @@
  * enhancement generates is the target D_in + UC (SD - D_in) (SD itself at UC = 1), D_in the input's divider
  * dimension; literal_sd takes theta from SD by the relation above, which measures well below SD (1.12 for
  * 1.3). A pass proposes base positions (the input's vertices and midpoints) and raw ones (the moved
- * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing.
+ * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing
+ * (run fused into the pass by dutton_guarded.c, which computes the raw positions with ft_dutton_raw_vertex).
  *
  * Where V* is (Dutton: "solving trigonometric identities involving the law of sines, law of cosines").
  * Let a = |PV|, c = |VN|, b = |M1 M2| = |PN| / 2 and p = |M1 V*|, q = |V* M2| with p / q = a / c.
@@ -171,30 +172,16 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
     return FT_OK;
 }
 
-typedef struct {
-    double cos_t, sin_t, uc;
-    ft_edit_window w;
-    int bend_straight; /* calibrated mode: straight junctions bend, to alternate sides */
-    int keep_vertices; /* only the new midpoints move */
-} pass_params;
+typedef ft_dutton_pass_params pass_params;
 
 /* Where Dutton's pass puts vertex i (in place if it stays: an end, or a segment outside the window). */
 static void moved_vertex(const ft_chain *in, const unsigned char *split, const pass_params *pp, size_t i, double *ox,
                          double *oy)
 {
-    size_t n = in->n;
-    int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
-    size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
-    double x = in->x[i], y = in->y[i];
-    if (has_prev && has_next && split[ip] && split[i])
-        ft_dutton_move(in->x[ip], in->y[ip], in->x[i], in->y[i], in->x[in_], in->y[in_], pp->cos_t, pp->sin_t,
-                       pp->uc, pp->bend_straight ? (i % 2 ? 1 : -1) : 0, &x, &y);
-    *ox = x;
-    *oy = y;
+    ft_dutton_raw_vertex(in, split, pp, i, ox, oy);
 }
 
-/* split[i] = 1 if segment i (vertex i to i+1, cyclically on a ring) is in the window. */
-static void mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
+void ft_dutton_mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
 {
     size_t n = in->n;
 #pragma omp parallel for schedule(static) if (n >= PARALLEL_MIN)
@@ -272,7 +259,7 @@ static int enhance_pass(const ft_chain *in, const pass_params *pp, ft_chain **ba
         free(counts);
         return FT_E_NOMEM;
     }
-    mark_splits(in, nseg, pp->w, split);
+    ft_dutton_mark_splits(in, nseg, pp->w, split);
     size_t extra = 0;
     for (size_t i = 0; i < nseg; i++)
         extra += split[i];
@@ -344,6 +331,22 @@ static int densify(const ft_chain *in, double len, ft_edit_window w, ft_chain **
     return FT_OK;
 }
 
+int ft_dutton_pass_prepare(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_pass_params *pp, ft_chain **dense)
+{
+    *dense = NULL;
+    if (p == NULL)
+        return ft_error(FT_E_INVALID, "enhance: NULL plan");
+    ft_chain *dummy = NULL;
+    int rc = ft_edit_check_chain("enhance", in, &dummy);
+    if (rc != FT_OK)
+        return rc;
+    *pp = (pass_params){cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim),
+                        p->keep_vertices};
+    if (p->densify > 0.0)
+        rc = densify(in, p->densify, pp->w, dense);
+    return rc;
+}
+
 int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
 {
     if (raw == NULL)
@@ -351,17 +354,10 @@ int ft_line_pass_enhance(const ft_chain *in, const void *ctx, ft_chain **base, f
     *raw = NULL;
     if (base)
         *base = NULL;
-    const ft_dutton_plan *p = ctx;
-    if (p == NULL)
-        return ft_error(FT_E_INVALID, "enhance: NULL plan");
-    ft_chain *dummy = NULL;
-    int rc = ft_edit_check_chain("enhance", in, &dummy);
-    if (rc != FT_OK)
-        return rc;
-    pass_params pp = {cos(p->apex), sin(p->apex), p->uc, ft_edit_window_make(p->st, p->sm), !isnan(p->target_dim),
-                      p->keep_vertices};
+    pass_params pp;
     ft_chain *dense = NULL;
-    if (p->densify > 0.0 && (rc = densify(in, p->densify, pp.w, &dense)) != FT_OK)
+    int rc = ft_dutton_pass_prepare(in, ctx, &pp, &dense);
+    if (rc != FT_OK)
         return rc;
     rc = enhance_pass(dense ? dense : in, &pp, base, raw);
     ft_chain_free(dense);

@@ -9,6 +9,9 @@
 
 #include <math.h>
 
+#include "fracterra/line.h"
+#include "line/edit_internal.h"
+
 #define FT_DUTTON_STRAIGHT_SIN 1e-12 /* a junction turning less than this (sin of the turn) has no side */
 
 /** V's new position V + uc (V* - V) in (*ox, *oy), V* the apex of the triangle on the midpoints M1 M2 of
@@ -42,5 +45,49 @@ static inline int ft_dutton_move(double px, double py, double vx, double vy, dou
     *oy = vy + uc * (sy - vy);
     return 1;
 }
+
+/** One pass's parameters (dutton.c): the apex angle, UC, the segment window, and whether straight junctions
+ *  bend (calibrated mode, alternating sides). */
+typedef struct {
+    double cos_t, sin_t, uc;
+    ft_edit_window w;
+    int bend_straight;
+    int keep_vertices; /* only the new midpoints move (emit_vertex in dutton.c) */
+} ft_dutton_pass_params;
+
+/** split[i] = 1 if segment i (vertex i to i+1, cyclically on a ring) is in the window. */
+void ft_dutton_mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split);
+
+/** Checks a pass's input chain and plan, fills *pp and, in calibrated mode, the densified chain the pass
+ *  works on (*dense; NULL when no segment needs cutting or on failure: then the pass works on in). */
+int ft_dutton_pass_prepare(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_pass_params *pp, ft_chain **dense);
+
+/** Where a pass puts vertex i of in (split from ft_dutton_mark_splits): moved iff both its segments are
+ *  split. Returns 1 if it moves (even by nothing), 0 if it stays; (*x, *y) is the position either way. */
+static inline int ft_dutton_raw_vertex(const ft_chain *in, const unsigned char *split, const ft_dutton_pass_params *pp,
+                                       size_t i, double *x, double *y)
+{
+    size_t n = in->n;
+    int has_prev = in->closed || i > 0, has_next = in->closed || i + 1 < n;
+    size_t ip = i > 0 ? i - 1 : n - 1, in_ = i + 1 < n ? i + 1 : 0;
+    *x = in->x[i];
+    *y = in->y[i];
+    if (!(has_prev && has_next && split[ip] && split[i]))
+        return 0;
+    return ft_dutton_move(in->x[ip], in->y[ip], in->x[i], in->y[i], in->x[in_], in->y[in_], pp->cos_t, pp->sin_t,
+                          pp->uc, pp->bend_straight ? (i % 2 ? 1 : -1) : 0, x, y);
+}
+
+/** 1 if the fused guarded pass below does with plan p what ft_line_pass_enhance and the crossing guard do: the
+ *  pass moves only the input's vertices, never the new midpoints (their fixed places are what the fusion rests
+ *  on). A plan whose pass moves the midpoints must give 0 here (ft_line_run_passes then takes the unfused
+ *  guard). */
+int ft_dutton_plan_fusable(const ft_dutton_plan *p);
+
+/** One guarded pass of the enhancement over the chain set in[0..n) (guard fused into the pass,
+ *  dutton_guarded.c): out[c] receives chain c's result (repeated vertices not yet removed); stats (may be
+ *  NULL) is added to. On failure every out[c] is NULL. */
+int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
+                           ft_line_guard_stats *stats);
 
 #endif /* FRACTERRA_LINE_DUTTON_INTERNAL_H */

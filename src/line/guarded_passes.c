@@ -5,12 +5,15 @@
  * A pass computes base and raw chains for every chain (independently, in chain order), then either guards
  * the moves of the whole set at once or takes the raw positions (guard = 0: the raw algorithm), then drops
  * repeated consecutive vertices (smoothing's uncut or halved-to-nothing corners; a ring's last vertex equal
- * to its first). The end points of an open chain are never dropped.
+ * to its first). The end points of an open chain are never dropped. A guarded pass of Dutton's enhancement
+ * (ft_line_pass_enhance, FT_GUARD_REDUCE, a plan whose pass moves no midpoint: ft_dutton_plan_fusable) runs
+ * with the guard fused into it (dutton_guarded.c): the same rule, no base or raw chain.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
 #include "fracterra/line.h"
+#include "line/dutton_internal.h"
 
 #include <stdlib.h>
 
@@ -58,9 +61,12 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
 {
     ft_chain **base = ft_calloc(n ? n : 1, sizeof *base), **raw = ft_calloc(n ? n : 1, sizeof *raw);
     int rc = base == NULL || raw == NULL ? FT_E_NOMEM : FT_OK;
-    for (size_t c = 0; c < n && rc == FT_OK; c++)
+    int fused = pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE && ft_dutton_plan_fusable(ctx);
+    if (rc == FT_OK && fused)
+        rc = ft_dutton_pass_guarded((const ft_chain *const *)chains, n, ctx, base, stats);
+    for (size_t c = 0; c < n && rc == FT_OK && !fused; c++)
         rc = pass(chains[c], ctx, guard ? &base[c] : NULL, &raw[c]);
-    if (rc == FT_OK && guard)
+    if (rc == FT_OK && guard && !fused)
         rc = ft_line_guard_moves(base, (const ft_chain *const *)raw, n, guard, stats);
     if (rc == FT_OK) {
         ft_chain **keep = guard ? base : raw;

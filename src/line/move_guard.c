@@ -20,7 +20,7 @@
  * input's nesting, by construction. A contact
  * already in the base (an input that crosses itself) stays, and the moves that touch it are refused.
  *
- * Order, and threads. The blocks are cut into chunks of GUARD_CHUNK consecutive blocks (a fixed size). A
+ * Order, and threads. The blocks are cut into chunks of FT_GUARD_CHUNK consecutive blocks (a fixed size). A
  * block is local if every vertex that the test of a vertex it owns reads (the end points of the segments of
  * its near list) is owned by a block of its own chunk (a vertex is owned by the block of the segment ending
  * at it). First the moves of the vertices of local blocks are walked, chunk by chunk in parallel, each chunk
@@ -38,8 +38,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define GUARD_CHUNK 16384 /* blocks per chunk of the parallel walk: fixed, so the result does not depend on threads */
-
 typedef struct {
     ft_chain *const *cur;
     const ft_segment_blocks *g;
@@ -53,14 +51,6 @@ static inline double dmin(double a, double b)
 static inline double dmax(double a, double b)
 {
     return a > b ? a : b;
-}
-
-static int strictly_inside(const double *a, const double *b, const double *c, double px, double py)
-{
-    double o1 = (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
-    double o2 = (c[0] - b[0]) * (py - b[1]) - (c[1] - b[1]) * (px - b[0]);
-    double o3 = (a[0] - c[0]) * (py - c[1]) - (a[1] - c[1]) * (px - c[0]);
-    return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
 }
 
 /* 1 if moving vertex v of chain c from b0 to b (its segments sa: a b0 -> a b, sb: b0 c -> b c; a or c NULL
@@ -86,24 +76,12 @@ static int blocked(const guard *G, size_t c, size_t nb, const double *a, const d
         if (q[2] < box[0] || q[0] > box[2] || q[3] < box[1] || q[1] > box[3])
             continue;
         const ft_chain *ch = G->cur[mc];
-        size_t n = ch->n, s0 = g->first[m], s1 = s0 + g->count[m];
-        const double *x = ch->x, *y = ch->y;
-        for (size_t s = s0; s < s1; s++) {
-            if (mc == c && (s == sa || s == sb))
-                continue;
-            size_t j = s + 1 < n ? s + 1 : 0;
-            double p0 = x[s], p1 = y[s], p2 = x[j], p3 = y[j];
-            if (dmax(p0, p2) < box[0] || dmin(p0, p2) > box[2] || dmax(p1, p3) < box[1] || dmin(p1, p3) > box[3])
-                continue;
-            if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p0, p1, p2, p3))
-                return 1;
-            if (cc && ft_segment_contact(b[0], b[1], cc[0], cc[1], p0, p1, p2, p3))
-                return 1;
-            if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p0, p1, p2, p3))
-                return 1;
-            if ((a && strictly_inside(a, b0, b, p0, p1)) || (cc && strictly_inside(b0, b, cc, p0, p1)))
-                return 1;
-        }
+        size_t s0 = g->first[m], s1 = s0 + g->count[m];
+        size_t skip = SIZE_MAX, skip_n = 0; /* v's own segments sa, sb (cyclically consecutive) */
+        if (mc == c)
+            skip = sa != SIZE_MAX ? sa : sb, skip_n = (sa != SIZE_MAX) + (sb != SIZE_MAX);
+        if (ft_move_sweeps(ch->x, ch->y, ch->n, s0, s1, skip, skip_n, box, a, b0, b, cc))
+            return 1;
     }
     return 0;
 }
@@ -147,34 +125,6 @@ static int check_pair(const ft_chain *b, const ft_chain *r, size_t c)
         return ft_error(FT_E_INVALID, "crossing guard: chain %zu has %zu base and %zu raw vertices", c, b->n,
                         r->n);
     return FT_OK;
-}
-
-/* The owner of block m's first vertex: the block before it, or at a chain's start m itself (open) or the
- * chain's last block (ring). Every other vertex of m's segments is owned by m. */
-static size_t first_vertex_owner(const ft_segment_blocks *g, const ft_chain *const *cur, size_t m)
-{
-    uint32_t c = g->chain[m];
-    if (m > g->chain_block[c])
-        return m - 1;
-    return cur[c]->closed ? g->chain_block[c + 1] - 1 : m;
-}
-
-/* local[b] = 1 if every vertex the test of a vertex owned by b reads (the end points of the segments of the
- * blocks in b's near list) is owned by a block of b's chunk: then the vertices of a chunk that are local can
- * be walked with no regard for any other chunk. */
-static void mark_local(const ft_segment_blocks *g, const ft_chain *const *cur, unsigned char *local)
-{
-    long long nb = (long long)g->nblock;
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < nb; b++) {
-        size_t k = (size_t)b / GUARD_CHUNK;
-        unsigned char ok = 1;
-        for (uint32_t e = g->near_start[b]; e < g->near_start[b + 1] && ok; e++) {
-            size_t m = g->near[e];
-            ok = m / GUARD_CHUNK == k && first_vertex_owner(g, cur, m) / GUARD_CHUNK == k;
-        }
-        local[b] = ok;
-    }
 }
 
 static void count_move(ft_line_guard_stats *s, double t)
@@ -231,7 +181,7 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
     int rc = ft_segment_blocks_build(&g, (const ft_chain *const *)chains, raw, n, mode == FT_GUARD_MIRROR);
     if (rc != FT_OK)
         return rc;
-    size_t nchunk = (g.nblock + GUARD_CHUNK - 1) / GUARD_CHUNK;
+    size_t nchunk = (g.nblock + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     unsigned char *local = ft_malloc(g.nblock ? g.nblock : 1);
     ft_line_guard_stats *part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
     if (local == NULL || part == NULL) {
@@ -241,11 +191,11 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
         return FT_E_NOMEM;
     }
     guard G = {chains, &g};
-    mark_local(&g, (const ft_chain *const *)chains, local);
+    ft_segment_blocks_mark_local(&g, (const ft_chain *const *)chains, local);
     long long nk = (long long)nchunk;
 #pragma omp parallel for schedule(dynamic, 1)
     for (long long k = 0; k < nk; k++) {
-        size_t b0 = (size_t)k * GUARD_CHUNK, b1 = b0 + GUARD_CHUNK < g.nblock ? b0 + GUARD_CHUNK : g.nblock;
+        size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < g.nblock ? b0 + FT_GUARD_CHUNK : g.nblock;
         walk_blocks(&G, raw, local, 1, b0, b1, mode, &part[k]);
     }
     ft_line_guard_stats s = {0, 0, 0, 0};

@@ -6,6 +6,9 @@
 #ifndef FRACTERRA_LINE_SEGMENT_CONTACT_H
 #define FRACTERRA_LINE_SEGMENT_CONTACT_H
 
+#include <math.h>
+#include <stddef.h>
+
 static inline double ft_cmin(double a, double b)
 {
     return a < b ? a : b;
@@ -64,6 +67,76 @@ static inline int ft_segment_contact(double ax, double ay, double bx, double by,
     if (bx == dx && by == dy)
         return ft_segment_fold(bx, by, ax, ay, cx, cy);
     return ft_closed_intersect(ax, ay, bx, by, cx, cy, dx, dy);
+}
+
+/* p lies strictly inside the triangle a b c (either orientation). */
+static inline int ft_strictly_inside(const double *a, const double *b, const double *c, double px, double py)
+{
+    double o1 = (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
+    double o2 = (c[0] - b[0]) * (py - b[1]) - (c[1] - b[1]) * (px - b[0]);
+    double o3 = (a[0] - c[0]) * (py - c[1]) - (a[1] - c[1]) * (px - c[0]);
+    return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
+}
+
+/** 1 if moving a vertex from b0 to b, its neighbours a and cc (NULL when absent) staying, sweeps one of the
+ *  segments s0 .. s1 - 1 (segment s: vertex s to s + 1, a ring's last back to 0) of the chain x, y of n
+ *  vertices other than the skip_n segments from skip (cyclically; the moved vertex's own, and those already
+ *  cleared): contact with a b, b cc or the path b0 b, or a segment's first end point strictly inside the
+ *  triangles a b0 b, b0 b cc. box is the bounding box of a, b0, b and cc. Used by the crossing guards
+ *  (move_guard.c, dutton_guarded.c). */
+static inline int ft_move_sweeps(const double *x, const double *y, size_t n, size_t s0, size_t s1, size_t skip,
+                                 size_t skip_n, const double box[4], const double *a, const double *b0, const double *b,
+                                 const double *cc)
+{
+    for (size_t s = s0; s < s1; s++) {
+        if (s - skip < skip_n || s + n - skip < skip_n)
+            continue;
+        size_t j = s + 1 < n ? s + 1 : 0;
+        double p0 = x[s], p1 = y[s], p2 = x[j], p3 = y[j];
+        if (ft_cmax(p0, p2) < box[0] || ft_cmin(p0, p2) > box[2] || ft_cmax(p1, p3) < box[1] ||
+            ft_cmin(p1, p3) > box[3])
+            continue;
+        if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p0, p1, p2, p3))
+            return 1;
+        if (cc && ft_segment_contact(b[0], b[1], cc[0], cc[1], p0, p1, p2, p3))
+            return 1;
+        if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p0, p1, p2, p3))
+            return 1;
+        if ((a && ft_strictly_inside(a, b0, b, p0, p1)) || (cc && ft_strictly_inside(b0, b, cc, p0, p1)))
+            return 1;
+    }
+    return 0;
+}
+
+/** 1 if the segment from x to p certainly meets the convex hull of x, q0, q1 and q2 only at x: some line
+ *  through x along one of the directions q - x has q0, q1, q2 strictly on one side (by a relative margin of
+ *  1e-9) and p strictly on the other. 0 when not sure (the hull's angle at x near pi or above, p near its
+ *  edge, a zero-length direction). Exact reasoning: the half-plane holds the hull, and the segment leaves it
+ *  at x. */
+static inline int ft_leaves_hull(const double *x, const double *p, const double *q0, const double *q1,
+                                 const double *q2)
+{
+    const double eps2 = 1e-18; /* the margin, squared: the tests compare squares, no square root */
+    double ux = p[0] - x[0], uy = p[1] - x[1];
+    double d[3][2] = {{q0[0] - x[0], q0[1] - x[1]}, {q1[0] - x[0], q1[1] - x[1]}, {q2[0] - x[0], q2[1] - x[1]}};
+    double len2[3], lu2 = ux * ux + uy * uy;
+    for (int j = 0; j < 3; j++)
+        len2[j] = d[j][0] * d[j][0] + d[j][1] * d[j][1];
+    for (int i = 0; i < 3; i++) {
+        double nx = -d[i][1], ny = d[i][0]; /* d_i turned +90 degrees; |n| = |d_i| */
+        double nu = nx * ux + ny * uy;
+        if (!(nu * nu > eps2 * len2[i] * lu2))
+            continue;
+        double sgn = nu < 0.0 ? 1.0 : -1.0; /* the side of the q's: opposite to p */
+        int ok = 1;
+        for (int j = 0; j < 3 && ok; j++) {
+            double v = sgn * (nx * d[j][0] + ny * d[j][1]);
+            ok = j == i || (v > 0.0 && v * v > eps2 * len2[i] * len2[j]);
+        }
+        if (ok)
+            return 1;
+    }
+    return 0;
 }
 
 #endif /* FRACTERRA_LINE_SEGMENT_CONTACT_H */

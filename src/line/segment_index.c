@@ -271,15 +271,14 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
     return FT_OK;
 }
 
-int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
-                            int mirror)
+int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains, size_t n, size_t per_block)
 {
     *g = (ft_segment_blocks){0};
     size_t nseg = 0, nb = 0;
     for (size_t c = 0; c < n; c++) {
-        size_t ns = ft_chain_segments(base[c]);
+        size_t ns = ft_chain_segments(chains[c]);
         nseg += ns;
-        nb += (ns + FT_SEGMENT_BLOCK - 1) / FT_SEGMENT_BLOCK;
+        nb += (ns + per_block - 1) / per_block;
     }
     if (nseg >= UINT32_MAX || n >= UINT32_MAX)
         return ft_error(FT_E_NOMEM, "segment index: %zu segments in %zu chains (at most 2^32 - 2)", nseg, n);
@@ -289,32 +288,68 @@ int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, c
     g->chain = ft_malloc((nb ? nb : 1) * sizeof *g->chain);
     g->first = ft_malloc((nb ? nb : 1) * sizeof *g->first);
     g->count = ft_malloc((nb ? nb : 1) * sizeof *g->count);
-    double *box = g->box = ft_malloc((nb ? 4 * nb : 1) * sizeof *box);
-    if (g->chain_block == NULL || g->chain == NULL || g->first == NULL || g->count == NULL || box == NULL) {
+    g->box = ft_malloc((nb ? 4 * nb : 1) * sizeof *g->box);
+    if (g->chain_block == NULL || g->chain == NULL || g->first == NULL || g->count == NULL || g->box == NULL) {
         ft_segment_blocks_free(g);
         return FT_E_NOMEM;
     }
     size_t b = 0;
     for (size_t c = 0; c < n; c++) {
         g->chain_block[c] = (uint32_t)b;
-        for (size_t s = 0, ns = ft_chain_segments(base[c]); s < ns; s += FT_SEGMENT_BLOCK, b++) {
+        for (size_t s = 0, ns = ft_chain_segments(chains[c]); s < ns; s += per_block, b++) {
             g->chain[b] = (uint32_t)c;
             g->first[b] = (uint32_t)s;
-            g->count[b] = (uint8_t)(ns - s < FT_SEGMENT_BLOCK ? ns - s : FT_SEGMENT_BLOCK);
+            g->count[b] = (uint8_t)(ns - s < per_block ? ns - s : per_block);
         }
     }
     g->chain_block[n] = (uint32_t)b;
-    int rc = FT_OK;
-    if (nb > 0) {
-        long long nbl = (long long)nb;
-#pragma omp parallel for schedule(static)
-        for (long long k = 0; k < nbl; k++)
-            block_box(g, base, raw, (size_t)k, mirror, box + 4 * k);
-        rc = join(g, base, box);
-    }
+    return FT_OK;
+}
+
+int ft_segment_blocks_join(ft_segment_blocks *g, const ft_chain *const *chains)
+{
+    int rc = g->nblock > 0 ? join(g, chains, g->box) : FT_OK;
     if (rc != FT_OK)
         ft_segment_blocks_free(g);
     return rc;
+}
+
+int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, const ft_chain *const *raw, size_t n,
+                            int mirror)
+{
+    int rc = ft_segment_blocks_layout(g, base, n, FT_SEGMENT_BLOCK);
+    if (rc != FT_OK)
+        return rc;
+    long long nbl = (long long)g->nblock;
+#pragma omp parallel for schedule(static)
+    for (long long k = 0; k < nbl; k++)
+        block_box(g, base, raw, (size_t)k, mirror, g->box + 4 * k);
+    return ft_segment_blocks_join(g, base);
+}
+
+/* The owner of block m's first vertex: the block before it, or at a chain's start m itself (open) or the
+ * chain's last block (ring). Every other vertex of m's segments is owned by m. */
+static size_t first_vertex_owner(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
+{
+    uint32_t c = g->chain[m];
+    if (m > g->chain_block[c])
+        return m - 1;
+    return chains[c]->closed ? g->chain_block[c + 1] - 1 : m;
+}
+
+void ft_segment_blocks_mark_local(const ft_segment_blocks *g, const ft_chain *const *chains, unsigned char *local)
+{
+    long long nb = (long long)g->nblock;
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nb; b++) {
+        size_t k = (size_t)b / FT_GUARD_CHUNK;
+        unsigned char ok = 1;
+        for (uint32_t e = g->near_start[b]; e < g->near_start[b + 1] && ok; e++) {
+            size_t m = g->near[e];
+            ok = m / FT_GUARD_CHUNK == k && first_vertex_owner(g, chains, m) / FT_GUARD_CHUNK == k;
+        }
+        local[b] = ok;
+    }
 }
 
 void ft_segment_blocks_free(ft_segment_blocks *g)

@@ -34,4 +34,19 @@ int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, c
                             int mirror);
 void ft_segment_blocks_free(ft_segment_blocks *g);
 
+/** The build in steps, for a caller that computes the swept boxes itself (dutton_guarded.c): the blocks of
+ *  per_block (1..255) segments of chains[0..n) (box allocated, not filled; per_block replaces
+ *  FT_SEGMENT_BLOCK above), then, once every box is in g->box (widened as
+ *  block_box does), the near lists. On failure g is freed. */
+int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains, size_t n, size_t per_block);
+int ft_segment_blocks_join(ft_segment_blocks *g, const ft_chain *const *chains);
+
+/** Blocks per chunk of a guard's parallel walk: a fixed number, so the result does not depend on threads. */
+#define FT_GUARD_CHUNK 16384
+
+/** local[b] = 1 if every vertex the test of a vertex owned by block b reads (the end points of the segments of
+ *  the blocks in b's near list) is owned by a block of b's chunk (a vertex is owned by the block of the segment
+ *  ending at it): the local vertices of a chunk can be walked with no regard for any other chunk. */
+void ft_segment_blocks_mark_local(const ft_segment_blocks *g, const ft_chain *const *chains, unsigned char *local);
+
 #endif /* FRACTERRA_LINE_SEGMENT_INDEX_H */

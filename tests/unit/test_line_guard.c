@@ -332,6 +332,113 @@ static void test_thread_count(void **state)
     ft_chain_free(c);
 }
 
+/* ft_line_pass_enhance under another name: ft_line_run_passes then takes the unfused path (the pass writes
+ * base and raw chains, ft_line_guard_moves walks them), the reference for the fused guarded pass. */
+static int pass_enhance_unfused(const ft_chain *in, const void *ctx, ft_chain **base, ft_chain **raw)
+{
+    return ft_line_pass_enhance(in, ctx, base, raw);
+}
+
+/* The guard fused into the enhancement pass (dutton_guarded.c) gives the unfused guard's very bits and counts
+ * when every segment is split: two guarded passes over a set of two chains that come close, a jittered
+ * spiral of 1 m steps (open, 40,000 vertices: several chunks of the walk after the first pass) and a ring
+ * (SD 1.5, on 3 threads). Some moves must be reduced or refused for the comparison to mean anything. */
+/* Guarded passes over copies of c[0..n), fused and unfused: the same counts and the same bits. */
+static void fused_matches_unfused(ft_chain *const *c, size_t n, const ft_dutton_opts *o, int passes)
+{
+    ft_dutton_plan plan;
+    assert_int_equal(ft_dutton_plan_make((const ft_chain *const *)c, n, o, &plan), FT_OK);
+    ft_chain **fused = calloc(n, sizeof *fused), **ref = calloc(n, sizeof *ref);
+    assert_non_null(fused);
+    assert_non_null(ref);
+    for (size_t k = 0; k < n; k++) {
+        fused[k] = ft_chain_copy(c[k]);
+        ref[k] = ft_chain_copy(c[k]);
+    }
+    ft_line_guard_stats sf = {0, 0, 0, 0}, sr = {0, 0, 0, 0};
+    int threads = omp_get_max_threads();
+    omp_set_num_threads(3);
+    assert_int_equal(ft_line_run_passes(fused, n, ft_line_pass_enhance, &plan, passes, FT_GUARD_REDUCE, &sf), FT_OK);
+    assert_int_equal(ft_line_run_passes(ref, n, pass_enhance_unfused, &plan, passes, FT_GUARD_REDUCE, &sr), FT_OK);
+    omp_set_num_threads(threads);
+    assert_true(sr.reduced + sr.dropped > 100);
+    assert_int_equal(sf.moves, sr.moves);
+    assert_int_equal(sf.reduced, sr.reduced);
+    assert_int_equal(sf.dropped, sr.dropped);
+    for (size_t k = 0; k < n; k++) {
+        assert_int_equal(fused[k]->n, ref[k]->n);
+        assert_int_equal(fused[k]->closed, ref[k]->closed);
+        assert_memory_equal(fused[k]->x, ref[k]->x, ref[k]->n * sizeof(double));
+        assert_memory_equal(fused[k]->y, ref[k]->y, ref[k]->n * sizeof(double));
+        ft_chain_free(fused[k]);
+        ft_chain_free(ref[k]);
+    }
+    free(fused);
+    free(ref);
+}
+
+/* A jittered spiral of 1 m steps (open, 40,000 vertices: several chunks of the walk after a pass), or a
+ * random walk of 1 m steps with sharp turns, and a ring 1.2 m inside the spiral's first turn. */
+static void spiral_and_ring(ft_chain *c[2], int walk)
+{
+    const size_t n = 40000, nr = 600;
+    c[0] = ft_chain_create(n, 0);
+    c[1] = ft_chain_create(nr, 1);
+    ft_rng *r = ft_rng_create(20240501, 9);
+    double theta = 0.0, x = 0.0, y = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double rad = 100.0 + 1.5 * theta / (2.0 * M_PI), jit = 0.6 * (ft_rng_uniform(r) - 0.5);
+        c[0]->x[i] = walk ? x : (rad + jit) * cos(theta);
+        c[0]->y[i] = walk ? y : (rad + jit) * sin(theta);
+        theta += walk ? ft_rng_gaussian(r, 2.5) : 1.0 / rad;
+        x += cos(theta);
+        y += sin(theta);
+    }
+    for (size_t i = 0; i < nr; i++) {
+        double t = 2.0 * M_PI * (double)i / (double)nr, rad = 98.8 + 0.5 * (ft_rng_uniform(r) - 0.5);
+        c[1]->x[i] = rad * cos(t);
+        c[1]->y[i] = rad * sin(t);
+    }
+    c[0]->n = n;
+    c[1]->n = nr;
+    ft_rng_free(r);
+}
+
+/* The guard fused into the enhancement pass (dutton_guarded.c) gives the unfused guard's very bits and counts
+ * when every segment is split (on 3 threads): the spiral and its ring (SD 1.5, 2 passes), the sharp walk and
+ * the ring (SD 1.5; literal SD 1.3 with UC -1, Dutton's exaggeration), and the real contour stack of the
+ * volcano (SD 1.7, 3 passes), where a few moves are stopped by the segments next to their own. Some moves
+ * must be reduced or refused for the comparison to mean anything. */
+static void test_fused_matches_unfused(void **state)
+{
+    (void)state;
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.sd = 1.5;
+    for (int walk = 0; walk < 2; walk++) {
+        ft_chain *c[2];
+        spiral_and_ring(c, walk);
+        fused_matches_unfused(c, 2, &o, 2);
+        if (walk) {
+            ft_dutton_opts e = o;
+            e.sd = 1.3;
+            e.uc = -1.0;
+            e.literal_sd = 1;
+            fused_matches_unfused(c, 2, &e, 2);
+        }
+        ft_chain_free(c[0]);
+        ft_chain_free(c[1]);
+    }
+    ft_layer *l = read_layer(CONTOURS);
+    ft_chain **parts = calloc(l->nparts, sizeof *parts);
+    assert_non_null(parts);
+    for (size_t p = 0; p < l->nparts; p++)
+        parts[p] = l->parts[p].chain;
+    o.sd = 1.7;
+    fused_matches_unfused(parts, l->nparts, &o, 3);
+    free(parts);
+    ft_layer_free(l);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -342,6 +449,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_no_jump_over_island),
         cmocka_unit_test(test_thread_count),
+        cmocka_unit_test(test_fused_matches_unfused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

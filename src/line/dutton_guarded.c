@@ -1,0 +1,357 @@
+/* fracterra — line/dutton_guarded.c: one pass of Dutton's (1981) enhancement (dutton.c) with the crossing
+ * guard fused into it, over a set of chains (one chain, or every part or arc of a layer).
+ *
+ * The guard's rule is move_guard.c's: the pass starts from its base geometry (the input's vertices and the
+ * midpoints of its split segments, i.e. the input's own lines) and visits the moved vertices; vertex v goes
+ * from V0 (its input position) towards its raw position V (dutton.c) by the first t of 1, 1/2, 1/4 for which
+ * the move sweeps no other segment of the set (ft_move_sweeps: contact with the new segments or the path,
+ * an end point inside the swept triangles), else stays. What the fusion saves is the memory and the
+ * index: Dutton's midpoints never move, so the two neighbours of a moved vertex are fixed points, and every
+ * output segment of input segment s (from V_s to M_s, from M_s to V_s+1) stays in the bounding box of V_s,
+ * V_s+1 and their raw positions. So the index is built on the input's segments (half as many blocks as the
+ * output's), from positions computed on the fly; the output chain is written once with the base geometry
+ * and the walk moves its vertices in place: no base chain, no raw chain.
+ *
+ * Order and threads, as in move_guard.c: blocks of FT_SEGMENT_BLOCK / 2 input segments (when every segment
+ * is split, the very blocks of FT_SEGMENT_BLOCK output segments that move_guard.c cuts), chunks of
+ * FT_GUARD_CHUNK blocks; the vertices of the blocks whose near lists stay within their chunk are walked chunk
+ * by chunk in parallel, each chunk in vertex order, then the others serially in chain and vertex order. The
+ * order depends on the data only: the same bits on any thread count. Where every segment is split (the
+ * default window) and the boxes give the same near lists, it is move_guard.c's order, and the result its
+ * bits (checked on the bench chain); where not, two competing moves may be settled the other way, with the
+ * same guarantee (the output has a contact only where the input had one).
+ *
+ * The two segments next to the moved vertex's own (they share its fixed neighbours) are cleared first by a
+ * hull test (ft_leaves_hull: the segment leaves the hull of the move at the shared point), which decides
+ * nearly every case; what it cannot clear is tested with the other segments.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+#include "internal.h"
+#include "fracterra/line.h"
+#include "line/dutton_internal.h"
+#include "line/segment_contact.h"
+#include "line/segment_index.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#define WIDEN 1e-9 /* swept boxes widened by this fraction of their largest coordinate (as segment_index.c) */
+#define FUSED_BLOCK (FT_SEGMENT_BLOCK / 2) /* input segments per block: the output's FT_SEGMENT_BLOCK, as move_guard.c */
+
+/* One chain of the pass: the input the pass works on (densified or not), its split flags, its output. */
+typedef struct {
+    const ft_chain *in;
+    ft_chain *dense; /* owned; NULL if in is the caller's chain */
+    unsigned char *split;
+    ft_chain *out;
+} pass_chain;
+
+typedef struct {
+    pass_chain *pc;
+    ft_segment_blocks g; /* blocks of the input segments */
+    uint32_t *ofirst;    /* per block: the output index of its first vertex */
+    ft_dutton_pass_params pp;
+} fused;
+
+static inline double dmin(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double dmax(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline void box_add(double box[4], double x, double y)
+{
+    box[0] = dmin(box[0], x);
+    box[1] = dmin(box[1], y);
+    box[2] = dmax(box[2], x);
+    box[3] = dmax(box[3], y);
+}
+
+/* The widened box of block b's input vertices and the raw positions of those that move. */
+static void block_box(const fused *F, size_t b, double box[4])
+{
+    const ft_segment_blocks *g = &F->g;
+    const pass_chain *p = &F->pc[g->chain[b]];
+    size_t n = p->in->n, v0 = g->first[b], v1 = v0 + g->count[b];
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (size_t v = v0; v <= v1; v++) {
+        size_t i = v < n ? v : v - n;
+        double x, y;
+        box_add(box, p->in->x[i], p->in->y[i]);
+        if (ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &x, &y))
+            box_add(box, x, y);
+    }
+    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
+    double w = WIDEN * m + 1e-300;
+    box[0] -= w;
+    box[1] -= w;
+    box[2] += w;
+    box[3] += w;
+}
+
+/* Block b's output with no move: its vertices at their input positions, each split segment's midpoint after
+ * its first vertex; an open chain's last block writes the last vertex too. */
+static void emit_base(const fused *F, size_t b)
+{
+    const ft_segment_blocks *g = &F->g;
+    const pass_chain *p = &F->pc[g->chain[b]];
+    const ft_chain *in = p->in;
+    size_t n = in->n, v0 = g->first[b], v1 = v0 + g->count[b], k = F->ofirst[b];
+    double *ox = p->out->x, *oy = p->out->y;
+    for (size_t v = v0; v < v1; v++) {
+        size_t j = v + 1 < n ? v + 1 : 0;
+        ox[k] = in->x[v];
+        oy[k] = in->y[v];
+        k++;
+        if (p->split[v]) {
+            ox[k] = 0.5 * (in->x[v] + in->x[j]);
+            oy[k] = 0.5 * (in->y[v] + in->y[j]);
+            k++;
+        }
+    }
+    if (!in->closed && v1 == n - 1) {
+        ox[k] = in->x[v1];
+        oy[k] = in->y[v1];
+    }
+}
+
+/* 1 if moving the vertex at output index k of chain c from b0 to b (neighbours a and cc, fixed) sweeps a
+ * segment of a block in nb's near list, other than the skip_n segments from skip (its own two, and the
+ * neighbouring ones already cleared). A block's output segments run from its first vertex's output index to
+ * its last's (the next block's first, or the chain's end). */
+static int blocked(const fused *F, size_t c, size_t nb, size_t skip, size_t skip_n, const double *a, const double *b0,
+                   const double *b, const double *cc)
+{
+    double box[4] = {dmin(b[0], b0[0]), dmin(b[1], b0[1]), dmax(b[0], b0[0]), dmax(b[1], b0[1])};
+    box_add(box, a[0], a[1]);
+    box_add(box, cc[0], cc[1]);
+    const ft_segment_blocks *g = &F->g;
+    for (uint32_t e = g->near_start[nb]; e < g->near_start[nb + 1]; e++) {
+        uint32_t m = g->near[e], mc = g->chain[m];
+        const double *q = g->box + 4 * (size_t)m;
+        if (q[2] < box[0] || q[0] > box[2] || q[3] < box[1] || q[1] > box[3])
+            continue;
+        const ft_chain *ch = F->pc[mc].out;
+        size_t s0 = F->ofirst[m], s1 = m + 1 < g->chain_block[mc + 1] ? F->ofirst[m + 1] : ft_chain_segments(ch);
+        if (ft_move_sweeps(ch->x, ch->y, ch->n, s0, s1, mc == c ? skip : SIZE_MAX, mc == c ? skip_n : 0, box, a, b0,
+                           b, cc))
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether moving the vertex at output index k (neighbours at ka and kc) from b0 to b leaves the chain's
+ * neighbouring segments (ka - 1 to ka, kc to kc + 1) clear, by the hull shortcut (ft_leaves_hull); the
+ * segments it cannot clear are tested with the others. Then the scan of the near blocks. */
+static int move_blocked(const fused *F, size_t c, size_t nb, size_t k, const double *a, const double *b0,
+                        const double *b, const double *cc)
+{
+    const ft_chain *o = F->pc[c].out;
+    size_t n = o->n, ka = k > 0 ? k - 1 : n - 1, kc = k + 1 < n ? k + 1 : 0;
+    size_t skip = ka, skip_n = 2; /* segments kp, ka, k, kc are consecutive: the run skipped is a part of them */
+    if (n >= 6) {
+        size_t kp = ka > 0 ? ka - 1 : n - 1, kn = kc + 1 < n ? kc + 1 : 0;
+        double p[2] = {o->x[kp], o->y[kp]}, q[2] = {o->x[kn], o->y[kn]};
+        if (ft_leaves_hull(a, p, b0, b, cc))
+            skip = kp, skip_n++;
+        if (ft_leaves_hull(cc, q, a, b0, b))
+            skip_n++;
+    }
+    return blocked(F, c, nb, skip, skip_n, a, b0, b, cc);
+}
+
+static void count_move(ft_line_guard_stats *s, double t)
+{
+    s->moves++;
+    s->reduced += t > 0.0 && t < 1.0;
+    s->dropped += t == 0.0;
+}
+
+/* Walks the moved vertices owned by blocks [lo, hi) whose local flag is `want`, in chain and vertex order
+ * (block b owns the end points of its segments but the first; an open chain's first block its first too). */
+static void walk_blocks(const fused *F, const unsigned char *local, unsigned char want, size_t lo, size_t hi,
+                        ft_line_guard_stats *s)
+{
+    static const double ts[] = {1.0, 0.5, 0.25};
+    const ft_segment_blocks *g = &F->g;
+    for (size_t b = lo; b < hi; b++) {
+        if (local[b] != want)
+            continue;
+        size_t c = g->chain[b];
+        const pass_chain *p = &F->pc[c];
+        size_t n = p->in->n, nout = p->out->n, v = g->first[b], v1 = v + g->count[b], k = F->ofirst[b];
+        double *ox = p->out->x, *oy = p->out->y;
+        for (; v <= v1; v++) {
+            size_t i = v < n ? v : 0, ki = k < nout ? k : 0;
+            if (v < v1)
+                k += 1 + p->split[v];
+            if (v == g->first[b] && (b > g->chain_block[c] || p->in->closed))
+                continue; /* owned by the block before */
+            double rx, ry;
+            if (!ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &rx, &ry))
+                continue;
+            double bx = ox[ki], by = oy[ki], dx = rx - bx, dy = ry - by;
+            if (dx == 0.0 && dy == 0.0)
+                continue;
+            size_t ka = ki > 0 ? ki - 1 : nout - 1, kc = ki + 1 < nout ? ki + 1 : 0;
+            double a[2] = {ox[ka], oy[ka]}, cc[2] = {ox[kc], oy[kc]}, b0[2] = {bx, by}, t = 0.0;
+            for (int q = 0; q < 3; q++) {
+                double nbx[2] = {bx + ts[q] * dx, by + ts[q] * dy};
+                if (!move_blocked(F, c, b, ki, a, b0, nbx, cc)) {
+                    ox[ki] = nbx[0];
+                    oy[ki] = nbx[1];
+                    t = ts[q];
+                    break;
+                }
+            }
+            count_move(s, t);
+        }
+    }
+}
+
+static void free_chains(pass_chain *pc, size_t n, int keep_out)
+{
+    for (size_t c = 0; pc != NULL && c < n; c++) {
+        ft_chain_free(pc[c].dense);
+        free(pc[c].split);
+        if (!keep_out)
+            ft_chain_free(pc[c].out);
+    }
+    free(pc);
+}
+
+/* Chain c's input (densified), split flags and output chain of the right size. */
+static int prepare_chain(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_pass_params *pp, pass_chain *q)
+{
+    int rc = ft_dutton_pass_prepare(in, p, pp, &q->dense);
+    if (rc != FT_OK)
+        return rc;
+    q->in = q->dense ? q->dense : in;
+    size_t n = q->in->n, nseg = ft_chain_segments(q->in), extra = 0;
+    q->split = ft_malloc(nseg ? nseg : 1);
+    if (q->split == NULL)
+        return FT_E_NOMEM;
+    ft_dutton_mark_splits(q->in, nseg, pp->w, q->split);
+    for (size_t i = 0; i < nseg; i++)
+        extra += q->split[i];
+    if (n > SIZE_MAX / 2 || n + extra >= UINT32_MAX)
+        return ft_error(FT_E_NOMEM, "enhance: %zu vertices overflow", n + extra);
+    q->out = ft_chain_create(n + extra, q->in->closed);
+    if (q->out == NULL)
+        return FT_E_NOMEM;
+    q->out->n = n + extra;
+    if (nseg == 0) { /* a single vertex: nothing to split or move */
+        for (size_t i = 0; i < n; i++) {
+            q->out->x[i] = q->in->x[i];
+            q->out->y[i] = q->in->y[i];
+        }
+    }
+    return FT_OK;
+}
+
+/* Output index of every block's first vertex: the splits before it in its chain, counted per block. */
+static void first_outputs(fused *F)
+{
+    const ft_segment_blocks *g = &F->g;
+    long long nb = (long long)g->nblock;
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nb; b++) {
+        const unsigned char *split = F->pc[g->chain[b]].split;
+        uint32_t cnt = 0;
+        for (size_t s = g->first[b], e = s + g->count[b]; s < e; s++)
+            cnt += split[s];
+        F->ofirst[b] = cnt + g->count[b]; /* for now: the output vertices the block adds */
+    }
+    for (size_t c = 0; c < g->nchain; c++) {
+        uint32_t k = 0;
+        for (size_t b = g->chain_block[c]; b < g->chain_block[c + 1]; b++) {
+            uint32_t add = F->ofirst[b];
+            F->ofirst[b] = k;
+            k += add;
+        }
+    }
+}
+
+int ft_dutton_plan_fusable(const ft_dutton_plan *p)
+{
+    return p != NULL && !p->keep_vertices; /* keep_vertices moves the midpoints */
+}
+
+int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
+                           ft_line_guard_stats *stats)
+{
+    for (size_t c = 0; c < n; c++)
+        out[c] = NULL;
+    fused F = {0};
+    F.pc = ft_calloc(n ? n : 1, sizeof *F.pc);
+    if (F.pc == NULL)
+        return FT_E_NOMEM;
+    int rc = FT_OK;
+    for (size_t c = 0; c < n && rc == FT_OK; c++)
+        rc = prepare_chain(in[c], p, &F.pp, &F.pc[c]);
+    const ft_chain **work = rc == FT_OK ? ft_malloc((n ? n : 1) * sizeof *work) : NULL;
+    if (rc == FT_OK && work == NULL)
+        rc = FT_E_NOMEM;
+    for (size_t c = 0; c < n && rc == FT_OK; c++)
+        work[c] = F.pc[c].in;
+    if (rc == FT_OK)
+        rc = ft_segment_blocks_layout(&F.g, work, n, FUSED_BLOCK);
+    size_t nb = F.g.nblock;
+    unsigned char *local = NULL;
+    ft_line_guard_stats *part = NULL;
+    size_t nchunk = (nb + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
+    if (rc == FT_OK) {
+        F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
+        local = ft_malloc(nb ? nb : 1);
+        part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
+        if (F.ofirst == NULL || local == NULL || part == NULL)
+            rc = FT_E_NOMEM;
+    }
+    if (rc == FT_OK) {
+        first_outputs(&F);
+        long long nbl = (long long)nb;
+#pragma omp parallel for schedule(static)
+        for (long long b = 0; b < nbl; b++) {
+            block_box(&F, (size_t)b, F.g.box + 4 * b);
+            emit_base(&F, (size_t)b);
+        }
+        rc = ft_segment_blocks_join(&F.g, work);
+    }
+    if (rc == FT_OK) {
+        ft_segment_blocks_mark_local(&F.g, work, local);
+        long long nk = (long long)nchunk;
+#pragma omp parallel for schedule(dynamic, 1)
+        for (long long k = 0; k < nk; k++) {
+            size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < nb ? b0 + FT_GUARD_CHUNK : nb;
+            walk_blocks(&F, local, 1, b0, b1, &part[k]);
+        }
+        ft_line_guard_stats s = {0, 0, 0, 0};
+        for (size_t k = 0; k < nchunk; k++) {
+            s.moves += part[k].moves;
+            s.reduced += part[k].reduced;
+            s.dropped += part[k].dropped;
+        }
+        walk_blocks(&F, local, 0, 0, nb, &s);
+        if (stats) {
+            stats->moves += s.moves;
+            stats->reduced += s.reduced;
+            stats->dropped += s.dropped;
+        }
+        for (size_t c = 0; c < n; c++)
+            out[c] = F.pc[c].out;
+    }
+    free(work);
+    free(local);
+    free(part);
+    free(F.ofirst);
+    ft_segment_blocks_free(&F.g);
+    free_chains(F.pc, n, rc == FT_OK);
+    return rc;
+}
