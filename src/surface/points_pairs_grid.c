@@ -12,9 +12,9 @@
  *
  * Most pairs lie far apart, where an offset's range of separations meets one to three annuli (they are
  * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
- * annuli: with AVX-512, sixteen pairs per instruction in float against annuli widened beyond the float
- * roundings, the pairs kept listed and then tested exactly eight at a time (lane_body_avx512f,
- * candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
+ * annuli: with AVX-512, sixteen pairs per instruction in float (d² - lo from |q|² - lo, |p|² and two fused
+ * multiply-adds, against annuli widened beyond the float roundings: float_annuli), the pairs kept listed
+ * and then tested exactly eight at a time (lane_body_avx512f, candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
  * always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused multiply-add),
  * the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
  * lane width with NaN coordinates (a NaN d² lies in no annulus). Without AVX-512, offsets near the
