@@ -12,9 +12,9 @@
  *
  * Most pairs lie far apart, where an offset's range of separations meets one to three annuli (they are
  * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
- * annuli: with AVX-512, sixteen pairs per instruction in float against annuli widened beyond the float
- * roundings, the pairs kept listed and then tested exactly eight at a time (lane_body_avx512f,
- * candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
+ * annuli: with AVX-512, sixteen pairs per instruction in float (d² - lo from |q|² - lo, |p|² and two fused
+ * multiply-adds, against annuli widened beyond the float roundings: float_annuli), the pairs kept listed
+ * and then tested exactly eight at a time (lane_body_avx512f, candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
  * always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused multiply-add),
  * the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
  * lane width with NaN coordinates (a NaN d² lies in no annulus). Without AVX-512, offsets near the
@@ -27,6 +27,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "internal.h"
 #include "points_internal.h"
@@ -45,6 +46,7 @@ typedef struct {
     size_t *start;  /* ncell + 1 offsets */
     double *x, *y, *z;
     float *fx, *fy; /* x, y less the cell's corner, as floats (the float screen only) */
+    float *fa, *fb, *fm; /* -2 fx, -2 fy, fx² + fy² */
     size_t lanes;   /* cells padded to a multiple of this */
 } padded_cells;
 
@@ -83,7 +85,11 @@ static int pad_cells(const pts_grid *g, size_t lanes, padded_cells *p)
     p->z = ft_malloc((total ? total : 1) * sizeof *p->z);
     p->fx = ft_malloc((total ? total : 1) * sizeof *p->fx);
     p->fy = ft_malloc((total ? total : 1) * sizeof *p->fy);
-    if (p->x == NULL || p->y == NULL || p->z == NULL || p->fx == NULL || p->fy == NULL)
+    p->fa = ft_malloc((total ? total : 1) * sizeof *p->fa);
+    p->fb = ft_malloc((total ? total : 1) * sizeof *p->fb);
+    p->fm = ft_malloc((total ? total : 1) * sizeof *p->fm);
+    if (p->x == NULL || p->y == NULL || p->z == NULL || p->fx == NULL || p->fy == NULL || p->fa == NULL ||
+        p->fb == NULL || p->fm == NULL)
         return FT_E_NOMEM;
     for (size_t c = 0; c < ncell; c++) {
         size_t at = p->start[c];
@@ -94,10 +100,13 @@ static int pad_cells(const pts_grid *g, size_t lanes, padded_cells *p)
             p->z[at] = g->z[i];
             p->fx[at] = (float)(g->x[i] - cx);
             p->fy[at] = (float)(g->y[i] - cy);
+            p->fa[at] = -2.0f * p->fx[at];
+            p->fb[at] = -2.0f * p->fy[at];
+            p->fm[at] = p->fx[at] * p->fx[at] + p->fy[at] * p->fy[at];
         }
         for (; at < p->start[c + 1]; at++) {
             p->x[at] = p->y[at] = p->z[at] = NAN;
-            p->fx[at] = p->fy[at] = NAN;
+            p->fx[at] = p->fy[at] = p->fa[at] = p->fb[at] = p->fm[at] = NAN;
         }
     }
     return FT_OK;
@@ -111,6 +120,9 @@ static void padded_free(padded_cells *p)
     free(p->z);
     free(p->fx);
     free(p->fy);
+    free(p->fa);
+    free(p->fb);
+    free(p->fm);
 }
 
 /* The offsets of o with the annuli each meets. */
@@ -136,25 +148,45 @@ static lane_offset *lane_offsets(const pts_grid *g, const pts_offsets *o, const 
     return lo;
 }
 
-/* The annuli widened for the float screen, whose d² (from coordinates relative to their cell's corner,
- * rounded to float, and the offset's float displacement) is within e = 2^-19 (max lag + ε + 2 cells) of
- * the true separation for any pair within max lag + ε (each of the half-dozen roundings is below 2^-24 of
- * that), plus the double rounding of the cell corners, 2^-48 of the largest coordinate. A pair inside an
- * annulus is therefore always inside its widened copy; the exact test follows. */
-static int float_annuli(const pts_grid *g, const pts_lags *L, float **lo2, float **hi2)
+/* The bits of a float. */
+static inline uint32_t float_bits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+/* x rounded to a float not above (dir < 0) or not below (dir > 0) it. */
+static float float_toward(double x, int dir)
+{
+    float f = (float)x;
+    if (dir < 0 && (double)f > x)
+        f = nextafterf(f, -INFINITY);
+    if (dir > 0 && (double)f < x)
+        f = nextafterf(f, INFINITY);
+    return f;
+}
+
+/* The annuli for the float screen, which takes d² = |q|² + |p|² - 2 q·p (p a point relative to its cell's
+ * corner, q the other moved by the offset, both rounded to float) less the annulus' lower bound lo, and
+ * keeps the pair when 0 <= that <= span, compared as unsigned bits (a NaN or negative float is above any
+ * span). With B = (max lag + ε + 5 cells)², every term and partial sum is below 3B, so the dozen float
+ * roundings (2^-24 each) and those of the coordinates and the double cell corners (2^-48 of the largest
+ * coordinate) move d² by less than E = 2^-17 B + 2^-44 (largest coordinate)(max lag + ε + 5 cells): lo is
+ * the annulus' (Δd - ε)² less E rounded down, span its (Δd + ε)² plus E less lo rounded up, so a pair
+ * inside an annulus always passes; the exact test follows. */
+static int float_annuli(const pts_grid *g, const pts_lags *L, float **lo, float **span)
 {
     double big = fmax(fmax(fabs(g->x0), fabs(g->y0)),
                       fmax(fabs(g->x0 + (double)g->nx * g->cell), fabs(g->y0 + (double)g->ny * g->cell)));
-    double e = ldexp(L->rmax + 2.0 * g->cell, -19) + ldexp(big, -48);
-    *lo2 = ft_malloc(L->n * sizeof **lo2);
-    *hi2 = ft_malloc(L->n * sizeof **hi2);
-    if (*lo2 == NULL || *hi2 == NULL)
+    double reach = L->rmax + 5.0 * g->cell, e = ldexp(reach * reach, -17) + ldexp(big, -44) * reach;
+    *lo = ft_malloc(L->n * sizeof **lo);
+    *span = ft_malloc(L->n * sizeof **span);
+    if (*lo == NULL || *span == NULL)
         return FT_E_NOMEM;
     for (size_t k = 0; k < L->n; k++) {
-        double lo = sqrt(L->lo2[k]) - e, hi = sqrt(L->hi2[k]) + e;
-        lo = lo > 0.0 ? lo : 0.0;
-        (*lo2)[k] = (float)(lo * lo * (1.0 - 0x1p-20));
-        (*hi2)[k] = (float)(hi * hi * (1.0 + 0x1p-20));
+        (*lo)[k] = float_toward(L->lo2[k] - e, -1);
+        (*span)[k] = float_toward(L->hi2[k] + e - (double)(*lo)[k], 1);
     }
     return FT_OK;
 }
@@ -257,7 +289,7 @@ struct pair_job {
     const lane_offset *off;
     size_t noff;
     const pts_lags *L;
-    const float *flo2, *fhi2; /* the float screen's annuli */
+    const float *flo, *fspan; /* the float screen's annuli (float_annuli) */
     uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
     lane_fn lane[FEW_MAX + 1];
     lane_fn many;             /* the others, or NULL: the lookup-table screen (cell_pair) */
@@ -448,11 +480,12 @@ __attribute__((target("avx512f"))) static inline __attribute__((always_inline)) 
 lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
 {
     const padded_cells *p = jb->p;
-    const float *flo = jb->flo2 + off->k0, *fhi = jb->fhi2 + off->k0;
-    __m512 lo[FEW_MAX], hi[FEW_MAX];
+    const float *flo = jb->flo + off->k0, *fspan = jb->fspan + off->k0;
+    __m512 step[FEW_MAX];  /* from the first annulus' lower bound to the k-th's */
+    __m512i span[FEW_MAX]; /* as unsigned bits */
     for (uint32_t k = 0; k < nk && k < FEW_MAX; k++) {
-        lo[k] = _mm512_set1_ps(flo[k]);
-        hi[k] = _mm512_set1_ps(fhi[k]);
+        step[k] = _mm512_set1_ps(flo[k] - flo[0]);
+        span[k] = _mm512_set1_epi32((int)float_bits(fspan[k]));
     }
     const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     uint32_t *cand = w->cand;
@@ -462,7 +495,8 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
      * are padded to sixteen). The lanes hold b's points moved by the offset, or a's moved back by it. */
     int swap = nj * (vi / 16) < ni * (vj / 16);
     const float *vx = swap ? p->fx + i0 : p->fx + j0, *vy = swap ? p->fy + i0 : p->fy + j0;
-    const float *sx = swap ? p->fx + j0 : p->fx + i0, *sy = swap ? p->fy + j0 : p->fy + i0;
+    const float *sa = swap ? p->fa + j0 : p->fa + i0, *sb = swap ? p->fb + j0 : p->fb + i0;
+    const float *sm = swap ? p->fm + j0 : p->fm + i0;
     size_t nv = swap ? vi : vj, ns = swap ? nj : ni;
     const __m512 ox = _mm512_set1_ps(swap ? -off->fx : off->fx), oy = _mm512_set1_ps(swap ? -off->fy : off->fy);
     /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
@@ -472,19 +506,24 @@ lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off
     for (size_t v = 0; v < nv; v += 16, base = _mm512_add_epi32(base, next_v)) {
         __m512 xv = _mm512_add_ps(_mm512_loadu_ps(vx + v), ox);
         __m512 yv = _mm512_add_ps(_mm512_loadu_ps(vy + v), oy);
+        /* |q|² less the first annulus' lower bound, once per sixteen */
+        __m512 q2 = _mm512_sub_ps(_mm512_fmadd_ps(xv, xv, _mm512_mul_ps(yv, yv)), _mm512_set1_ps(flo[0]));
         __m512i ij = base;
         for (size_t t = 0; t < ns; t++, ij = _mm512_add_epi32(ij, next_s)) {
-            __m512 dx = _mm512_sub_ps(xv, _mm512_set1_ps(sx[t]));
-            __m512 dy = _mm512_sub_ps(yv, _mm512_set1_ps(sy[t]));
-            __m512 d2 = _mm512_fmadd_ps(dx, dx, _mm512_mul_ps(dy, dy));
-            __mmask16 in = 0;
+            /* d² - lo = (|q|² - lo) + |p|² - 2 qx px - 2 qy py */
+            __m512 r = _mm512_add_ps(q2, _mm512_set1_ps(sm[t]));
+            r = _mm512_fmadd_ps(xv, _mm512_set1_ps(sa[t]), r);
+            r = _mm512_fmadd_ps(yv, _mm512_set1_ps(sb[t]), r);
+            __mmask16 in = _mm512_cmple_epu32_mask(_mm512_castps_si512(r), nk <= FEW_MAX ? span[0] :
+                                                   _mm512_set1_epi32((int)float_bits(fspan[0])));
             if (nk <= FEW_MAX)
-                for (uint32_t k = 0; k < nk; k++)
-                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, lo[k], _CMP_GE_OQ), d2, hi[k], _CMP_LE_OQ);
+                for (uint32_t k = 1; k < nk; k++)
+                    in |= _mm512_cmple_epu32_mask(_mm512_castps_si512(_mm512_sub_ps(r, step[k])), span[k]);
             else
-                for (uint32_t k = 0; k < nk; k++)
-                    in |= _mm512_mask_cmp_ps_mask(_mm512_cmp_ps_mask(d2, _mm512_set1_ps(flo[k]), _CMP_GE_OQ), d2,
-                                                  _mm512_set1_ps(fhi[k]), _CMP_LE_OQ);
+                for (uint32_t k = 1; k < nk; k++)
+                    in |= _mm512_cmple_epu32_mask(
+                        _mm512_castps_si512(_mm512_sub_ps(r, _mm512_set1_ps(flo[k] - flo[0]))),
+                        _mm512_set1_epi32((int)float_bits(fspan[k])));
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
@@ -630,7 +669,7 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     padded_cells pad = {0};
     pair_job jb = {0};
     lane_offset *off = NULL;
-    float *flo2 = NULL, *fhi2 = NULL;
+    float *flo = NULL, *fspan = NULL;
     scratch *w = NULL;
     int nt = omp_get_max_threads();
     pts_acc *part = ft_calloc((size_t)nt * L->n, sizeof *part);
@@ -648,7 +687,7 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     if (rc == FT_OK)
         rc = pad_cells(&g, lanes, &pad);
     if (rc == FT_OK)
-        rc = float_annuli(&g, L, &flo2, &fhi2);
+        rc = float_annuli(&g, L, &flo, &fspan);
     if (rc == FT_OK && (off = lane_offsets(&g, &o, L)) == NULL)
         rc = FT_E_NOMEM;
     jb.g = &g;
@@ -656,8 +695,8 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     jb.off = off;
     jb.noff = o.n;
     jb.L = L;
-    jb.flo2 = flo2;
-    jb.fhi2 = fhi2;
+    jb.flo = flo;
+    jb.fspan = fspan;
     for (size_t chunk = 0; rc == FT_OK && chunk < CHUNKS; chunk++) {
         size_t c0 = ncell * chunk / CHUNKS, c1 = ncell * (chunk + 1) / CHUNKS;
 #pragma omp parallel for schedule(dynamic, 16)
@@ -673,8 +712,8 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     padded_free(&pad);
     scratch_free(w, nt);
     free(off);
-    free(flo2);
-    free(fhi2);
+    free(flo);
+    free(fspan);
     free(part);
     pts_grid_free(&g);
     return rc;
