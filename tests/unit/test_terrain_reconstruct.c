@@ -895,7 +895,8 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
         o.seed = 0x5eed0000 + s;
         ft_recon_info info;
         ft_grid *out = recon(p, g, &o, &info);
-        assert_true(fabs(info.tension - eq7_tension(D)) < 1e-12);
+        if (m == FT_RECON_CONDITIONAL)
+            assert_true(fabs(info.tension - eq7_tension(D)) < 1e-12);
         mean_abs_increments(g, so);
         mean_abs_increments(out, sr);
         ft_grid_free(out);
@@ -915,7 +916,10 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
     return worst;
 }
 
-/* The conditional reconstruction (256², every 4th cell plus a random 5%) has the original's mean |dz|
+/* The fractal reconstruction (multilevel prior; 256², every 4th cell plus a random 5%) has the original's
+ * mean |dz| within 5% at every lag from 1 to 32 cells (2 seeds) at D 2.2, 2.5 and 2.8 on exact fBm (the
+ * single-level prior of session 5 read 0.138 at D 2.8: lags 2-8 at 1.11-1.14). The conditional
+ * reconstruction (same design) has the original's mean |dz|
  * within 5% at every lag from 1 to 32 cells (2 seeds), with the blend D gives, on exact fBm and on fBm
  * whose one-cell increments carry a white share of 0.4 at D 2.5 and 2.8 (its amplitude and white share
  * come from the data's own pairs 1 and 2 cells apart; the Yokoya line extrapolated to one cell with a
@@ -924,15 +928,15 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
 static void test_structure_function(void **state)
 {
     (void)state;
-    static const double dims[] = {2.2, 2.5, 2.8}, fractal_dims[] = {2.2, 2.6};
+    static const double dims[] = {2.2, 2.5, 2.8};
     int bad = 0;
     for (size_t i = 0; i < 3; i++) {
         bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.0, 700) <= 0.05);
         if (i > 0)
             bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.4, 710) <= 0.05);
     }
-    for (size_t i = 0; i < 2; i++)
-        bad += !(structure_worst(FT_RECON_FRACTAL, fractal_dims[i], 0.0, 700) <= 0.05);
+    for (size_t i = 0; i < 3; i++)
+        bad += !(structure_worst(FT_RECON_FRACTAL, dims[i], 0.0, 700) <= 0.05);
     assert_int_equal(bad, 0);
 
     ft_grid *t = target(64, 64), *g = fbm(64, 2.5, 5);
