@@ -55,6 +55,7 @@ void ft_recon_prior_levels_free(ft_recon_problem *p)
         free(p->pl[l].c);
         free(p->pl[l].x);
         free(p->pl[l].b);
+        free(p->pl[l].r);
     }
     free(p->pl);
     p->pl = NULL;
@@ -83,6 +84,7 @@ int ft_recon_prior_levels(ft_recon_problem *p, double H)
     size_t nx = p->nx, ny = p->ny;
     for (int l = 0; l < n; l++) {
         ft_recon_level *P = &p->pl[l];
+        size_t above_ny = ny; /* the restriction's work rows: this level's columns x the level above's rows */
         nx = coarser(nx);
         ny = coarser(ny);
         double w = pow(2.0, -2.0 * H * (l + 1));
@@ -93,7 +95,8 @@ int ft_recon_prior_levels(ft_recon_problem *p, double H)
         P->c = ft_calloc(nx * ny, sizeof *P->c);
         P->x = ft_calloc(nx * ny, sizeof *P->x);
         P->b = ft_calloc(nx * ny, sizeof *P->b);
-        if (!P->c || !P->x || !P->b) {
+        P->r = ft_calloc(nx * above_ny, sizeof *P->r);
+        if (!P->c || !P->x || !P->b || !P->r) {
             ft_recon_prior_levels_free(p);
             return FT_E_NOMEM;
         }
@@ -101,44 +104,72 @@ int ft_recon_prior_levels(ft_recon_problem *p, double H)
     return FT_OK;
 }
 
-void ft_recon_restrict_mean(const float *f, size_t nfx, size_t nfy, float *c, size_t ncx, size_t ncy, int nthreads)
+/* c = r f along one axis: the rows of f (nrows x nf, row stride nf) to the rows of c (nrows x nc). */
+static void restrict_rows(const float *f, size_t nf, float *c, size_t nc, size_t nrows, int nthreads)
 {
-#pragma omp parallel for num_threads(ft_recon_threads(nthreads, nfx * nfy)) schedule(static)
-    for (size_t J = 0; J < ncy; J++)
-        for (size_t I = 0; I < ncx; I++) {
-            double s = 0.0;
-            for (long dy = -1; dy <= 1; dy++) {
-                long y = 2 * (long)J + dy;
-                double wy = rweight(J, y, nfy);
-                if (wy == 0.0)
-                    continue;
-                for (long dx = -1; dx <= 1; dx++) {
-                    long x = 2 * (long)I + dx;
-                    double wx = rweight(I, x, nfx);
-                    if (wx != 0.0)
-                        s += wx * wy * (double)f[(size_t)y * nfx + (size_t)x];
-                }
-            }
-            c[J * ncx + I] = (float)s;
+#pragma omp parallel for num_threads(ft_recon_threads(nthreads, nf * nrows)) schedule(static)
+    for (size_t y = 0; y < nrows; y++) {
+        const float *fr = f + y * nf;
+        float *cr = c + y * nc;
+        for (size_t I = 0; I < nc; I++) {
+            long x = 2 * (long)I;
+            double s = rweight(I, x, nf) * (double)fr[x];
+            if (x >= 1)
+                s += rweight(I, x - 1, nf) * (double)fr[x - 1];
+            if (x + 1 < (long)nf)
+                s += rweight(I, x + 1, nf) * (double)fr[x + 1];
+            cr[I] = (float)s;
         }
+    }
 }
 
-void ft_recon_restrict_mean_t(const float *c, size_t ncx, size_t ncy, float *f, size_t nfx, size_t nfy, int nthreads)
+/* f += r' c along one axis (rows of c: nc, rows of f: nf). */
+static void restrict_rows_t(const float *c, size_t nc, float *f, size_t nf, size_t nrows, int nthreads)
 {
+#pragma omp parallel for num_threads(ft_recon_threads(nthreads, nf * nrows)) schedule(static)
+    for (size_t y = 0; y < nrows; y++) {
+        const float *cr = c + y * nc;
+        float *fr = f + y * nf;
+        for (size_t x = 0; x < nf; x++) {
+            size_t I0 = x / 2, I1 = (x + 1) / 2;
+            double s = rweight(I0, (long)x, nf) * (double)cr[I0];
+            if (I1 != I0 && I1 < nc)
+                s += rweight(I1, (long)x, nf) * (double)cr[I1];
+            fr[x] += (float)s;
+        }
+    }
+}
+
+void ft_recon_restrict_mean(const float *f, size_t nfx, size_t nfy, float *c, size_t ncx, size_t ncy, float *tmp,
+                            int nthreads)
+{
+    /* along x into tmp (nfy rows of ncx), then along y: row J = sum_dy w tmp row 2J + dy */
+    restrict_rows(f, nfx, tmp, ncx, nfy, nthreads);
+#pragma omp parallel for num_threads(ft_recon_threads(nthreads, nfx * nfy)) schedule(static)
+    for (size_t J = 0; J < ncy; J++) {
+        long y = 2 * (long)J;
+        double w0 = rweight(J, y, nfy), wm = y >= 1 ? rweight(J, y - 1, nfy) : 0.0;
+        double wp = y + 1 < (long)nfy ? rweight(J, y + 1, nfy) : 0.0;
+        const float *r0 = tmp + (size_t)y * ncx, *rm = wm != 0.0 ? r0 - ncx : r0, *rp = wp != 0.0 ? r0 + ncx : r0;
+        for (size_t I = 0; I < ncx; I++)
+            c[J * ncx + I] = (float)(w0 * (double)r0[I] + wm * (double)rm[I] + wp * (double)rp[I]);
+    }
+}
+
+void ft_recon_restrict_mean_t(const float *c, size_t ncx, size_t ncy, float *f, size_t nfx, size_t nfy, float *tmp,
+                              int nthreads)
+{
+    /* along y into tmp (nfy rows of ncx), then along x added to f */
 #pragma omp parallel for num_threads(ft_recon_threads(nthreads, nfx * nfy)) schedule(static)
     for (size_t y = 0; y < nfy; y++) {
         size_t J0 = y / 2, J1 = (y + 1) / 2;
-        for (size_t x = 0; x < nfx; x++) {
-            size_t I0 = x / 2, I1 = (x + 1) / 2;
-            double s = 0.0;
-            for (size_t J = J0; J <= J1 && J < ncy; J++) {
-                double wy = rweight(J, (long)y, nfy);
-                for (size_t I = I0; I <= I1 && I < ncx; I++)
-                    s += wy * rweight(I, (long)x, nfx) * (double)c[J * ncx + I];
-            }
-            f[y * nfx + x] += (float)s;
-        }
+        double w0 = rweight(J0, (long)y, nfy), w1 = J1 != J0 && J1 < ncy ? rweight(J1, (long)y, nfy) : 0.0;
+        const float *a = c + J0 * ncx, *b = w1 != 0.0 ? c + J1 * ncx : a;
+        float *t = tmp + y * ncx;
+        for (size_t I = 0; I < ncx; I++)
+            t[I] = (float)(w0 * (double)a[I] + w1 * (double)b[I]);
     }
+    restrict_rows_t(tmp, ncx, f, nfx, nfy, nthreads);
 }
 
 /* y_l = A_l v_l on every node of prior level P (no data, no fixed nodes). */
@@ -162,7 +193,7 @@ void ft_recon_prior_levels_add(const ft_recon_problem *p, const float *x, float 
     size_t nx = p->nx, ny = p->ny;
     for (int l = 0; l < p->npl; l++) {
         ft_recon_level *P = &p->pl[l];
-        ft_recon_restrict_mean(v, nx, ny, P->x, P->nx, P->ny, nt);
+        ft_recon_restrict_mean(v, nx, ny, P->x, P->nx, P->ny, P->r, nt);
         v = P->x;
         nx = P->nx;
         ny = P->ny;
@@ -175,8 +206,9 @@ void ft_recon_prior_levels_add(const ft_recon_problem *p, const float *x, float 
             apply_level(P, P->x, acc, nt);
         else {
             apply_level(P, P->x, acc, nt);
-            ft_recon_restrict_mean_t(p->pl[l + 1].b, p->pl[l + 1].nx, p->pl[l + 1].ny, acc, P->nx, P->ny, nt);
+            ft_recon_restrict_mean_t(p->pl[l + 1].b, p->pl[l + 1].nx, p->pl[l + 1].ny, acc, P->nx, P->ny,
+                                     p->pl[l + 1].r, nt);
         }
     }
-    ft_recon_restrict_mean_t(p->pl[0].b, p->pl[0].nx, p->pl[0].ny, y, p->nx, p->ny, nt);
+    ft_recon_restrict_mean_t(p->pl[0].b, p->pl[0].nx, p->pl[0].ny, y, p->nx, p->ny, p->pl[0].r, nt);
 }

@@ -115,7 +115,7 @@ int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, u
                 P->b[y * P->nx + x] = (float)gather(e, P->nx, P->ny, x, y);
         if (l + 1 < p->npl)
             ft_recon_restrict_mean_t(p->pl[l + 1].b, p->pl[l + 1].nx, p->pl[l + 1].ny, P->b, P->nx, P->ny,
-                                     p->nthreads);
+                                     p->pl[l + 1].r, p->nthreads);
     }
     for (int t = 0; t < NTERMS; t++)
         e[t] = buf + (size_t)t * n;
@@ -131,7 +131,7 @@ int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, u
         }
     free(buf);
     if (p->npl > 0)
-        ft_recon_restrict_mean_t(p->pl[0].b, p->pl[0].nx, p->pl[0].ny, eta, nx, ny, p->nthreads);
+        ft_recon_restrict_mean_t(p->pl[0].b, p->pl[0].nx, p->pl[0].ny, eta, nx, ny, p->pl[0].r, p->nthreads);
     for (size_t i = 0; i < n; i++)
         eta[i] = L->fixed[i] ? 0.0f : (float)(s * (double)eta[i]);
     int rc = ft_recon_report(prog, 0.1, "reconstruct: perturbed prior");

@@ -70,7 +70,7 @@ typedef struct {
                             on these nodes can remove (several points on one node) */
     double prior_H;    /**< > 0: the multilevel prior of exponent H (recon_levels.c) joins level 0's energy
                             in every solve; 0: level 0's energy alone */
-    ft_recon_level *pl; /**< the multilevel prior's levels 1 .. npl (tp, mem with their weights; x, b: work) */
+    ft_recon_level *pl; /**< the multilevel prior's levels 1 .. npl (tp, mem with their weights; x, b, r: work) */
     int npl;
 } ft_recon_problem;
 
@@ -115,9 +115,10 @@ void ft_recon_prior_levels_free(ft_recon_problem *p);
 #define FT_RECON_LEVEL_MEMBRANE 0.5
 /** y += sum_(l >= 1) w_l R_l' A_l R_l x on every fine node (nothing when p has no prior levels). */
 void ft_recon_prior_levels_add(const ft_recon_problem *p, const float *x, float *y);
-/** c = r f (normalized full weighting, nodes 2I of f) and f += r' c. */
-void ft_recon_restrict_mean(const float *f, size_t nfx, size_t nfy, float *c, size_t ncx, size_t ncy, int nthreads);
-void ft_recon_restrict_mean_t(const float *c, size_t ncx, size_t ncy, float *f, size_t nfx, size_t nfy,
+/** c = r f (normalized full weighting, nodes 2I of f) and f += r' c; tmp holds ncx x nfy floats. */
+void ft_recon_restrict_mean(const float *f, size_t nfx, size_t nfy, float *c, size_t ncx, size_t ncy, float *tmp,
+                            int nthreads);
+void ft_recon_restrict_mean_t(const float *c, size_t ncx, size_t ncy, float *f, size_t nfx, size_t nfy, float *tmp,
                               int nthreads);
 
 /* ---- recon_multigrid.c ---- */
