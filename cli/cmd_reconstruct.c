@@ -251,8 +251,8 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
             printf(", D = %.4g (%s)", info->dim, info->dim_estimated ? "estimated" : "given");
         printf(", tension %.3g, seed %llu\n", info->tension, (unsigned long long)a->ro.seed);
         if (fractal)
-            printf("  T0 = %.4g (k %.4g, sigma0 %.4g), %d levels\n", info->temperature, info->k, info->sigma0,
-                   info->levels);
+            printf("  T0 = %.4g (g(D) k sigma0^2, k %.4g, sigma0 %.4g), %d levels\n", info->temperature, info->k,
+                   info->sigma0, info->levels);
         printf("  %s %zu, filled %zu cells, data rms %.4g\n", kind == FT_KIND_GRID ? "known cells" : "data used",
                info->data_used, info->filled, info->data_rms);
         if (kind != FT_KIND_GRID && info->data_outside > 0)
