@@ -251,8 +251,8 @@ static int report(const cli_command *cmd, const recon_args *a, const char *in, c
             printf(", D = %.4g (%s)", info->dim, info->dim_estimated ? "estimated" : "given");
         printf(", tension %.3g, seed %llu\n", info->tension, (unsigned long long)a->ro.seed);
         if (fractal)
-            printf("  T0 = %.4g (k %.4g, sigma0 %.4g), %d levels\n", info->temperature, info->k, info->sigma0,
-                   info->levels);
+            printf("  T0 = %.4g (g(D) k sigma0^2, k %.4g, sigma0 %.4g), %d levels\n", info->temperature, info->k,
+                   info->sigma0, info->levels);
         printf("  %s %zu, filled %zu cells, data rms %.4g\n", kind == FT_KIND_GRID ? "known cells" : "data used",
                info->data_used, info->filled, info->data_rms);
         if (kind != FT_KIND_GRID && info->data_outside > 0)
@@ -425,8 +425,9 @@ const cli_command cli_cmd_reconstruct = {
     "rough as the data: regularization with a fractal prior on a multigrid (Arakawa & Krotkov section 3,\n"
     "after Szeliski), see docs/terrain-reconstruct.md.\n\n"
     "Methods:\n"
-    "  fractal      the paper's (default): the smooth solution plus an exact sample of the prior of D\n"
-    "               conditioned on the data (Gibbs distribution at T = k sigma0^2, one k for every D),\n"
+    "  fractal      the paper's (default): the smooth solution plus an exact sample of Szeliski's\n"
+    "               multilevel prior of D (thin plate weighted 2^(-2(3-D)l) on pyramid level l)\n"
+    "               conditioned on the data (Gibbs distribution at T = g(D) k sigma0^2, g calibrated),\n"
     "               drawn by perturbation and optimization\n"
     "  conditional  an unconditional fBm surface of dimension D plus the smooth interpolation of its\n"
     "               residuals at the data: honours the data exactly; its one-cell roughness and white\n"
@@ -447,15 +448,17 @@ const cli_command cli_cmd_reconstruct = {
     "                       interpolate); the data are then fitted to within their sigmas\n"
     "      --weight FIELD   column or field holding each point's confidence 1/sigma\n"
     "      --tension T      prior: 0 thin plate .. 1 membrane (default: fractal, conditional, and smooth\n"
-    "                       with --dim: from D, Szeliski's crossover,\n"
+    "                       with --dim: from D; fractal: the multilevel prior's finest-level blend,\n"
+    "                       0.2 at D 2.2, 0.4 at 2.5, 1 at 2.8; conditional and smooth: Szeliski's crossover,\n"
     "                       tau/(1-tau) = 2 (D-2)/(3-D): 0.33 at D 2.2, 0.67 at 2.5, 0.89 at 2.8;\n"
     "                       smooth without --dim: 0.1)\n"
     "      --lambda L       weight of the prior against the data, > 0 (default 1). With sigmas: the\n"
     "                       largest weight; lowered until the RMS of (z - datum)/sigma at the data is\n"
     "                       about 1 (Morozov's discrepancy principle) if it misses them by more\n"
     "      --temperature T  fractal: the temperature, instead of k sigma0^2\n"
-    "      --k K            fractal: the constant of T = k sigma0^2 (default: the library's, 7.5,\n"
-    "                       calibrated on the structure function)\n"
+    "      --k K            fractal: the constant of T = g(D) k sigma0^2 (default: the library's, 7.5;\n"
+    "                       g(D) 1.13 at D 2.2, 1.55 at 2.5, 0.73 at 2.8, calibrated on the structure\n"
+    "                       function)\n"
     "  -n, --realizations N write the per-cell mean (band 1) and standard deviation (band 2) of N runs\n"
     "                       (streams seed, seed+1, ...); default 1\n"
     "      --seed N         random seed (default 1; printed in the JSON); same seed, same cells\n"

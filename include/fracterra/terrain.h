@@ -210,10 +210,11 @@ FT_API int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts
 /* ------------------------------------------------------------------------------------------------
  * Reconstruction of dense terrain from sparse elevations (Arakawa & Krotkov §3, after Szeliski):
  * regularization with a fractal prior (Szeliski's spline under tension with the eq. 7 blend of D), solved
- * by multigrid (T = 0: the smooth solution); the fractal method then draws an exact sample of the
+ * by multigrid (T = 0: the smooth solution); the fractal method's prior is Szeliski's multilevel one (a
+ * thin plate on every pyramid level l weighted 2^(-2Hl), eq. 8) and it draws an exact sample of the
  * posterior, the Gibbs distribution exp(-E / (lambda T)) conditioned on the data, by perturbation and
- * optimization (Papandreou & Yuille 2010), at T = k sigma0² with sigma0 from the Pentland estimate and
- * one k for every D (FT_RECON_K_DEFAULT, calibrated on the structure function).
+ * optimization (Papandreou & Yuille 2010), at T = g(D) k sigma0² with sigma0 from the Pentland estimate,
+ * k = FT_RECON_K_DEFAULT and g(D) calibrated on the structure function.
  * docs/terrain-reconstruct.md holds the discretization, the calibration and the limits.
  * --------------------------------------------------------------------------------------------- */
 
@@ -233,8 +234,10 @@ typedef struct {
     double tension;           /**< blend of the prior: 0 = thin plate, 1 = membrane; in [0, 1], or
                                    FT_RECON_TENSION_FROM_DIM (default): Szeliski's crossover from D,
                                    tau / (1 - tau) = 2 (D - 2) / (3 - D) (Arakawa & Krotkov eq. 7;
-                                   docs/terrain-reconstruct.md) for the fractal and conditional
-                                   methods, and for the smooth one when dim is given (else 0.1) */
+                                   docs/terrain-reconstruct.md) for the conditional method, and for
+                                   the smooth one when dim is given (else 0.1); for the fractal
+                                   method the finest level's blend of its multilevel prior,
+                                   calibrated on the structure function (0.2 at D 2.2 .. 1 at 2.8) */
     double lambda;            /**< weight of the prior against the data term, > 0; default 1. No effect
                                    when the data are interpolated (sigma 0, no weights). With sigmas
                                    (sigma > 0 or per-point weights) it is an upper bound: if the fit
@@ -247,8 +250,9 @@ typedef struct {
                                    units, >= 0): the data are fitted to within it (see lambda);
                                    0 (default) = interpolate (the data are honoured to the solver's
                                    tolerance) */
-    double temperature;       /**< fractal: T override, > 0; 0 (default) = k sigma0² */
-    double k;                 /**< fractal: calibration constant of T = k sigma0², > 0;
+    double temperature;       /**< fractal: T override, > 0; 0 (default) = g(D) k sigma0² */
+    double k;                 /**< fractal: calibration constant of T = g(D) k sigma0², > 0 (g: the
+                                   multilevel prior's calibrated factor of D, docs/terrain-reconstruct.md);
                                    0 (default) = FT_RECON_K_DEFAULT */
     int sweeps;               /**< unused since the fractal method draws an exact sample (no Gibbs
                                    sweeps); kept for the layout, must be in [0, 1000] */

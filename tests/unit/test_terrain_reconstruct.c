@@ -522,6 +522,87 @@ static double *prior_hessian(size_t nx, size_t ny, double tp, double mem)
     return H;
 }
 
+/* The restriction of the multilevel prior written from its definition (docs/terrain-reconstruct.md): a
+ * level of m nodes along one axis has (m - 1) / 2 + 1 coarse nodes, coarse node I the weighted mean of fine
+ * nodes 2I - 1, 2I, 2I + 1 (weights 1/2, 1, 1/2, those inside the axis only). Returns the mc x m matrix. */
+static double *restriction_1d(size_t m, size_t *mc)
+{
+    *mc = (m - 1) / 2 + 1;
+    double *r = calloc(*mc * m, sizeof *r);
+    assert_non_null(r);
+    for (size_t I = 0; I < *mc; I++) {
+        double w[3] = {0.5, 1.0, 0.5}, sum = 0.0;
+        for (long d = -1; d <= 1; d++) {
+            long x = 2 * (long)I + d;
+            if (x >= 0 && x < (long)m)
+                sum += w[d + 1];
+        }
+        for (long d = -1; d <= 1; d++) {
+            long x = 2 * (long)I + d;
+            if (x >= 0 && x < (long)m)
+                r[I * m + (size_t)x] = w[d + 1] / sum;
+        }
+    }
+    return r;
+}
+
+/* Hessian of the fractal method's multilevel prior on an N x N grid: sum over levels l (while a level has
+ * >= 3 nodes per side) of R_l' A_l R_l, A_l the thin plate 2^(-2Hl) tp plus the membrane 2^(-2Hl) 2^-l mem
+ * on level l's nodes, R_l = the 2-D restriction (r x r) applied l times. */
+static double *multilevel_hessian(size_t N, double H, double tp, double mem)
+{
+    size_t n = N * N;
+    double *A = prior_hessian(N, N, tp, mem);
+    double *R = malloc(n * n * sizeof *R); /* R_l, rows: level-l nodes, columns: fine nodes */
+    assert_non_null(R);
+    for (size_t i = 0; i < n * n; i++)
+        R[i] = i % (n + 1) == 0 ? 1.0 : 0.0;
+    size_t m = N;
+    for (int l = 1;; l++) {
+        size_t mc;
+        double *r = restriction_1d(m, &mc);
+        if (mc < 3) {
+            free(r);
+            break;
+        }
+        /* R <- (r x r) R */
+        double *Rn = calloc(mc * mc * n, sizeof *Rn);
+        assert_non_null(Rn);
+        for (size_t J = 0; J < mc; J++)
+            for (size_t I = 0; I < mc; I++)
+                for (size_t y = 0; y < m; y++)
+                    for (size_t x = 0; x < m; x++) {
+                        double w = r[J * m + y] * r[I * m + x];
+                        if (w != 0.0)
+                            for (size_t k = 0; k < n; k++)
+                                Rn[(J * mc + I) * n + k] += w * R[(y * m + x) * n + k];
+                    }
+        free(R);
+        free(r);
+        R = Rn;
+        m = mc;
+        double w = pow(2.0, -2.0 * H * l);
+        double *Al = prior_hessian(m, m, w * tp, w * pow(0.5, l) * mem);
+        size_t nl = m * m;
+        double *AR = calloc(nl * n, sizeof *AR);
+        assert_non_null(AR);
+        for (size_t a = 0; a < nl; a++)
+            for (size_t b = 0; b < nl; b++)
+                if (Al[a * nl + b] != 0.0)
+                    for (size_t k = 0; k < n; k++)
+                        AR[a * n + k] += Al[a * nl + b] * R[b * n + k];
+        for (size_t a = 0; a < nl; a++)
+            for (size_t i = 0; i < n; i++)
+                if (R[a * n + i] != 0.0)
+                    for (size_t k = 0; k < n; k++)
+                        A[i * n + k] += R[a * n + i] * AR[a * n + k];
+        free(Al);
+        free(AR);
+    }
+    free(R);
+    return A;
+}
+
 /* diag((A_ff)^-1) of the free nodes (keep[i] != 0) of the dense A (n x n), by Cholesky; out[i] = 0 on the
  * others. */
 static void inverse_diagonal(const double *A, const uint8_t *keep, size_t n, double *out)
@@ -567,8 +648,9 @@ static void inverse_diagonal(const double *A, const uint8_t *keep, size_t n, dou
 
 /* The fractal method samples the equilibrium of its prior conditioned on the data: over 600 realizations
  * the per-cell variance is lambda T (A_ff^-1)_ii, the posterior variance of the Gibbs distribution
- * exp(-E / (lambda T)) (Arakawa & Krotkov eq. 10), with A the prior's Hessian written out here from the
- * energy's definition. 24 x 24 nodes, data (fixed) on every 6th node, lambda 2, tension 0.4, T 3. The
+ * exp(-E / (lambda T)) (Arakawa & Krotkov eq. 10), with A the multilevel prior's Hessian written out here
+ * from the energy's definition (levels of 12², 6², 3² nodes; the single-level sampler of session 5 fails
+ * it: its variance is that of level 0's energy alone). 24 x 24 nodes, data (fixed) on every 6th node, lambda 2, tension 0.4, T 3. The
  * sample variance of 600 draws has a relative error of about 6% per cell and 0.6% over the ~560 cells: the
  * test asks 2% on the mean ratio and 30% (5 sd) on every cell (measured 1.009 and 0.22). The old Gibbs sampler (1 relaxation + 2 Gibbs
  * sweeps per level) was not at equilibrium and fails it. */
@@ -596,7 +678,8 @@ static void test_fractal_equilibrium(void **state)
     if (rc != 0)
         print_error("%s\n", ft_last_error());
     assert_int_equal(rc, 0);
-    double *H = prior_hessian(N, N, lambda * (1.0 - tau), lambda * tau), *var = malloc(n * sizeof *var);
+    double *H = multilevel_hessian(N, 3.0 - o.dim, lambda * (1.0 - tau), lambda * tau);
+    double *var = malloc(n * sizeof *var);
     inverse_diagonal(H, keep, n, var);
     double sum_s = 0.0, sum_e = 0.0, worst = 0.0;
     for (size_t i = 0; i < n; i++) {
@@ -812,7 +895,8 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
         o.seed = 0x5eed0000 + s;
         ft_recon_info info;
         ft_grid *out = recon(p, g, &o, &info);
-        assert_true(fabs(info.tension - eq7_tension(D)) < 1e-12);
+        if (m == FT_RECON_CONDITIONAL)
+            assert_true(fabs(info.tension - eq7_tension(D)) < 1e-12);
         mean_abs_increments(g, so);
         mean_abs_increments(out, sr);
         ft_grid_free(out);
@@ -832,7 +916,10 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
     return worst;
 }
 
-/* The conditional reconstruction (256², every 4th cell plus a random 5%) has the original's mean |dz|
+/* The fractal reconstruction (multilevel prior; 256², every 4th cell plus a random 5%) has the original's
+ * mean |dz| within 5% at every lag from 1 to 32 cells (2 seeds) at D 2.2, 2.5 and 2.8 on exact fBm (the
+ * single-level prior of session 5 read 0.138 at D 2.8: lags 2-8 at 1.11-1.14). The conditional
+ * reconstruction (same design) has the original's mean |dz|
  * within 5% at every lag from 1 to 32 cells (2 seeds), with the blend D gives, on exact fBm and on fBm
  * whose one-cell increments carry a white share of 0.4 at D 2.5 and 2.8 (its amplitude and white share
  * come from the data's own pairs 1 and 2 cells apart; the Yokoya line extrapolated to one cell with a
@@ -841,15 +928,15 @@ static double structure_worst(ft_recon_method m, double D, double share, uint64_
 static void test_structure_function(void **state)
 {
     (void)state;
-    static const double dims[] = {2.2, 2.5, 2.8}, fractal_dims[] = {2.2, 2.6};
+    static const double dims[] = {2.2, 2.5, 2.8};
     int bad = 0;
     for (size_t i = 0; i < 3; i++) {
         bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.0, 700) <= 0.05);
         if (i > 0)
             bad += !(structure_worst(FT_RECON_CONDITIONAL, dims[i], 0.4, 710) <= 0.05);
     }
-    for (size_t i = 0; i < 2; i++)
-        bad += !(structure_worst(FT_RECON_FRACTAL, fractal_dims[i], 0.0, 700) <= 0.05);
+    for (size_t i = 0; i < 3; i++)
+        bad += !(structure_worst(FT_RECON_FRACTAL, dims[i], 0.0, 700) <= 0.05);
     assert_int_equal(bad, 0);
 
     ft_grid *t = target(64, 64), *g = fbm(64, 2.5, 5);

@@ -62,6 +62,7 @@ void ft_recon_problem_free(ft_recon_problem *p)
     for (int l = 0; p->lev && l < p->nlev; l++)
         ft_recon_level_free_arrays(&p->lev[l]);
     free(p->lev);
+    ft_recon_prior_levels_free(p);
     free(p->d);
     free(p);
 }

@@ -42,6 +42,11 @@ static int coarsen(ft_recon_problem *p, int l)
     C->ny = F->ny / 2 + 1;
     C->tp = F->tp / 4.0;
     C->mem = F->mem;
+    if (l <= p->npl) {
+        /* the multilevel prior's level l, on this level's spacing (recon_levels.c) */
+        C->tp += p->pl[l - 1].tp;
+        C->mem += p->pl[l - 1].mem;
+    }
     size_t n = C->nx * C->ny;
     C->c = ft_calloc(n, sizeof *C->c);
     C->fixed = ft_calloc(n, 1);
@@ -193,11 +198,13 @@ int ft_recon_hierarchy(ft_recon_problem *p, double lambda, double tension)
     lev[0].mem = lambda * tension;
     p->nlev = nlev;
     p->lambda = lambda;
-    for (int l = 1; l < nlev; l++) {
-        int rc = coarsen(p, l);
-        if (rc != FT_OK)
-            return rc;
-    }
+    int rc = ft_recon_prior_levels(p, p->prior_H);
+    if (rc != FT_OK)
+        return rc;
+    for (int l = 1; l < nlev && rc == FT_OK; l++)
+        rc = coarsen(p, l);
+    if (rc != FT_OK)
+        return rc;
     return factor_coarsest(&lev[nlev - 1]);
 }
 
@@ -299,7 +306,16 @@ static int solve_cg(const ft_recon_problem *p, const float *rhs, float *u, doubl
         rc = FT_E_NOMEM;
         goto done;
     }
-    double rr = ft_recon_residual(L, u, rhs, r, nt), rr0 = rr;
+    double rr = ft_recon_residual(L, u, rhs, r, nt);
+    if (p->npl > 0) {
+        /* the multilevel prior's share of A u (recon_levels.c) */
+        memset(q, 0, n * sizeof *q);
+        ft_recon_prior_levels_add(p, u, q);
+        for (size_t i = 0; i < n; i++)
+            r[i] = L->fixed[i] ? 0.0f : (float)((double)r[i] - (double)q[i]);
+        rr = dot(r, r, nx, ny, rows, nt);
+    }
+    double rr0 = rr;
     if (!isfinite(rr)) {
         rc = ft_error(FT_E_NUMERIC, "the initial residual is not finite");
         goto done;
@@ -322,6 +338,12 @@ static int solve_cg(const ft_recon_problem *p, const float *rhs, float *u, doubl
                 double a;
                 q[i] = L->fixed[i] ? 0.0f : (float)ft_recon_apply(L, pp, x, y, &a);
             }
+        if (p->npl > 0) {
+            ft_recon_prior_levels_add(p, pp, q);
+            for (size_t i = 0; i < n; i++)
+                if (L->fixed[i])
+                    q[i] = 0.0f;
+        }
         double pq = dot(pp, q, nx, ny, rows, nt);
         if (!(pq > 0.0) || !(rz > 0.0))
             break;

@@ -44,7 +44,7 @@ static int term_exists(int t, long x, long y, long nx, long ny)
 }
 
 /* Standard normal deviates e[t][y nx + x] of every existing term (0 elsewhere), scaled by sqrt(w_t). */
-static void draw_terms(const ft_recon_level *L, uint64_t seed, float *const e[NTERMS], int nthreads)
+static void draw_terms(const ft_recon_level *L, uint64_t seed, int level, float *const e[NTERMS], int nthreads)
 {
     size_t nx = L->nx, ny = L->ny;
     const double w[NTERMS] = {L->tp, L->tp, 2.0 * L->tp, L->mem, L->mem};
@@ -53,7 +53,7 @@ static void draw_terms(const ft_recon_level *L, uint64_t seed, float *const e[NT
         for (int t = 0; t < NTERMS; t++) {
             float *row = e[t] + y * nx;
             ft_rng_fast g;
-            ft_rng_fast_init(&g, seed, ft_rng_mix(FT_RECON_STREAM_PERTURB + (uint64_t)t, (uint64_t)y));
+            ft_rng_fast_init(&g, seed, ft_rng_mix(FT_RECON_STREAM_PERTURB + (uint64_t)(16 * level + t), (uint64_t)y));
             ft_rng_fast_normals(&g, row, nx);
             double s = sqrt(w[t]);
             for (size_t x = 0; x < nx; x++)
@@ -102,19 +102,38 @@ int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, u
         return FT_E_NOMEM;
     }
     float *e[NTERMS];
+    /* the multilevel prior's terms (recon_levels.c), coarsest first: b_l = eta_l + r' b_(l+1) */
+    for (int l = p->npl - 1; l >= 0; l--) {
+        ft_recon_level *P = &p->pl[l];
+        size_t m = P->nx * P->ny;
+        for (int t = 0; t < NTERMS; t++)
+            e[t] = buf + (size_t)t * m;
+        draw_terms(P, seed, l + 1, e, p->nthreads);
+#pragma omp parallel for num_threads(ft_recon_threads(p->nthreads, m)) schedule(static)
+        for (size_t y = 0; y < P->ny; y++)
+            for (size_t x = 0; x < P->nx; x++)
+                P->b[y * P->nx + x] = (float)gather(e, P->nx, P->ny, x, y);
+        if (l + 1 < p->npl)
+            ft_recon_restrict_mean_t(p->pl[l + 1].b, p->pl[l + 1].nx, p->pl[l + 1].ny, P->b, P->nx, P->ny,
+                                     p->pl[l + 1].r, p->nthreads);
+    }
     for (int t = 0; t < NTERMS; t++)
         e[t] = buf + (size_t)t * n;
-    draw_terms(L, seed, e, p->nthreads);
+    draw_terms(L, seed, 0, e, p->nthreads);
     /* e_j ~ N(0, lambda T / w_j) and eta = sum w_j e_j g_j: the deviates above times sqrt(lambda T) */
     double s = sqrt(p->lambda * T0);
 #pragma omp parallel for num_threads(ft_recon_threads(p->nthreads, n)) schedule(static)
     for (size_t y = 0; y < ny; y++)
         for (size_t x = 0; x < nx; x++) {
             size_t i = y * nx + x;
-            eta[i] = L->fixed[i] ? 0.0f : (float)(s * gather(e, nx, ny, x, y));
+            eta[i] = (float)gather(e, nx, ny, x, y);
             u[i] = 0.0f;
         }
     free(buf);
+    if (p->npl > 0)
+        ft_recon_restrict_mean_t(p->pl[0].b, p->pl[0].nx, p->pl[0].ny, eta, nx, ny, p->pl[0].r, p->nthreads);
+    for (size_t i = 0; i < n; i++)
+        eta[i] = L->fixed[i] ? 0.0f : (float)(s * (double)eta[i]);
     int rc = ft_recon_report(prog, 0.1, "reconstruct: perturbed prior");
     double rr0 = 0.0;
     for (size_t i = 0; i < n; i++)

@@ -162,3 +162,42 @@ double ft_recon_tension_for_dim(double D)
     double r = M * (1.0 - H) / H;
     return r / (1.0 + r);
 }
+
+/* The fractal method's multilevel prior (recon_levels.c), calibrated on the structure function
+ * (bench/accuracy/recon_structure.c: exact fBm 256², data on every 4th node plus 5%, 3 seeds; the table
+ * of docs/terrain-reconstruct.md): the finest level's blend tau and the factor g of T = g k sigma0² that
+ * put the reconstruction's mean |dz| on the original's from 1 to 32 cells. Linear between the rows,
+ * the end rows outside. */
+static const struct {
+    double D, tension, gain;
+} FRACTAL_CALIBRATION[] = {
+    {2.2, 0.2, 1.13},
+    {2.4, 0.35, 1.55},
+    {2.5, 0.4, 1.55},
+    {2.65, 0.7, 1.2},
+    {2.8, 1.0, 0.733},
+};
+
+static double fractal_calibration(double D, int gain)
+{
+    const size_t n = sizeof FRACTAL_CALIBRATION / sizeof FRACTAL_CALIBRATION[0];
+    size_t i = 0;
+    while (i + 2 < n && D > FRACTAL_CALIBRATION[i + 1].D)
+        i++;
+    double d0 = FRACTAL_CALIBRATION[i].D, d1 = FRACTAL_CALIBRATION[i + 1].D;
+    double t = (D - d0) / (d1 - d0);
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    double a = gain ? FRACTAL_CALIBRATION[i].gain : FRACTAL_CALIBRATION[i].tension;
+    double b = gain ? FRACTAL_CALIBRATION[i + 1].gain : FRACTAL_CALIBRATION[i + 1].tension;
+    return a + t * (b - a);
+}
+
+double ft_recon_fractal_tension(double D)
+{
+    return fractal_calibration(D, 0);
+}
+
+double ft_recon_fractal_gain(double D)
+{
+    return fractal_calibration(D, 1);
+}

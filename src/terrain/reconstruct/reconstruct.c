@@ -98,6 +98,8 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
                  float *sd, size_t stride, const ft_recon_progress *prog)
 {
     size_t nx = p->nx, ny = p->ny, n = nx * ny;
+    /* the fractal method's prior is the multilevel one (recon_levels.c); the others keep level 0's */
+    p->prior_H = par->method == FT_RECON_FRACTAL ? par->H : 0.0;
     int rc = ft_recon_hierarchy(p, lambda, tension);
     if (rc != FT_OK)
         return rc;
@@ -302,7 +304,8 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
     info->dim = D;
     par->H = 3.0 - D;
     if (tension_from_dim)
-        par->tension = info->tension = ft_recon_tension_for_dim(D);
+        par->tension = info->tension =
+            o->method == FT_RECON_FRACTAL ? ft_recon_fractal_tension(D) : ft_recon_tension_for_dim(D);
     if (o->method == FT_RECON_CONDITIONAL) {
         return conditional_small_scales(&yk, bound, dem, cell, par);
     }
@@ -314,7 +317,7 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
         if (rc != FT_OK)
             return rc;
         info->sigma0 = ft_recon_line_at(&pe, cell);
-        par->T0 = ft_recon_temperature0(info->k, info->sigma0);
+        par->T0 = ft_recon_fractal_gain(D) * ft_recon_temperature0(info->k, info->sigma0);
     }
     info->temperature = par->T0;
     return FT_OK;

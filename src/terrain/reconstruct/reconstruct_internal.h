@@ -4,6 +4,7 @@
  *  - recon_binding.c: scattered points -> the nodes (cell centres) of the target grid;
  *  - recon_stencil.c: the discrete energy (data term + lambda [(1 - tension) thin plate + tension
  *    membrane], h = 1 node of the level) applied at a node, and 5-colour Gauss-Seidel sweeps;
+ *  - recon_levels.c: the fractal method's multilevel prior (Szeliski's pyramid of energies, weights of D);
  *  - recon_multigrid.c: the level hierarchy (spacing 2^l), restriction and prolongation, and the T = 0
  *    solver (conjugate gradients preconditioned by a symmetric multigrid V-cycle);
  *  - recon_discrepancy.c: with soft data, the prior weight by Morozov's discrepancy principle;
@@ -67,6 +68,10 @@ typedef struct {
     size_t ndata;      /**< soft data: the points bound to nodes (N of the discrepancy principle) */
     double scatter;    /**< soft data: sum over points of c_i (d_i - d_node)², the misfit that no surface
                             on these nodes can remove (several points on one node) */
+    double prior_H;    /**< > 0: the multilevel prior of exponent H (recon_levels.c) joins level 0's energy
+                            in every solve; 0: level 0's energy alone */
+    ft_recon_level *pl; /**< the multilevel prior's levels 1 .. npl (tp, mem with their weights; x, b, r: work) */
+    int npl;
 } ft_recon_problem;
 
 /** Progress over a whole job: fraction base + span * f (Core's scaled progress, src/internal.h). */
@@ -100,6 +105,21 @@ int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int revers
 double ft_recon_residual(const ft_recon_level *L, const float *x, const float *b, float *r, int nthreads);
 /** Interior diagonal of the prior at a level (20 tp + 4 mem). */
 double ft_recon_prior_diag(const ft_recon_level *L);
+
+/* ---- recon_levels.c ---- */
+/** The multilevel prior's levels 1 .. npl of p for exponent H (none if H <= 0): tp_l = 2^(-2Hl) tp_0,
+ *  mem_l = 2^(-2Hl) FT_RECON_LEVEL_MEMBRANE^l mem_0 (so after level 0's coefficients are set). */
+int ft_recon_prior_levels(ft_recon_problem *p, double H);
+void ft_recon_prior_levels_free(ft_recon_problem *p);
+/** The membrane's share of level l is FT_RECON_LEVEL_MEMBRANE^l times level 0's (thin plate: 1). */
+#define FT_RECON_LEVEL_MEMBRANE 0.5
+/** y += sum_(l >= 1) w_l R_l' A_l R_l x on every fine node (nothing when p has no prior levels). */
+void ft_recon_prior_levels_add(const ft_recon_problem *p, const float *x, float *y);
+/** c = r f (normalized full weighting, nodes 2I of f) and f += r' c; tmp holds ncx x nfy floats. */
+void ft_recon_restrict_mean(const float *f, size_t nfx, size_t nfy, float *c, size_t ncx, size_t ncy, float *tmp,
+                            int nthreads);
+void ft_recon_restrict_mean_t(const float *c, size_t ncx, size_t ncy, float *f, size_t nfx, size_t nfy, float *tmp,
+                              int nthreads);
 
 /* ---- recon_multigrid.c ---- */
 /** Builds (or rebuilds) the coarse levels of p (lumped data weights, fixed nodes by injection) and the
@@ -161,6 +181,10 @@ double ft_recon_temperature0(double k, double sigma0);
  *  FT_RECON_TENSION_WAVELENGTH cells, tau / (1 - tau) = M (1 - H) / H, M = 2 - 2 cos(2 pi / wavelength). */
 double ft_recon_tension_for_dim(double D);
 #define FT_RECON_TENSION_WAVELENGTH 4.0
+/** The fractal method's multilevel prior: the finest level's blend for dimension D (opts->tension from D)
+ *  and the factor g(D) of its temperature, T = g k sigma0², both calibrated on the structure function. */
+double ft_recon_fractal_tension(double D);
+double ft_recon_fractal_gain(double D);
 /** The blend the fractal method's k was calibrated with (its tension when opts->tension is from D). */
 #define FT_RECON_FRACTAL_TENSION 0.1
 
