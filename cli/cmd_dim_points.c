@@ -318,7 +318,8 @@ const cli_command cli_cmd_dim_points = {
     "                       and on z (Z): 2 Z^2 is removed from E dz^2 and lags below 3 XY are left out\n"
     "      --noise-model M  auto (default): detect noise on x, y and z (the plot flattening toward small\n"
     "                       lags), remove it (errors-in-variables fit) and fit past it, extending the\n"
-    "                       default lags to 32 spacings; off: none (docs/surface-noise.md)\n"
+    "                       default lags to 32 spacings unless z noise alone leaves 6 of them above it;\n"
+    "                       off: none (docs/surface-noise.md)\n"
     "      --x/--y/--z COL  CSV column names (default x, y, z)\n"
     "      --layer NAME     OGR layer (default: the first); --zfield NAME: z from this field, not the geometry\n"
     CLI_DIM_OPTIONS_HELP
