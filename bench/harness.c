@@ -251,6 +251,11 @@ static void unlink_scratch(const char *path)
     char aux[PATH_MAX];
     if ((size_t)snprintf(aux, sizeof aux, "%s.aux.xml", path) < sizeof aux)
         unlink(aux);
+    /* ENVI's header replaces the extension: "out.envi" -> "out.hdr" */
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (dot != NULL && (slash == NULL || dot > slash) &&
+        (size_t)snprintf(aux, sizeof aux, "%.*s.hdr", (int)(dot - path), path) < sizeof aux)
+        unlink(aux);
 }
 
 const char *ft_bench_fracterra_program(void)
