@@ -37,7 +37,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#define WIDEN 1e-9 /* swept boxes widened by this fraction of their largest coordinate (as segment_index.c) */
 #define FUSED_BLOCK (FT_SEGMENT_BLOCK / 2) /* input segments per block: the output's FT_SEGMENT_BLOCK, as move_guard.c */
 
 /* One chain of the pass: the input the pass works on (densified or not), its split flags, its output. */
@@ -88,12 +87,7 @@ static void block_box(const fused *F, size_t b, double box[4])
         if (ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &x, &y))
             box_add(box, x, y);
     }
-    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
-    double w = WIDEN * m + 1e-300;
-    box[0] -= w;
-    box[1] -= w;
-    box[2] += w;
-    box[3] += w;
+    ft_segment_box_widen(box);
 }
 
 /* Block b's output with no move: its vertices at their input positions, each split segment's midpoint after

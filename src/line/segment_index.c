@@ -46,6 +46,16 @@ static void box_add(double box[4], double x, double y)
     box[3] = dmax(box[3], y);
 }
 
+void ft_segment_box_widen(double box[4])
+{
+    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
+    double w = WIDEN * m + 1e-300;
+    box[0] -= w;
+    box[1] -= w;
+    box[2] += w;
+    box[3] += w;
+}
+
 /* The widened swept box of block b. */
 static void block_box(const ft_segment_blocks *g, const ft_chain *const *base, const ft_chain *const *raw, size_t b,
                       int mirror, double box[4])
@@ -62,12 +72,7 @@ static void block_box(const ft_segment_blocks *g, const ft_chain *const *base, c
         if (mirror)
             box_add(box, bx - (rx - bx), by - (ry - by));
     }
-    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
-    double w = WIDEN * m + 1e-300;
-    box[0] -= w;
-    box[1] -= w;
-    box[2] += w;
-    box[3] += w;
+    ft_segment_box_widen(box);
 }
 
 /* The block after b along its chain (a ring's last: its first), or b itself at an open chain's end. */

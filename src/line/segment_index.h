@@ -41,6 +41,10 @@ void ft_segment_blocks_free(ft_segment_blocks *g);
 int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains, size_t n, size_t per_block);
 int ft_segment_blocks_join(ft_segment_blocks *g, const ft_chain *const *chains);
 
+/** Widens a swept box {xmin, ymin, xmax, ymax} by 1e-9 of its largest coordinate, so that no rounding of the
+ *  positions it was built from falls outside it: the one rule of both guards' blocks. */
+void ft_segment_box_widen(double box[4]);
+
 /** Blocks per chunk of a guard's parallel walk: a fixed number, so the result does not depend on threads. */
 #define FT_GUARD_CHUNK 16384
 
