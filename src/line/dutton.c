@@ -174,13 +174,6 @@ int ft_dutton_plan_make(const ft_chain *const *chains, size_t n, const ft_dutton
 
 typedef ft_dutton_pass_params pass_params;
 
-/* Where Dutton's pass puts vertex i (in place if it stays: an end, or a segment outside the window). */
-static void moved_vertex(const ft_chain *in, const unsigned char *split, const pass_params *pp, size_t i, double *ox,
-                         double *oy)
-{
-    ft_dutton_raw_vertex(in, split, pp, i, ox, oy);
-}
-
 void ft_dutton_mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, unsigned char *split)
 {
     size_t n = in->n;
@@ -196,7 +189,7 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
     size_t in_ = i + 1 < in->n ? i + 1 : 0;
     double x = in->x[i], y = in->y[i];
     if (!pp->keep_vertices)
-        moved_vertex(in, split, pp, i, &x, &y);
+        (void)ft_dutton_raw_vertex(in, split, pp, i, &x, &y);
     out->x[k] = x;
     out->y[k] = y;
     if (base) {
@@ -210,8 +203,8 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
         out->y[k] = my;
         if (pp->keep_vertices) { /* M - (dP + dN) / 2 */
             double px, py, nx, ny;
-            moved_vertex(in, split, pp, i, &px, &py);
-            moved_vertex(in, split, pp, in_, &nx, &ny);
+            (void)ft_dutton_raw_vertex(in, split, pp, i, &px, &py);
+            (void)ft_dutton_raw_vertex(in, split, pp, in_, &nx, &ny);
             out->x[k] = mx - 0.5 * ((px - in->x[i]) + (nx - in->x[in_]));
             out->y[k] = my - 0.5 * ((py - in->y[i]) + (ny - in->y[in_]));
         }
