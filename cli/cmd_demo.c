@@ -106,8 +106,8 @@ static const demo_item items[] = {
      "158 vertices stay where they are and each new midpoint goes where Dutton's pass puts it relative to its "
      "two neighbours, so the detail is added below the outline's segments and its shape at their scale and "
      "above stays (Dutton's pass itself moves the 158 vertices and lowers D over the rulers below by 0.06). "
-     "158 to 328 points (Dutton: 302; every segment here is longer than SM and split, and the 6 over 3 times "
-     "the mean are cut first).",
+     "158 to 328 points (Dutton: 302; every segment here is longer than SM and split, and the two over 3 times "
+     "the mean are first cut into 4).",
      {{"newfoundland_b.geojson", 0}},
      {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_b.geojson", "--sd", "1.3", "--uc", "0.7",
       "--sm", "7372", "--keep-vertices"}},
