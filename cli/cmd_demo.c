@@ -85,8 +85,9 @@ static const demo_item items[] = {
      {"fracterra", "simplify", "@/gshhg_newfoundland_utm21n.geojson", "newfoundland_158.geojson", "--vertices",
       "158"}},
     {"Newfoundland, enhanced outline",
-     "The generalized outline enhanced with SD = 1.3, UC = 0.7, SM = 5100 m (1% of the map width) and no "
-     "straightness limit, weeded at SM and smoothed once.",
+     "The generalized outline enhanced with SD = 1.3, UC = 0.7, SM = 5100 m (1% of the island's width) and no "
+     "straightness limit, weeded at SM and smoothed once, with Dutton's own pass, which moves the 158 "
+     "vertices (158 to 328, 296 and 592 points; the paper's sequence with the vertices kept follows).",
      {{"newfoundland_enhanced.geojson", 0}},
      {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_enhanced.geojson", "--sd", "1.3", "--uc",
       "0.7", "--sm", "5100", "--weed", "--smooth", "1"}},
@@ -100,22 +101,26 @@ static const demo_item items[] = {
      {{"newfoundland_loglog_after.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_enhanced.geojson", "--plot", "newfoundland_loglog_after.svg"}},
     {"Newfoundland, the paper's sequence: enhanced",
-     "Stage B of Fig. 6 with the paper's parameters (SD = 1.3, UC = 0.7, SM = 5100 m, no straightness limit) "
-     "and <code>--keep-vertices</code>: the 158 vertices stay where they are and each new midpoint goes where "
-     "Dutton's pass puts it relative to its two neighbours, so the detail is added below the outline's "
-     "segments and its shape at their scale and above stays (Dutton's pass itself moves the 158 vertices and "
-     "lowers D over the rulers below by 0.06). 158 to 328 points.",
+     "Stage B of Fig. 6 with the paper's parameters (SD = 1.3, UC = 0.7, no straightness limit, SM = 7372 m: "
+     "1% of the width of a 4:3 map window holding the island, 737 km) and <code>--keep-vertices</code>: the "
+     "158 vertices stay where they are and each new midpoint goes where Dutton's pass puts it relative to its "
+     "two neighbours, so the detail is added below the outline's segments and its shape at their scale and "
+     "above stays (Dutton's pass itself moves the 158 vertices and lowers D over the rulers below by 0.06). "
+     "158 to 328 points (Dutton: 302; every segment here is longer than SM and split, and the two over 3 times "
+     "the mean are first cut into 4).",
      {{"newfoundland_b.geojson", 0}},
      {"fracterra", "enhance", "newfoundland_158.geojson", "newfoundland_b.geojson", "--sd", "1.3", "--uc", "0.7",
-      "--sm", "5100", "--keep-vertices"}},
+      "--sm", "7372", "--keep-vertices"}},
     {"Newfoundland, the paper's sequence: weeded",
-     "Stage C: segments shorter than SM weeded out (Dutton's weeding). 319 points.",
+     "Stage C: segments shorter than SM weeded out (Dutton's weeding): 293 points, 10.7% fewer (Dutton: "
+     "about 10%; 267 by his 534).",
      {{"newfoundland_c.geojson", 0}},
-     {"fracterra", "weed", "newfoundland_b.geojson", "newfoundland_c.geojson", "--min-segment", "5100"}},
+     {"fracterra", "weed", "newfoundland_b.geojson", "newfoundland_c.geojson", "--min-segment", "7372"}},
     {"Newfoundland, the paper's sequence: smoothed",
-     "Stage D: smoothed once (roundness 0.5, segments of at least SM). 638 points.",
+     "Stage D: smoothed once (roundness 0.5, segments of at least SM): every vertex cut in two, 586 points "
+     "(Dutton: 534).",
      {{"newfoundland_d.geojson", 0}},
-     {"fracterra", "smooth", "newfoundland_c.geojson", "newfoundland_d.geojson", "--sm", "5100"}},
+     {"fracterra", "smooth", "newfoundland_c.geojson", "newfoundland_d.geojson", "--sm", "7372"}},
 #define NF_RULERS "--min-scale", "48540.3", "--max-scale", "187304", "--scales", "16", "--starts", "48"
     {"Newfoundland A (158 points): divider over the common rulers",
      "Every stage is measured over the same 16 rulers, 48.5 to 187.3 km (the 158-point outline's automatic "
@@ -125,15 +130,15 @@ static const demo_item items[] = {
      {{"newfoundland_a_divider.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_158.geojson", NF_RULERS, "--plot", "newfoundland_a_divider.svg"}},
     {"Newfoundland B (enhanced): divider over the common rulers",
-     "The same rulers and starts. Measured: D 1.516 (328 points), +0.007 from A.",
+     "The same rulers and starts. Measured: D 1.515 (328 points), +0.006 from A.",
      {{"newfoundland_b_divider.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_b.geojson", NF_RULERS, "--plot", "newfoundland_b_divider.svg"}},
     {"Newfoundland C (weeded): divider over the common rulers",
-     "The same rulers and starts. Measured: D 1.502 (319 points), -0.007 from A.",
+     "The same rulers and starts. Measured: D 1.515 (293 points), +0.006 from A.",
      {{"newfoundland_c_divider.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_c.geojson", NF_RULERS, "--plot", "newfoundland_c_divider.svg"}},
     {"Newfoundland D (smoothed): divider over the common rulers",
-     "The same rulers and starts. Measured: D 1.484 (638 points), -0.025 from A.",
+     "The same rulers and starts. Measured: D 1.486 (586 points), -0.023 from A.",
      {{"newfoundland_d_divider.svg", 1}},
      {"fracterra", "dim", "line", "newfoundland_d.geojson", NF_RULERS, "--plot", "newfoundland_d_divider.svg"}},
 #undef NF_RULERS
@@ -613,7 +618,7 @@ const cli_command cli_cmd_demo = {
     "  hillshade, render, model fit    the same for the Maunga Whau DEM, and Clarke's model fitted to it\n"
     "  simplify, enhance, dim line     Dutton's Newfoundland sequence: the GSHHG shoreline generalized to\n"
     "                                  158 points and enhanced; divider log-log plots of both; the paper's\n"
-    "                                  rule (SD = the outline's D) stage by stage (enhance, weed, smooth),\n"
+    "                                  sequence stage by stage (enhance --keep-vertices, weed, smooth),\n"
     "                                  each stage's divider over common rulers, 48 start vertices\n"
     "  simplify, boundary, dim line    Rhode Island's boundary with detail of D = 1.2325 added by the\n"
     "                                  midpoint-subdivision generator; its box-counting plot\n"

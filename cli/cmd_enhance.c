@@ -200,7 +200,8 @@ const cli_command cli_cmd_enhance = {
     "  -u, --uc U           uniformity coefficient in [-1,1]: the fraction of the move (negative: the opposite\n"
     "                       way, exaggerating); default 1\n"
     "  -t, --st LEN         straightness tolerance: only segments shorter than LEN are altered; default inf\n"
-    "  -m, --sm LEN         smoothness tolerance: only segments of at least LEN are altered; default 0\n"
+    "  -m, --sm LEN         smoothness tolerance: only segments of at least LEN are altered; default 0.\n"
+    "                       Dutton: \"roughly 1 percent of the width of the map window\"\n"
     "  -i, --iterations N   fractalizing iterations, 0..16 (each one about doubles the vertices); default 1\n"
     "      --weed           after fractalizing, drop vertices so that no segment is shorter than --sm\n"
     "      --keep-shape     with --weed: of a short segment's two vertices drop the one nearer to the chord\n"
@@ -209,10 +210,11 @@ const cli_command cli_cmd_enhance = {
     "  -r, --roundness R    corner cutting in (0,1]: V becomes V + R(M1-V) and V + R(M2-V) (0.5: Chaikin);\n"
     "                       default 0.5; alone, implies --smooth 1\n"
     "      --repair         finally remove the loops of self-intersecting chains\n" LINE_IO_HELP "\n"
-    "Example (Dutton's Newfoundland: SM 1% of a 510 km wide map, ST very large):\n"
+    "Example (Dutton's Newfoundland: SM 1% of the island's 510 km width, ST very large):\n"
     "  fracterra simplify tests/data/gshhg_newfoundland_utm21n.geojson nf158.geojson --vertices 158\n"
     "  fracterra enhance nf158.geojson nf-enhanced.geojson --sd 1.3 --uc 0.7 --sm 5100 --weed --smooth 1\n"
-    "  the same keeping D at each stage (docs/line-newfoundland.md):\n"
-    "  fracterra enhance nf158.geojson nf-d.geojson --sd 1.3 --uc 0.7 --sm 5100 --keep-vertices --weed --smooth 1\n",
+    "  the same keeping D at each stage, SM 1% of a 4:3 map window holding the island (737 km wide; the\n"
+    "  weeding then removes the paper's 10%: 158 -> 328 -> 293 -> 586 points, docs/line-newfoundland.md):\n"
+    "  fracterra enhance nf158.geojson nf-d.geojson --sd 1.3 --uc 0.7 --sm 7372 --keep-vertices --weed --smooth 1\n",
     run_enhance,
 };
