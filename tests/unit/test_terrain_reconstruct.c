@@ -460,7 +460,10 @@ static void test_realizations(void **state)
     }
     assert_int_equal(positive, free_nodes);
     free(data);
-    /* the mean of 5 runs is the mean of the 5 single runs with seeds seed .. seed + 4 */
+    /* the mean of 5 runs is the mean of the 5 single runs with seeds seed .. seed + 4, to the solver's
+     * tolerance: a single run solves u* and its sample in one solve, a batch solves u* once and each
+     * sample apart (recon_perturb.c); 0.05 is 5e-4 of the surface's sd (measured 0.036; a realization of
+     * another seed differs by metres) */
     double worst = 0.0;
     float *acc = calloc(g->nx * g->ny, sizeof *acc);
     for (int r = 0; r < 5; r++) {
@@ -474,7 +477,8 @@ static void test_realizations(void **state)
     }
     for (size_t i = 0; i < g->nx * g->ny; i++)
         worst = fmax(worst, fabs((double)acc[i] - (double)mean->z[i]));
-    assert_true(worst < 1e-3);
+    print_message("mean of 5 single runs - mean of a batch of 5: worst %.4f (sd 100)\n", worst);
+    assert_true(worst < 0.05);
     free(acc);
     ft_grid_free(mean);
     ft_grid_free(sd);

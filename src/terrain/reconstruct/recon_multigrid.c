@@ -291,6 +291,38 @@ static double dot(const float *a, const float *b, size_t nx, size_t ny, double *
     return s;
 }
 
+/* r = rhs - A u on the free nodes (0 on fixed ones), A with the multilevel prior's levels; returns sum r².
+ * q (n floats) and rows (ny doubles) are work space. */
+static double full_residual(const ft_recon_problem *p, const float *u, const float *rhs, float *r, float *q,
+                            double *rows)
+{
+    const ft_recon_level *L = &p->lev[0];
+    size_t nx = L->nx, ny = L->ny, n = nx * ny;
+    int nt = ft_recon_threads(p->nthreads, n);
+    double rr = ft_recon_residual(L, u, rhs, r, nt);
+    if (p->npl == 0)
+        return rr;
+    /* the multilevel prior's share of A u (recon_levels.c) */
+    memset(q, 0, n * sizeof *q);
+    ft_recon_prior_levels_add(p, u, q);
+    for (size_t i = 0; i < n; i++)
+        r[i] = L->fixed[i] ? 0.0f : (float)((double)r[i] - (double)q[i]);
+    return dot(r, r, nx, ny, rows, nt);
+}
+
+double ft_recon_residual_norm2(const ft_recon_problem *p, const float *rhs, const float *u)
+{
+    size_t n = p->nx * p->ny;
+    float *r = ft_malloc(n * sizeof *r), *q = ft_malloc(n * sizeof *q);
+    double *rows = ft_malloc(p->ny * sizeof *rows), rr = NAN;
+    if (r && q && rows)
+        rr = full_residual(p, u, rhs, r, q, rows);
+    free(r);
+    free(q);
+    free(rows);
+    return rr;
+}
+
 /* Conjugate gradients from u until sum r² <= rr_stop, or (rr_stop < 0) <= FT_RECON_TOL² x the initial one. */
 static int solve_cg(const ft_recon_problem *p, const float *rhs, float *u, double rr_stop,
                     const ft_recon_progress *prog, int *iterations)
@@ -306,15 +338,7 @@ static int solve_cg(const ft_recon_problem *p, const float *rhs, float *u, doubl
         rc = FT_E_NOMEM;
         goto done;
     }
-    double rr = ft_recon_residual(L, u, rhs, r, nt);
-    if (p->npl > 0) {
-        /* the multilevel prior's share of A u (recon_levels.c) */
-        memset(q, 0, n * sizeof *q);
-        ft_recon_prior_levels_add(p, u, q);
-        for (size_t i = 0; i < n; i++)
-            r[i] = L->fixed[i] ? 0.0f : (float)((double)r[i] - (double)q[i]);
-        rr = dot(r, r, nx, ny, rows, nt);
-    }
+    double rr = full_residual(p, u, rhs, r, q, rows);
     double rr0 = rr;
     if (!isfinite(rr)) {
         rc = ft_error(FT_E_NUMERIC, "the initial residual is not finite");
@@ -398,13 +422,10 @@ int ft_recon_solve_to(const ft_recon_problem *p, const float *rhs, float *u, dou
     return solve_cg(p, rhs, u, fmax(rr_stop, 0.0), prog, iterations);
 }
 
-int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress *prog, int *iterations)
+void ft_recon_data_rhs(const ft_recon_problem *p, float *rhs, float *u)
 {
     const ft_recon_level *L = &p->lev[0];
     size_t n = L->nx * L->ny;
-    float *rhs = ft_malloc(n * sizeof *rhs);
-    if (rhs == NULL)
-        return FT_E_NOMEM;
     double sw = 0.0, swd = 0.0;
     for (size_t i = 0; i < n; i++) {
         double w = L->fixed[i] ? 1.0 : (double)L->c[i];
@@ -416,6 +437,15 @@ int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress 
         rhs[i] = L->fixed[i] ? 0.0f : (float)((double)L->c[i] * (double)p->d[i]);
         u[i] = L->fixed[i] ? p->d[i] : start;
     }
+}
+
+int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress *prog, int *iterations)
+{
+    size_t n = p->nx * p->ny;
+    float *rhs = ft_malloc(n * sizeof *rhs);
+    if (rhs == NULL)
+        return FT_E_NOMEM;
+    ft_recon_data_rhs(p, rhs, u);
     int rc = ft_recon_solve_rhs(p, rhs, u, prog, iterations);
     free(rhs);
     return rc;

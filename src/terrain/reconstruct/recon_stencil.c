@@ -23,6 +23,8 @@
 #include "terrain/reconstruct/reconstruct_internal.h"
 
 #define NCOLOURS 5
+/* The wavefront's lag in rows between consecutive colours: more than the stencil's reach (2 rows). */
+#define WAVE_LAG 3
 
 double ft_recon_prior_diag(const ft_recon_level *L)
 {
@@ -115,9 +117,25 @@ static void sweep_row(const ft_recon_level *L, float *x, const float *b, int k, 
     }
 }
 
+/* One pass over the rows: at step t, the s-th colour of the sweep on row t - WAVE_LAG s. */
+static void sweep_wavefront(const ft_recon_level *L, float *x, const float *b, int reverse)
+{
+    long ny = (long)L->ny;
+    for (long t = 0; t < ny + WAVE_LAG * (NCOLOURS - 1); t++)
+        for (int s = 0; s < NCOLOURS; s++) {
+            long y = t - WAVE_LAG * s;
+            if (y >= 0 && y < ny)
+                sweep_row(L, x, b, reverse ? NCOLOURS - 1 - s : s, (size_t)y);
+        }
+}
+
 int ft_recon_sweep(const ft_recon_level *L, float *x, const float *b, int reverse, int nthreads)
 {
     size_t nx = L->nx, ny = L->ny;
+    if (ft_recon_threads(nthreads, nx * ny) == 1) {
+        sweep_wavefront(L, x, b, reverse);
+        return FT_OK;
+    }
     for (int s = 0; s < NCOLOURS; s++) {
         int k = reverse ? NCOLOURS - 1 - s : s;
 #pragma omp parallel for num_threads(ft_recon_threads(nthreads, nx * ny)) schedule(static)

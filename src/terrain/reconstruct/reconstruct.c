@@ -104,7 +104,9 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
     if (rc != FT_OK)
         return rc;
     int stochastic = par->method != FT_RECON_SMOOTH, nr = stochastic ? par->realizations : 1;
-    double t_smooth = stochastic ? 0.15 : 1.0;
+    /* one fractal realization on hard data: u* and the sample in one solve (recon_perturb.c) */
+    int one_solve = par->method == FT_RECON_FRACTAL && nr == 1 && p->ndata == 0;
+    double t_smooth = one_solve ? 0.0 : stochastic ? 0.15 : 1.0;
     float *ustar = ft_calloc(n, sizeof *ustar), *u = stochastic ? ft_malloc(n * sizeof *u) : NULL;
     double *acc = nr > 1 ? ft_calloc(2 * n, sizeof *acc) : NULL;
     if (ustar == NULL || (stochastic && u == NULL) || (nr > 1 && acc == NULL)) {
@@ -116,7 +118,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
     ft_recon_progress sp = ft_progress_range_sub(prog, 0.0, t_smooth);
     if (p->ndata > 0)
         rc = ft_recon_discrepancy(p, tension, &lambda, ustar, &sp, NULL);
-    else
+    else if (!one_solve)
         rc = ft_recon_solve(p, ustar, &sp, NULL);
     if (rc == FT_OK && stochastic)
         rc = fix_soft_data(p, ustar, lambda, tension);
@@ -126,7 +128,7 @@ int ft_recon_run(ft_recon_problem *p, double lambda, double tension, const ft_re
                                             t_smooth + (1.0 - t_smooth) * (r + 1) / nr);
         uint64_t seed = par->seed + (uint64_t)r;
         if (par->method == FT_RECON_FRACTAL)
-            rc = ft_recon_fractal(p, ustar, par->T0, seed, u, &rp);
+            rc = ft_recon_fractal(p, one_solve ? NULL : ustar, par->T0, seed, u, &rp);
         else if (par->method == FT_RECON_CONDITIONAL)
             rc = ft_recon_conditional(p, ustar, par->H, par->amp, par->nugget, seed, u, &rp);
         if (stochastic)

@@ -131,6 +131,11 @@ void ft_recon_prolong_add(const ft_recon_level *fine, const ft_recon_level *coar
 /** Solves A u = c d (the T = 0 minimum, eq. 9 with T_p = 0) for the free nodes of p, starting from the
  *  data's weighted mean; fixed nodes of u are set to d. */
 int ft_recon_solve(const ft_recon_problem *p, float *u, const ft_recon_progress *prog, int *iterations);
+/** The data's right-hand side of ft_recon_solve (c d on free nodes, 0 on fixed ones) and its initial
+ *  guess (the data's weighted mean on free nodes, d on fixed ones). */
+void ft_recon_data_rhs(const ft_recon_problem *p, float *rhs, float *u);
+/** sum over the free nodes of (rhs - A u)² (NaN if out of memory). */
+double ft_recon_residual_norm2(const ft_recon_problem *p, const float *rhs, const float *u);
 /** Same with any right-hand side: A u = rhs on free nodes, u = fixed_values on fixed ones. */
 int ft_recon_solve_rhs(const ft_recon_problem *p, const float *rhs, float *u, const ft_recon_progress *prog,
                        int *iterations);
@@ -191,7 +196,9 @@ double ft_recon_fractal_gain(double D);
 /* ---- recon_perturb.c ---- */
 /** The fractal method: u = ustar + delta, delta an exact draw of N(0, lambda T0 A_ff^-1) (the prior at
  *  temperature T0 conditioned on delta = 0 at the fixed nodes) by perturbation and optimization.
- *  Deviates from streams of (seed, term type, row). */
+ *  Deviates from streams of (seed, term type, row). ustar NULL: u* (the T = 0 solution of p's data) and
+ *  delta in one solve, to FT_RECON_TOL of u*'s initial residual (one realization: two thirds of the
+ *  iterations of solving them apart). */
 int ft_recon_fractal(const ft_recon_problem *p, const float *ustar, double T0, uint64_t seed, float *u,
                      const ft_recon_progress *prog);
 
