@@ -34,24 +34,6 @@
 
 #define MAXLAG 32
 
-/* Pentland's line at one cell (the library's sigma0, no nugget model) over lags lo .. hi cells. */
-static double pentland_at_one(const ft_points *p, double lo, double hi)
-{
-    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
-    o.method = FT_POINTS_PENTLAND;
-    o.noise_mode = -1;
-    o.min_lag = lo;
-    o.max_lag = hi;
-    ft_dim_result *r = NULL;
-    if (ft_surface_dim_points(p, &o, &r) != FT_OK) {
-        fprintf(stderr, "pentland: %s\n", ft_last_error());
-        exit(1);
-    }
-    double v = pow(10.0, r->fit.intercept);
-    ft_dim_result_free(r);
-    return v;
-}
-
 /* Mean |dz| at lag h along rows and columns over the pairs whose both ends are on multiples of `every`
  * (every = 1: all pairs). */
 static double lattice_mean(const ft_grid *g, size_t every, size_t h)
@@ -201,12 +183,7 @@ int main(int argc, char **argv)
                     ro.tension = tension;
                 ro.seed = (uint64_t)(0x5eed0000 + sd);
                 if (surface_sigma0) {
-                    /* the library's lags for these data: 0.5 .. 4 x the mean spacing */
-                    double spacing = sqrt((double)(g->nx - 1) * (double)(g->ny - 1) / (double)p->n);
-                    ft_points *every_cell = accuracy_subsample(g, 1, 1.0, 1);
-                    double sd_data = pentland_at_one(p, 0.5 * spacing, 4.0 * spacing);
-                    double sd_surf = pentland_at_one(every_cell, 0.5 * spacing, 4.0 * spacing);
-                    ft_points_free(every_cell);
+                    double ratio = accuracy_sigma0_bias(g, p);
                     ft_recon_info info;
                     if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
                         fprintf(stderr, "reconstruct: %s\n", ft_last_error());
@@ -214,8 +191,8 @@ int main(int argc, char **argv)
                     }
                     ft_grid_free(out);
                     out = NULL;
-                    ro.temperature = info.temperature * (sd_surf / sd_data) * (sd_surf / sd_data);
-                    sig += sd_data / sd_surf;
+                    ro.temperature = info.temperature / (ratio * ratio);
+                    sig += ratio;
                     for (int j = 0; j < 3; j++) {
                         lat[j] += lattice_mean(g, (size_t)every, (size_t)4 << j);
                         all[j] += lattice_mean(g, 1, (size_t)4 << j);
