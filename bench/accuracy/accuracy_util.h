@@ -79,13 +79,14 @@ static inline double accuracy_pentland_at_one(const ft_points *p, double lo, dou
 }
 
 /** sigma0 of the sample p of g (cell 1) over sigma0 of every cell of g, both by Pentland's points estimator
- *  over the lags the library uses for p (0.5 .. 4 x its mean spacing): the bias of the data's amplitude. */
-static inline double accuracy_sigma0_bias(const ft_grid *g, const ft_points *p)
+ *  over the lags 0.5 .. top x the mean spacing of p (the reconstruction's sigma0: top = 1.5; the
+ *  estimator's default range: 4): the bias of the data's amplitude. */
+static inline double accuracy_sigma0_bias(const ft_grid *g, const ft_points *p, double top)
 {
     double spacing = sqrt((double)(g->nx - 1) * (double)(g->ny - 1) / (double)p->n);
     ft_points *every_cell = accuracy_subsample(g, 1, 1.0, 1);
-    double data = accuracy_pentland_at_one(p, 0.5 * spacing, 4.0 * spacing);
-    double surface = accuracy_pentland_at_one(every_cell, 0.5 * spacing, 4.0 * spacing);
+    double data = accuracy_pentland_at_one(p, 0.5 * spacing, top * spacing);
+    double surface = accuracy_pentland_at_one(every_cell, 0.5 * spacing, top * spacing);
     ft_points_free(every_cell);
     return data / surface;
 }

@@ -133,7 +133,7 @@ int main(int argc, char **argv)
                     ft_grid *out = NULL;
                     ft_recon_info info;
                     if (surface_sigma0 && m == FT_RECON_FRACTAL) {
-                        double ratio = accuracy_sigma0_bias(g, p);
+                        double ratio = accuracy_sigma0_bias(g, p, 1.5);
                         if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
                             fprintf(stderr, "reconstruct: %s\n", ft_last_error());
                             return 1;

@@ -16,7 +16,7 @@
  *       [--sigma0 data|surface]
  *
  * --sigma0 surface (fractal method) asks what a perfect amplitude estimator would give: Pentland's points
- * estimator (the library's sigma0, same lags: 0.5-4 x the data's mean spacing) is run on the data and on
+ * estimator (the library's sigma0, same lags: 0.5-1.5 x the data's mean spacing) is run on the data and on
  * every cell of the original, and T is the library's T times (sigma0_surface / sigma0_data)². Each row then
  * also prints sigma0_data / sigma0_surface and the original's mean |dz| over the pairs of data-lattice
  * nodes (both ends on multiples of --every) against all pairs at lags 4, 8, 16: 1 on a stationary surface,
@@ -183,7 +183,7 @@ int main(int argc, char **argv)
                     ro.tension = tension;
                 ro.seed = (uint64_t)(0x5eed0000 + sd);
                 if (surface_sigma0) {
-                    double ratio = accuracy_sigma0_bias(g, p);
+                    double ratio = accuracy_sigma0_bias(g, p, 1.5);
                     ft_recon_info info;
                     if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
                         fprintf(stderr, "reconstruct: %s\n", ft_last_error());
