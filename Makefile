@@ -49,6 +49,7 @@ accuracy: build
 	./$(BUILD)/fracterra_accuracy_profile $(ACCURACY_PROFILE_FLAGS)
 	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8 --synth exact
 	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.5,2.8 --synth sra
+	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.5,2.8 --synth sra --methods fractal --sigma0 surface
 	./$(BUILD)/fracterra_accuracy_recon_structure --seeds 3 --dims 2.2,2.3,2.4,2.5,2.6,2.7,2.8 --synth sra --every 0 --fraction 0.11 --methods conditional,fractal
 	./$(BUILD)/fracterra_accuracy_clarke --seeds 16 tests/data/dem_jacksboro_3s.tif tests/data/dem_volcano_maunga_whau_10m.tif \
 	    tests/data/dem_luxembourg_terra_30s.tif tests/data/dem_luxembourg_utm32n.tif tests/data/dem_topobathy_bc_2min.tif

@@ -59,6 +59,38 @@ static inline ft_points *accuracy_subsample(const ft_grid *g, uint64_t seed, dou
     return p;
 }
 
+/** Pentland's points line at one cell (the reconstruction's sigma0: no nugget model) over lags lo .. hi
+ *  ground units; exits with the library's message on failure. */
+static inline double accuracy_pentland_at_one(const ft_points *p, double lo, double hi)
+{
+    ft_points_dim_opts o = FT_POINTS_DIM_OPTS_DEFAULT;
+    o.method = FT_POINTS_PENTLAND;
+    o.noise_mode = -1;
+    o.min_lag = lo;
+    o.max_lag = hi;
+    ft_dim_result *r = NULL;
+    if (ft_surface_dim_points(p, &o, &r) != FT_OK) {
+        fprintf(stderr, "pentland: %s\n", ft_last_error());
+        exit(1);
+    }
+    double v = pow(10.0, r->fit.intercept);
+    ft_dim_result_free(r);
+    return v;
+}
+
+/** sigma0 of the sample p of g (cell 1) over sigma0 of every cell of g, both by Pentland's points estimator
+ *  over the lags 0.5 .. top x the mean spacing of p (the reconstruction's sigma0: top = 1.5; the
+ *  estimator's default range: 4): the bias of the data's amplitude. */
+static inline double accuracy_sigma0_bias(const ft_grid *g, const ft_points *p, double top)
+{
+    double spacing = sqrt((double)(g->nx - 1) * (double)(g->ny - 1) / (double)p->n);
+    ft_points *every_cell = accuracy_subsample(g, 1, 1.0, 1);
+    double data = accuracy_pentland_at_one(p, 0.5 * spacing, top * spacing);
+    double surface = accuracy_pentland_at_one(every_cell, 0.5 * spacing, top * spacing);
+    ft_points_free(every_cell);
+    return data / surface;
+}
+
 #define ACCURACY_LAGS 16
 
 /** The variogram of an n x n grid at lags 1 .. ACCURACY_LAGS cells along rows and columns into v[1 ..]:

@@ -4,6 +4,10 @@
  *   Syn(D): ft_terrain_synth, SRA, N x N, unit standard deviation, seed s
  *   Sub:    every 4th cell in each direction plus a random 5% of the cells (cell centres, exact values)
  *   Rec:    ft_reconstruct_points on the same grid, method fractal / conditional / smooth, D given
+ *           (--dim-from data: D estimated from the sample, the library's default when D is unknown; the
+ *           raw SRA's parameter D is not its dimension: D* is 2.35 at D = 2.2, 2.77 at 2.8;
+ *           --sigma0 surface: the fractal method's T rescaled by (sigma0 of every cell / sigma0 of the data)²,
+ *           what a perfect amplitude estimator would give; the row prints the mean sigma0_data/sigma0_surface)
  *   Est:    ft_surface_dim with method yokoya over its default range, lags 1 .. N/8 cells, least squares over
  *           the whole range (fit_whole_range: the ILS segmentation would fit different sub-ranges on the
  *           original and on the reconstruction, and on a smooth one drop exactly the too-steep small lags
@@ -54,7 +58,7 @@ static double yokoya(const ft_grid *g)
 int main(int argc, char **argv)
 {
     size_t size = 256;
-    int seeds = 4, every = 4, threads = 0;
+    int seeds = 4, every = 4, threads = 0, dim_from_data = 0, surface_sigma0 = 0;
     double dims[16] = {2.2, 2.3, 2.4, 2.5, 2.6, 2.7, 2.8}, ks[32] = {0.0}, frac = 0.05, tension = -1.0;
     int nd = 7, nk = 1;
     const char *methods = "fractal,conditional,smooth";
@@ -83,14 +87,21 @@ int main(int argc, char **argv)
             threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--max-lag") && i + 1 < argc)
             est_max_lag = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--dim-from") && i + 1 < argc &&
+                 (!strcmp(argv[i + 1], "nominal") || !strcmp(argv[i + 1], "data")))
+            dim_from_data = !strcmp(argv[++i], "data");
+        else if (!strcmp(argv[i], "--sigma0") && i + 1 < argc &&
+                 (!strcmp(argv[i + 1], "data") || !strcmp(argv[i + 1], "surface")))
+            surface_sigma0 = !strcmp(argv[++i], "surface");
         else {
             fprintf(stderr, "usage: recon_calibrate [--size N] [--seeds S] [--dims a,b] [--scan k1,k2] "
-                            "[--methods fractal,conditional,smooth] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n] [--max-lag cells]\n");
+                            "[--methods fractal,conditional,smooth] [--every 4] [--fraction 0.05] [--tension t] [--synth sra-raw|sra|exact|fft] [--threads n] [--max-lag cells] [--dim-from nominal|data] [--sigma0 data|surface]\n");
             return 2;
         }
     }
     static const double paper[] = {0.060, 0.044, 0.026, 0.018, 0.017, 0.035, 0.056};
-    printf("size %zu, %d seeds, subset every %d + %.0f%%\n", size, seeds, every, 100 * frac);
+    printf("size %zu, %d seeds, synth %s, subset every %d + %.0f%%, D %s\n", size, seeds, ft_synth_method_name(synth),
+           every, 100 * frac, dim_from_data ? "estimated from the sample" : "given (the synthesis's)");
     printf("%-12s %5s %8s %8s %8s %8s %8s %10s %7s %7s\n", "method", "D", "k", "D*", "D^", "|D*-D^|", "max",
            "T0", "paper", "sec");
     for (int di = 0; di < nd; di++) {
@@ -101,7 +112,7 @@ int main(int argc, char **argv)
             if (!strstr(methods, ft_recon_method_name(m)))
                 continue;
             for (int ki = 0; ki < (m == FT_RECON_FRACTAL ? nk : 1); ki++) {
-                double sd_star = 0, sd_hat = 0, sabs = 0, smax = 0, T0 = 0, secs = 0, sdiff = 0;
+                double sd_star = 0, sd_hat = 0, sabs = 0, smax = 0, T0 = 0, secs = 0, sdiff = 0, bias = 0;
                 for (int s = 0; s < seeds; s++) {
                     ft_synth_opts so = FT_SYNTH_OPTS_DEFAULT;
                     so.method = synth;
@@ -113,7 +124,7 @@ int main(int argc, char **argv)
                     ft_points *p = accuracy_subsample(g, (uint64_t)(2000 + s), frac, every);
                     ft_recon_opts ro = FT_RECON_OPTS_DEFAULT;
                     ro.method = m;
-                    ro.dim = D;
+                    ro.dim = dim_from_data && m != FT_RECON_SMOOTH ? 0.0 : D;
                     ro.k = ks[ki];
                     ro.threads = threads;
                     if (tension >= 0.0)
@@ -121,6 +132,17 @@ int main(int argc, char **argv)
                     ro.seed = (uint64_t)(3000 + s);
                     ft_grid *out = NULL;
                     ft_recon_info info;
+                    if (surface_sigma0 && m == FT_RECON_FRACTAL) {
+                        double ratio = accuracy_sigma0_bias(g, p, 1.5);
+                        if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
+                            fprintf(stderr, "reconstruct: %s\n", ft_last_error());
+                            return 1;
+                        }
+                        ft_grid_free(out);
+                        out = NULL;
+                        ro.temperature = info.temperature / (ratio * ratio);
+                        bias += ratio;
+                    }
                     double t0 = now();
                     if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
                         fprintf(stderr, "reconstruct: %s\n", ft_last_error());
@@ -138,10 +160,13 @@ int main(int argc, char **argv)
                     ft_points_free(p);
                     ft_grid_free(g);
                 }
-                printf("%-12s %5.2f %8.3g %8.4f %8.4f %8.4f %8.4f %10.3g %7.3f %7.2f  (mean D^-D* %+.4f)\n",
+                printf("%-12s %5.2f %8.3g %8.4f %8.4f %8.4f %8.4f %10.3g %7.3f %7.2f  (mean D^-D* %+.4f)",
                        ft_recon_method_name(m), D, m == FT_RECON_FRACTAL ? (ks[ki] > 0 ? ks[ki] : FT_RECON_K_DEFAULT) : 0.0,
                        sd_star / seeds, sd_hat / seeds, fabs(sd_star - sd_hat) / seeds, smax, T0 / seeds,
                        pi >= 0 && pi < 7 ? paper[pi] : NAN, secs / seeds, sdiff / seeds);
+                if (bias > 0.0)
+                    printf("  sigma0 data/surface %.3f", bias / seeds);
+                printf("\n");
                 fflush(stdout);
             }
         }

@@ -213,8 +213,8 @@ FT_API int ft_clarke_simulate(const ft_clarke_model *m, const ft_clarke_sim_opts
  * by multigrid (T = 0: the smooth solution); the fractal method's prior is Szeliski's multilevel one (a
  * thin plate on every pyramid level l weighted 2^(-2Hl), eq. 8) and it draws an exact sample of the
  * posterior, the Gibbs distribution exp(-E / (lambda T)) conditioned on the data, by perturbation and
- * optimization (Papandreou & Yuille 2010), at T = g(D) k sigma0² with sigma0 from the Pentland estimate,
- * k = FT_RECON_K_DEFAULT and g(D) calibrated on the structure function.
+ * optimization (Papandreou & Yuille 2010), at T = g(D) k sigma0² with sigma0 from the Pentland estimate
+ * (points: over the data's shortest lags, 0.5-1.5 x their mean spacing), k = FT_RECON_K_DEFAULT and g(D) calibrated on the structure function.
  * docs/terrain-reconstruct.md holds the discretization, the calibration and the limits.
  * --------------------------------------------------------------------------------------------- */
 

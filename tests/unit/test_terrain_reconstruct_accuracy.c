@@ -3,11 +3,10 @@
  *    the subset every 4th cell plus a random 5%, D* = Est(Syn(D)) and D^ = Est(Rec(Sub(Syn(D)))) with
  *    Est = Yokoya's grid estimator over its default lags (1 .. 32 cells, whole-range fit) and, for the
  *    fractal method, over lags 1 .. 16 too. Bounds, from the full runs in the docs: fractal mean
- *    |D* - D^| <= 0.02 at lags 1-16 (multilevel prior: +0.014 / +0.017 / +0.017 here; the full 4-seed
- *    run at D 2.2 .. 2.8 reads up to +0.033 at D 2.8; the Gibbs sampler before the exact
- *    sample read -0.023 .. -0.042) and <= 0.03 at lags 1-32 (measured +0.018 .. +0.023: on this design
- *    the data lattice is SRA's coarse sublattice, whose one-cell increments are 6% above the surface's
- *    average; on exact fBm and on random-cell subsets of SRA it holds within 0.02, docs/terrain-reconstruct.md);
+ *    |D* - D^| <= 0.02 at lags 1-16 and at lags 1-32 (sigma0 from the data's shortest lags: +0.000 /
+ *    -0.001 / +0.000 and +0.007 / +0.009 / +0.003 here; with the default lag range, whose lags 4 and 8
+ *    are SRA's coarse-lattice pairs, 1-32 read +0.018 .. +0.023 and failed 0.02 at D 2.5;
+ *    docs/terrain-reconstruct.md);
  *    conditional <= 0.02 on exact fBm surfaces (D = 2.5 here; measured <= 0.011 over 2.2 .. 2.8) and <= 0.05 on SRA ones (measured
  *    <= 0.038: SRA is not an exact fBm and its lattice is the data's); smooth D^ < D* - 0.05 (the paper's
  *    effect; measured -0.08 .. -0.16);
@@ -123,7 +122,7 @@ static void test_table4(void **state)
         print_message("D %.1f: SRA D* %.3f, D^ - D*: fractal %+.4f (lags 1-16 %+.4f) conditional %+.4f smooth "
                       "%+.4f; exact fBm D* %.3f, conditional %+.4f\n", dims[i], Ds, f, f16, c, s, Dse, ce);
         bad += !(fabs(f16) <= 0.02);
-        bad += !(fabs(f) <= 0.03);
+        bad += !(fabs(f) <= 0.02);
         bad += !(fabs(c) <= 0.05);
         bad += !(s < -0.05);
         bad += !(fabs(ce) <= 0.02);

@@ -161,8 +161,9 @@ typedef struct {
     double a, b;
     double lo, hi;
 } ft_recon_line;
-/** Yokoya's (pentland = 0) or Pentland's (1) points estimator with its default range. Errors name the
- *  estimate that failed. */
+/** Yokoya's (pentland = 0) points estimator with its default range, or Pentland's (1) over the data's
+ *  shortest lags (0.5-1.5 x the mean spacing; the default range when those have too few pairs): sigma0's
+ *  line. Errors name the estimate that failed. */
 int ft_recon_fit_points(const ft_points *p, int pentland, ft_recon_line *out);
 /** The same on a grid's valid cells (grid estimators, default range). */
 int ft_recon_fit_grid(const ft_grid *g, int pentland, ft_recon_line *out);
