@@ -227,36 +227,66 @@ static void predict_tile(const tile_job *j, uint32_t tx, uint32_t ty, unsigned c
 
 typedef struct {
     unsigned char *data; /* compressBound bytes */
-    size_t size;         /* compressed size, or 0 on failure */
+    size_t size;         /* compressed size; 0 until the tile is compressed */
 } packed_tile;
 
-/* Compresses tiles [t0, t1) (row-major tile numbers) into out[0 .. t1 - t0). 0 on success. */
-static int pack_batch(const tile_job *j, uint32_t t0, uint32_t t1, packed_tile *out, size_t cap)
+/* Appends tiles in their order as they come out of the compressing threads (under a critical section). */
+typedef struct {
+    TIFF *tif;
+    uint32_t next; /* the next tile to append */
+    int failed;    /* 1 compression, 2 append */
+} appender;
+
+static void append_ready(appender *a, packed_tile *p, uint32_t t0, uint32_t t1)
+{
+    while (!a->failed && a->next < t1 && p[a->next - t0].size != 0) {
+        const packed_tile *q = &p[a->next - t0];
+        if (TIFFWriteRawTile(a->tif, a->next, q->data, (tmsize_t)q->size) != (tmsize_t)q->size) {
+#pragma omp atomic write
+            a->failed = 2;
+            break;
+        }
+        a->next++;
+    }
+}
+
+/* Compresses tiles [t0, t1) (row-major tile numbers) into p[0 .. t1 - t0) on the OpenMP threads, each
+ * appended as soon as it and those before it are done. */
+static void pack_batch(const tile_job *j, uint32_t t0, uint32_t t1, packed_tile *p, size_t cap, appender *a)
 {
     size_t raw = (size_t)j->l.tw * j->l.th * 4;
-    int failed = 0;
-#pragma omp parallel reduction(| : failed)
+    for (uint32_t t = t0; t < t1; t++)
+        p[t - t0].size = 0;
+#pragma omp parallel
     {
         unsigned char *buf = malloc(raw);
         ZSTD_CCtx *cc = ZSTD_createCCtx();
-        failed |= buf == NULL || cc == NULL;
 #pragma omp for schedule(dynamic, 1)
         for (uint32_t t = t0; t < t1; t++) {
-            packed_tile *p = &out[t - t0];
-            p->size = 0;
-            if (buf == NULL || cc == NULL)
+            int stop;
+#pragma omp atomic read
+            stop = a->failed;
+            if (stop)
                 continue;
-            predict_tile(j, t % j->l.ntx, t / j->l.ntx, buf);
-            size_t n = ZSTD_compressCCtx(cc, p->data, cap, buf, raw, j->level);
-            if (ZSTD_isError(n))
-                failed = 1;
-            else
-                p->size = n;
+            size_t n = 0;
+            if (buf != NULL && cc != NULL) {
+                predict_tile(j, t % j->l.ntx, t / j->l.ntx, buf);
+                n = ZSTD_compressCCtx(cc, p[t - t0].data, cap, buf, raw, j->level);
+            }
+#pragma omp critical(ft_gtiff_append)
+            {
+                if (buf == NULL || cc == NULL || ZSTD_isError(n) || n == 0) {
+#pragma omp atomic write
+                    a->failed = 1;
+                } else {
+                    p[t - t0].size = n;
+                    append_ready(a, p, t0, t1);
+                }
+            }
         }
         ZSTD_freeCCtx(cc);
         free(buf);
     }
-    return failed;
 }
 
 static int write_tiles(TIFF *tif, tiff_file *f, const tile_job *j, const char *path)
@@ -272,17 +302,14 @@ static int write_tiles(TIFF *tif, tiff_file *f, const tile_job *j, const char *p
     for (uint32_t k = 0; k < batch && rc == FT_OK; k++)
         if ((p[k].data = ft_malloc(cap)) == NULL)
             rc = FT_E_NOMEM;
-    for (uint32_t t0 = 0; t0 < ntiles && rc == FT_OK; t0 += batch) {
-        uint32_t t1 = ntiles - t0 < batch ? ntiles : t0 + batch;
-        if (pack_batch(j, t0, t1, p, cap)) {
-            rc = ft_error(FT_E_NOMEM, "cannot compress the tiles of '%s' (ZSTD level %d)", path, j->level);
-            break;
-        }
-        for (uint32_t t = t0; t < t1 && rc == FT_OK; t++)
-            if (TIFFWriteRawTile(tif, t, p[t - t0].data, (tmsize_t)p[t - t0].size) != (tmsize_t)p[t - t0].size)
-                rc = ft_error(FT_E_IO, "cannot write '%s': %s", path,
-                              f->err ? strerror(f->err) : f->msg[0] ? f->msg : "libtiff failed");
-    }
+    appender a = {.tif = tif};
+    for (uint32_t t0 = 0; t0 < ntiles && rc == FT_OK && !a.failed; t0 += batch)
+        pack_batch(j, t0, ntiles - t0 < batch ? ntiles : t0 + batch, p, cap, &a);
+    if (rc == FT_OK && a.failed == 1)
+        rc = ft_error(FT_E_NOMEM, "cannot compress the tiles of '%s' (ZSTD level %d)", path, j->level);
+    else if (rc == FT_OK && a.failed)
+        rc = ft_error(FT_E_IO, "cannot write '%s': %s", path,
+                      f->err ? strerror(f->err) : f->msg[0] ? f->msg : "libtiff failed");
     for (uint32_t k = 0; k < batch; k++)
         free(p[k].data);
     free(p);
