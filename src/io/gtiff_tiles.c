@@ -34,10 +34,6 @@
 #include "internal.h"
 #include "io/io_internal.h"
 
-/* Tiles compressed between two appends: bounded by raw bytes so that a large raster never holds more than
- * about this much compressed output at once. */
-#define BATCH_RAW_BYTES ((size_t)64 << 20)
-
 /* ---- libtiff on a file descriptor whose failures keep errno ------------------------------------ */
 
 typedef struct {
@@ -199,34 +195,48 @@ static float cell(const tile_job *j, size_t i)
     return z;
 }
 
-/* The predicted bytes of tile (tx, ty) into out (tw * th * 4 bytes). */
-static void predict_tile(const tile_job *j, uint32_t tx, uint32_t ty, unsigned char *out)
+/* The predicted bytes of tile (tx, ty) into out (tw * th * 4 bytes); scratch holds 8 * tw bytes (4-byte
+ * aligned): a row's floats as bits, then its 4 byte planes. */
+static void predict_tile(const tile_job *j, uint32_t tx, uint32_t ty, unsigned char *out, unsigned char *scratch)
 {
     const ft_grid *g = j->g;
     size_t tw = j->l.tw, x0 = (size_t)tx * tw, y0 = (size_t)ty * j->l.th;
     size_t xs = g->nx - x0 < tw ? g->nx - x0 : tw; /* columns inside the raster */
+    uint32_t *bits = (uint32_t *)(void *)scratch;   /* the row's floats as bits */
+    unsigned char *planes = scratch + 4 * tw;
     for (size_t r = 0; r < j->l.th; r++) {
         size_t y = y0 + r < g->ny ? y0 + r : g->ny - 1; /* padding repeats the last row */
         const size_t base = y * g->nx + x0;
-        unsigned char *row = out + r * tw * 4;
-        for (size_t c = 0; c < tw; c++) {
-            float v = cell(j, base + (c < xs ? c : xs - 1));
-            uint32_t bits;
-            memcpy(&bits, &v, sizeof bits);
-            row[c] = (unsigned char)(bits >> 24);
-            row[tw + c] = (unsigned char)(bits >> 16);
-            row[2 * tw + c] = (unsigned char)(bits >> 8);
-            row[3 * tw + c] = (unsigned char)bits;
+        if (!j->use_nodata) {
+            memcpy(bits, g->z + base, xs * sizeof *bits);
+        } else {
+            for (size_t c = 0; c < xs; c++) {
+                float v = cell(j, base + c);
+                memcpy(&bits[c], &v, sizeof v);
+            }
         }
-        for (size_t k = 4 * tw - 1; k > 0; k--)
-            row[k] = (unsigned char)(row[k] - row[k - 1]);
+        for (size_t c = xs; c < tw; c++) /* and the last column */
+            bits[c] = bits[xs - 1];
+#pragma omp simd
+        for (size_t c = 0; c < tw; c++) {
+            uint32_t b = bits[c];
+            planes[c] = (unsigned char)(b >> 24);
+            planes[tw + c] = (unsigned char)(b >> 16);
+            planes[2 * tw + c] = (unsigned char)(b >> 8);
+            planes[3 * tw + c] = (unsigned char)b;
+        }
+        unsigned char *row = out + r * tw * 4;
+        row[0] = planes[0];
+#pragma omp simd
+        for (size_t k = 1; k < 4 * tw; k++)
+            row[k] = (unsigned char)(planes[k] - planes[k - 1]);
     }
 }
 
 /* ---- the writer ---------------------------------------------------------------------------------- */
 
 typedef struct {
-    unsigned char *data; /* compressBound bytes */
+    unsigned char *data; /* its compressed bytes (compressBound allocated), freed once appended */
     size_t size;         /* compressed size; 0 until the tile is compressed */
 } packed_tile;
 
@@ -234,86 +244,80 @@ typedef struct {
 typedef struct {
     TIFF *tif;
     uint32_t next; /* the next tile to append */
-    int failed;    /* 1 compression, 2 append */
+    int failed;    /* 1 compression (or memory), 2 append */
 } appender;
 
-static void append_ready(appender *a, packed_tile *p, uint32_t t0, uint32_t t1)
+static void append_ready(appender *a, packed_tile *p, uint32_t ntiles)
 {
-    while (!a->failed && a->next < t1 && p[a->next - t0].size != 0) {
-        const packed_tile *q = &p[a->next - t0];
+    while (!a->failed && a->next < ntiles && p[a->next].size != 0) {
+        packed_tile *q = &p[a->next];
         if (TIFFWriteRawTile(a->tif, a->next, q->data, (tmsize_t)q->size) != (tmsize_t)q->size) {
 #pragma omp atomic write
             a->failed = 2;
             break;
         }
+        free(q->data);
+        q->data = NULL;
         a->next++;
     }
 }
 
-/* Compresses tiles [t0, t1) (row-major tile numbers) into p[0 .. t1 - t0) on the OpenMP threads, each
- * appended as soon as it and those before it are done. */
-static void pack_batch(const tile_job *j, uint32_t t0, uint32_t t1, packed_tile *p, size_t cap, appender *a)
+/* Compresses the tiles (row-major tile numbers, p[t] zeroed) on the OpenMP threads, each appended as soon as
+ * it and those before it are done: only the tiles finished out of order wait in memory. */
+static void pack_tiles(const tile_job *j, uint32_t ntiles, packed_tile *p, appender *a)
 {
-    size_t raw = (size_t)j->l.tw * j->l.th * 4;
-    for (uint32_t t = t0; t < t1; t++)
-        p[t - t0].size = 0;
+    size_t raw = (size_t)j->l.tw * j->l.th * 4, cap = ZSTD_compressBound(raw);
 #pragma omp parallel
     {
-        unsigned char *buf = malloc(raw);
+        unsigned char *buf = malloc(raw + 8 * (size_t)j->l.tw); /* the tile, then predict_tile's scratch */
         ZSTD_CCtx *cc = ZSTD_createCCtx();
 #pragma omp for schedule(dynamic, 1)
-        for (uint32_t t = t0; t < t1; t++) {
+        for (uint32_t t = 0; t < ntiles; t++) {
             int stop;
 #pragma omp atomic read
             stop = a->failed;
             if (stop)
                 continue;
+            unsigned char *dst = buf != NULL && cc != NULL ? malloc(cap) : NULL;
             size_t n = 0;
-            if (buf != NULL && cc != NULL) {
-                predict_tile(j, t % j->l.ntx, t / j->l.ntx, buf);
-                n = ZSTD_compressCCtx(cc, p[t - t0].data, cap, buf, raw, j->level);
+            if (dst != NULL) {
+                predict_tile(j, t % j->l.ntx, t / j->l.ntx, buf, buf + raw);
+                n = ZSTD_compressCCtx(cc, dst, cap, buf, raw, j->level);
             }
 #pragma omp critical(ft_gtiff_append)
             {
-                if (buf == NULL || cc == NULL || ZSTD_isError(n) || n == 0) {
+                if (dst == NULL || ZSTD_isError(n) || n == 0) {
+                    free(dst);
 #pragma omp atomic write
                     a->failed = 1;
                 } else {
-                    p[t - t0].size = n;
-                    append_ready(a, p, t0, t1);
+                    p[t] = (packed_tile){dst, n};
+                    append_ready(a, p, ntiles);
                 }
             }
         }
         ZSTD_freeCCtx(cc);
         free(buf);
     }
+    for (uint32_t t = 0; t < ntiles; t++) /* left by a failure */
+        free(p[t].data);
 }
 
 static int write_tiles(TIFF *tif, tiff_file *f, const tile_job *j, const char *path)
 {
-    size_t raw = (size_t)j->l.tw * j->l.th * 4, cap = ZSTD_compressBound(raw);
     uint32_t ntiles = j->l.ntx * j->l.nty;
-    size_t per = BATCH_RAW_BYTES / raw;
-    uint32_t batch = per < 1 ? 1 : per > ntiles ? ntiles : (uint32_t)per;
-    packed_tile *p = ft_calloc(batch, sizeof *p);
+    packed_tile *p = ft_calloc(ntiles, sizeof *p);
     if (p == NULL)
         return FT_E_NOMEM;
-    int rc = FT_OK;
-    for (uint32_t k = 0; k < batch && rc == FT_OK; k++)
-        if ((p[k].data = ft_malloc(cap)) == NULL)
-            rc = FT_E_NOMEM;
     appender a = {.tif = tif};
-    for (uint32_t t0 = 0; t0 < ntiles && rc == FT_OK && !a.failed; t0 += batch)
-        pack_batch(j, t0, ntiles - t0 < batch ? ntiles : t0 + batch, p, cap, &a);
-    if (rc == FT_OK && a.failed == 1)
-        rc = ft_error(FT_E_NOMEM, "cannot compress the tiles of '%s' (ZSTD level %d)", path, j->level);
-    else if (rc == FT_OK && a.failed)
-        rc = ft_error(FT_E_IO, "cannot write '%s': %s", path,
-                      f->err ? strerror(f->err) : f->msg[0] ? f->msg : "libtiff failed");
-    for (uint32_t k = 0; k < batch; k++)
-        free(p[k].data);
+    pack_tiles(j, ntiles, p, &a);
     free(p);
-    return rc;
+    if (a.failed == 1)
+        return ft_error(FT_E_NOMEM, "cannot compress the tiles of '%s' (ZSTD level %d)", path, j->level);
+    if (a.failed)
+        return ft_error(FT_E_IO, "cannot write '%s': %s", path,
+                        f->err ? strerror(f->err) : f->msg[0] ? f->msg : "libtiff failed");
+    return FT_OK;
 }
 
 int ft_io_gtiff_tiles_fill(const char *path, const char *file, const ft_grid *g, int use_nodata, float nodata,
