@@ -207,20 +207,21 @@ static void test_thread_count(void **state)
 }
 
 /* A GDAL header without tiles of another codec or predictor is not filled (done 0, file unchanged); the
- * expected one is (done 1), and reads back as the grid. */
+ * expected one is (done 1), classic or BigTIFF, and reads back as the grid. */
 static void test_fill_only_expected_layout(void **state)
 {
     (void)state;
     ft_grid *g = odd_grid(260, 40, 0);
-    const char *sets[][2] = {{"DEFLATE", "3"}, {"ZSTD", "1"}, {"ZSTD", "3"}};
+    const char *sets[][3] = {{"DEFLATE", "3", "NO"}, {"ZSTD", "1", "NO"}, {"ZSTD", "3", "NO"}, {"ZSTD", "3", "YES"}};
     GDALDriverH drv = GDALGetDriverByName("GTiff");
     assert_non_null(drv);
-    for (size_t k = 0; k < 3; k++) {
+    for (size_t k = 0; k < 4; k++) {
         const char *path = ft_test_tmp("h.tif");
         char **co = CSLSetNameValue(NULL, "TILED", "YES");
         co = CSLSetNameValue(co, "SPARSE_OK", "TRUE");
         co = CSLSetNameValue(co, "COMPRESS", sets[k][0]);
         co = CSLSetNameValue(co, "PREDICTOR", sets[k][1]);
+        co = CSLSetNameValue(co, "BIGTIFF", sets[k][2]);
         GDALDatasetH ds = GDALCreate(drv, path, 260, 40, 1, GDT_Float32, co);
         CSLDestroy(co);
         assert_non_null(ds);
@@ -230,12 +231,16 @@ static void test_fill_only_expected_layout(void **state)
         int done = -1;
         assert_int_equal(ft_io_gtiff_tiles_fill("out.tif", path, g, 1, NAN, 1, &done), FT_OK);
         assert_int_equal(stat(path, &after), 0);
-        assert_int_equal(done, k == 2);
+        assert_int_equal(done, k >= 2);
         if (k < 2) {
             assert_int_equal(before.st_size, after.st_size);
             continue;
         }
         assert_true(after.st_size > before.st_size);
+        size_t len;
+        char *bytes = slurp(path, &len);
+        assert_int_equal(bytes[2], k == 3 ? 43 : 42); /* BigTIFF's version 43, classic 42 */
+        free(bytes);
         file_view v;
         view(path, &v);
         for (size_t i = 0; i < 260 * 40; i++) {
