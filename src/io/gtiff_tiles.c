@@ -2,8 +2,9 @@
  *
  * GDAL writes the file's header (size, tiling, ZSTD + floating-point predictor tags, georeferencing,
  * nodata) with no tile in it (SPARSE_OK: every tile offset 0); libtiff then opens that file for update,
- * each tile is predicted and compressed here in parallel, appended with TIFFWriteRawTile, and libtiff
- * rewrites the tile offset and byte-count arrays on close. The bytes of a tile are those libtiff's
+ * the tiles are predicted and ZSTD-compressed on the OpenMP threads, appended in their order with
+ * TIFFWriteRawTile as they finish, and libtiff rewrites the tile offset and byte-count arrays in place on
+ * flush (the directory stays where GDAL put it). The bytes of a tile are those libtiff's
  * encoder would produce before ZSTD: the floating-point predictor of Adobe's TIFF Technical Note 3
  * (Ritter, 2005; libtiff's fpDiff) turns each row of w floats into 4 planes of w bytes, most significant
  * byte first, then replaces every byte of the row but the first by its difference with the previous one
@@ -12,7 +13,7 @@
  * reader of ZSTD GeoTIFFs (GDAL, libtiff) decodes the same floats.
  *
  * This replaces GDAL's block cache, its copy of the rows and its compression at GDALClose (one thread
- * writing while the others compress): about half of a 2048² `fracterra synth` (docs/bench.md).
+ * writing while the others compress): 2048² cells written in ~0.6x the time and CPU (docs/bench.md).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
