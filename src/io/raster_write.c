@@ -7,8 +7,9 @@
  * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
  * type's maximum for unsigned ones. Rows are written in blocks through a double buffer, so the nodata
  * value reaches the file exactly whatever the output type. Each band has its own nodata value; the
- * geotransform and CRS are the first grid's. The file (and siblings such as .prj) is
- * written under a temporary name and renamed on success.
+ * geotransform and CRS are the first grid's. A one-band Float32 GeoTIFF with the default codec has its
+ * tiles compressed on fracterra's threads (gtiff_tiles.c), GDAL writing only its header. The file (and
+ * siblings such as .prj) is written under a temporary name and renamed on success.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
