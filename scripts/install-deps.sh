@@ -23,6 +23,7 @@ packages=(
   libgsl-dev                  # RNG, statistics, least squares
   libcairo2-dev               # PNG/SVG/PDF rendering
   libjson-c-dev               # JSON output
+  libtiff-dev libzstd-dev     # GeoTIFF tiles compressed on fracterra's threads (src/io/gtiff_tiles.c)
   libcmocka-dev               # unit tests
   python3-numpy python3-gdal  # the Python package (python/fracterra): NumPy arrays, osgeo.gdal helpers
   python3-pytest python3-dask # its tests (make test), and the dask example

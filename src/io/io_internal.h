@@ -100,6 +100,13 @@ typedef struct {
     char *target;     /* the name GDAL writes */
     char *mem_dir;    /* the /vsimem/ folder of target, or NULL */
 } ft_io_stage;
+/* The tiles of a one-band Float32 GeoTIFF (gtiff_tiles.c): file is the on-disk GeoTIFF of g's size GDAL wrote
+ * tiled, ZSTD + predictor 3 and without tiles (SPARSE_OK); its tiles are compressed at ZSTD level on the
+ * OpenMP threads and appended, invalid cells as nodata when use_nodata. *done is 0 (and nothing written)
+ * when the file's layout is not that one; errors name path. */
+int ft_io_gtiff_tiles_fill(const char *path, const char *file, const ft_grid *g, int use_nodata, float nodata,
+                           int level, int *done);
+
 int ft_io_stage_begin(const char *path, GDALDriverH drv, double bytes, ft_io_stage *s); /* bytes: a size hint */
 int ft_io_stage_end(ft_io_stage *s, int ok);
 

@@ -7,8 +7,9 @@
  * are written as the grid's nodata value, else NaN for float types, -9999 for signed integers and the
  * type's maximum for unsigned ones. Rows are written in blocks through a double buffer, so the nodata
  * value reaches the file exactly whatever the output type. Each band has its own nodata value; the
- * geotransform and CRS are the first grid's. The file (and siblings such as .prj) is
- * written under a temporary name and renamed on success.
+ * geotransform and CRS are the first grid's. A one-band Float32 GeoTIFF with the default codec has its
+ * tiles compressed on fracterra's threads (gtiff_tiles.c), GDAL writing only its header. The file (and
+ * siblings such as .prj) is written under a temporary name and renamed on success.
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -229,8 +230,8 @@ static int write_cells(grid_writer *w, size_t band, GDALRasterBandH b)
     return rc;
 }
 
-/* Geotransform, CRS, nodata and cells of every band of ds. */
-static int fill_dataset(grid_writer *w, GDALDatasetH ds)
+/* Geotransform, CRS and every band's nodata of ds. */
+static int fill_header(grid_writer *w, GDALDatasetH ds)
 {
     const ft_grid *g = w->bands[0];
     double gt[6];
@@ -249,13 +250,18 @@ static int fill_dataset(grid_writer *w, GDALDatasetH ds)
             return ft_io_fail(FT_E_UNSUPPORTED, "the %s format of '%s' cannot store its CRS",
                               GDALGetDriverShortName(GDALGetDatasetDriver(ds)), w->path);
     }
-    int rc = FT_OK;
-    for (size_t k = 0; k < w->nbands && rc == FT_OK; k++) {
-        GDALRasterBandH b = GDALGetRasterBand(ds, (int)k + 1);
+    for (size_t k = 0; k < w->nbands; k++)
         if (w->use_nodata[k])
-            ft_io_set_nodata(b, w->type, w->nodata[k]);
-        rc = write_cells(w, k, b);
-    }
+            ft_io_set_nodata(GDALGetRasterBand(ds, (int)k + 1), w->type, w->nodata[k]);
+    return FT_OK;
+}
+
+/* Geotransform, CRS, nodata and cells of every band of ds. */
+static int fill_dataset(grid_writer *w, GDALDatasetH ds)
+{
+    int rc = fill_header(w, ds);
+    for (size_t k = 0; k < w->nbands && rc == FT_OK; k++)
+        rc = write_cells(w, k, GDALGetRasterBand(ds, (int)k + 1));
     return rc;
 }
 
@@ -271,6 +277,39 @@ static int write_direct(grid_writer *w, GDALDriverH drv, const char *tmp, char *
     if (rc == FT_OK && ft_io_gdal_failed())
         rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
     return rc;
+}
+
+/* One Float32 band with the default GeoTIFF codec (ZSTD + predictor 3, no caller creation option): its tiles
+ * can be compressed on fracterra's threads (gtiff_tiles.c) instead of GDAL's. */
+static int tiles_path(const grid_writer *w, GDALDriverH drv, const ft_write_grid_opts *o, char **co)
+{
+    const char *codec = CSLFetchNameValue(co, "COMPRESS"), *pred = CSLFetchNameValue(co, "PREDICTOR");
+    return w->nbands == 1 && (o->co == NULL || o->co[0] == NULL) && float_path(w, 0) &&
+           EQUAL(GDALGetDriverShortName(drv), "GTiff") && codec != NULL && EQUAL(codec, "ZSTD") && pred != NULL &&
+           EQUAL(pred, "3") && CSLFetchNameValue(co, "ZSTD_LEVEL") != NULL;
+}
+
+/* GDAL writes the header of the file on disk with no tile (SPARSE_OK), then the tiles are appended; a file
+ * whose layout is not the expected one (*done 0) is written again by write_direct. */
+static int write_tiles(grid_writer *w, GDALDriverH drv, const char *file, char **co, int *done)
+{
+    *done = 0;
+    char **hco = CSLSetNameValue(CSLDuplicate(co), "SPARSE_OK", "TRUE");
+    hco = CSLSetNameValue(hco, "NUM_THREADS", NULL);
+    ft_io_gdal_reset();
+    GDALDatasetH ds = GDALCreate(drv, file, (int)w->bands[0]->nx, (int)w->bands[0]->ny, 1, GDT_Float32, hco);
+    CSLDestroy(hco);
+    if (ds == NULL)
+        return ft_io_fail(FT_E_IO, "cannot create '%s' (%s)", w->path, GDALGetDriverShortName(drv));
+    int rc = fill_header(w, ds);
+    ft_io_gdal_reset();
+    GDALClose(ds);
+    if (rc == FT_OK && ft_io_gdal_failed())
+        rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
+    if (rc != FT_OK)
+        return rc;
+    return ft_io_gtiff_tiles_fill(w->path, file, w->bands[0], w->use_nodata[0], (float)w->nodata[0],
+                                  atoi(CSLFetchNameValue(co, "ZSTD_LEVEL")), done);
 }
 
 static int write_copy(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
@@ -358,7 +397,10 @@ int ft_io_write_bands(const char *path, const ft_grid *const *bands, size_t n, c
     char **co = NULL;
     rc = ft_io_creation_options(drv, o.co, w.type, &co);
     int direct = GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
-    if (rc == FT_OK)
+    int done = 0;
+    if (rc == FT_OK && direct && tiles_path(&w, drv, &o, co)) /* on the on-disk temporary: libtiff opens it */
+        rc = write_tiles(&w, drv, st.tmp, co, &done);
+    if (rc == FT_OK && !done)
         rc = direct ? write_direct(&w, drv, st.target, co) : write_copy(&w, drv, st.target, co);
     CSLDestroy(co);
     int end = ft_io_stage_end(&st, rc == FT_OK);
