@@ -91,6 +91,24 @@ static inline double accuracy_sigma0_bias(const ft_grid *g, const ft_points *p, 
     return data / surface;
 }
 
+/** Sets ro->temperature to the temperature the fractal reconstruction of p on g would take with the
+ *  sigma0 of every cell of g instead of the data's (T scales as sigma0^2): one reconstruction run to read
+ *  T0, divided by the squared bias. Returns the bias (accuracy_sigma0_bias, top 1.5); exits with the
+ *  library's message on failure. */
+static inline double accuracy_use_surface_sigma0(const ft_grid *g, const ft_points *p, ft_recon_opts *ro)
+{
+    double ratio = accuracy_sigma0_bias(g, p, 1.5);
+    ft_grid *out = NULL;
+    ft_recon_info info;
+    if (ft_reconstruct_points(p, g, ro, &out, NULL, &info) != FT_OK) {
+        fprintf(stderr, "reconstruct: %s\n", ft_last_error());
+        exit(1);
+    }
+    ft_grid_free(out);
+    ro->temperature = info.temperature / (ratio * ratio);
+    return ratio;
+}
+
 #define ACCURACY_LAGS 16
 
 /** The variogram of an n x n grid at lags 1 .. ACCURACY_LAGS cells along rows and columns into v[1 ..]:

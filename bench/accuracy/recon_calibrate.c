@@ -132,17 +132,8 @@ int main(int argc, char **argv)
                     ro.seed = (uint64_t)(3000 + s);
                     ft_grid *out = NULL;
                     ft_recon_info info;
-                    if (surface_sigma0 && m == FT_RECON_FRACTAL) {
-                        double ratio = accuracy_sigma0_bias(g, p, 1.5);
-                        if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
-                            fprintf(stderr, "reconstruct: %s\n", ft_last_error());
-                            return 1;
-                        }
-                        ft_grid_free(out);
-                        out = NULL;
-                        ro.temperature = info.temperature / (ratio * ratio);
-                        bias += ratio;
-                    }
+                    if (surface_sigma0 && m == FT_RECON_FRACTAL)
+                        bias += accuracy_use_surface_sigma0(g, p, &ro);
                     double t0 = now();
                     if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
                         fprintf(stderr, "reconstruct: %s\n", ft_last_error());

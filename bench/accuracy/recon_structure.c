@@ -183,16 +183,7 @@ int main(int argc, char **argv)
                     ro.tension = tension;
                 ro.seed = (uint64_t)(0x5eed0000 + sd);
                 if (surface_sigma0) {
-                    double ratio = accuracy_sigma0_bias(g, p, 1.5);
-                    ft_recon_info info;
-                    if (ft_reconstruct_points(p, g, &ro, &out, NULL, &info) != FT_OK) {
-                        fprintf(stderr, "reconstruct: %s\n", ft_last_error());
-                        return 1;
-                    }
-                    ft_grid_free(out);
-                    out = NULL;
-                    ro.temperature = info.temperature / (ratio * ratio);
-                    sig += ratio;
+                    sig += accuracy_use_surface_sigma0(g, p, &ro);
                     for (int j = 0; j < 3; j++) {
                         lat[j] += lattice_mean(g, (size_t)every, (size_t)4 << j);
                         all[j] += lattice_mean(g, 1, (size_t)4 << j);
