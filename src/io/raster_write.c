@@ -265,18 +265,25 @@ static int fill_dataset(grid_writer *w, GDALDatasetH ds)
     return rc;
 }
 
-static int write_direct(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
+/* Creates file with drv and co, fills it (fill_dataset, or fill_header alone) and closes it. */
+static int create_filled(grid_writer *w, GDALDriverH drv, const char *file, char **co,
+                         int (*fill)(grid_writer *, GDALDatasetH))
 {
     ft_io_gdal_reset();
-    GDALDatasetH ds = GDALCreate(drv, tmp, (int)w->bands[0]->nx, (int)w->bands[0]->ny, (int)w->nbands, w->type, co);
+    GDALDatasetH ds = GDALCreate(drv, file, (int)w->bands[0]->nx, (int)w->bands[0]->ny, (int)w->nbands, w->type, co);
     if (ds == NULL)
         return ft_io_fail(FT_E_IO, "cannot create '%s' (%s)", w->path, GDALGetDriverShortName(drv));
-    int rc = fill_dataset(w, ds);
+    int rc = fill(w, ds);
     ft_io_gdal_reset();
     GDALClose(ds);
     if (rc == FT_OK && ft_io_gdal_failed())
         rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
     return rc;
+}
+
+static int write_direct(grid_writer *w, GDALDriverH drv, const char *tmp, char **co)
+{
+    return create_filled(w, drv, tmp, co, fill_dataset);
 }
 
 /* One Float32 band with the default GeoTIFF codec (ZSTD + predictor 3, no caller creation option): its tiles
@@ -296,16 +303,8 @@ static int write_tiles(grid_writer *w, GDALDriverH drv, const char *file, char *
     *done = 0;
     char **hco = CSLSetNameValue(CSLDuplicate(co), "SPARSE_OK", "TRUE");
     hco = CSLSetNameValue(hco, "NUM_THREADS", NULL);
-    ft_io_gdal_reset();
-    GDALDatasetH ds = GDALCreate(drv, file, (int)w->bands[0]->nx, (int)w->bands[0]->ny, 1, GDT_Float32, hco);
+    int rc = create_filled(w, drv, file, hco, fill_header);
     CSLDestroy(hco);
-    if (ds == NULL)
-        return ft_io_fail(FT_E_IO, "cannot create '%s' (%s)", w->path, GDALGetDriverShortName(drv));
-    int rc = fill_header(w, ds);
-    ft_io_gdal_reset();
-    GDALClose(ds);
-    if (rc == FT_OK && ft_io_gdal_failed())
-        rc = ft_io_fail(FT_E_IO, "cannot finish writing '%s'", w->path);
     if (rc != FT_OK)
         return rc;
     return ft_io_gtiff_tiles_fill(w->path, file, w->bands[0], w->use_nodata[0], (float)w->nodata[0],
