@@ -172,20 +172,6 @@ static void test_same_as_gdal(void **state)
     }
 }
 
-static char *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    fseek(f, 0, SEEK_END);
-    *n = (size_t)ftell(f);
-    rewind(f);
-    char *s = malloc(*n);
-    assert_non_null(s);
-    assert_int_equal(fread(s, 1, *n, f), *n);
-    fclose(f);
-    return s;
-}
-
 /* The same file, byte for byte, on 1 and 3 threads. */
 static void test_thread_count(void **state)
 {
@@ -198,7 +184,9 @@ static void test_thread_count(void **state)
     write_ok(ft_test_tmp("t3.tif"), g, NULL);
     omp_set_num_threads(saved);
     size_t n1, n3;
-    char *a = slurp(ft_test_tmp("t1.tif"), &n1), *b = slurp(ft_test_tmp("t3.tif"), &n3);
+    char *a = ft_test_read_file(ft_test_tmp("t1.tif"), &n1), *b = ft_test_read_file(ft_test_tmp("t3.tif"), &n3);
+    assert_non_null(a);
+    assert_non_null(b);
     assert_int_equal(n1, n3);
     assert_memory_equal(a, b, n1);
     free(a);
@@ -238,7 +226,9 @@ static void test_fill_only_expected_layout(void **state)
         }
         assert_true(after.st_size > before.st_size);
         size_t len;
-        char *bytes = slurp(path, &len);
+        char *bytes = ft_test_read_file(path, &len);
+        assert_non_null(bytes);
+        assert_true(len > 2);
         assert_int_equal(bytes[2], k == 3 ? 43 : 42); /* BigTIFF's version 43, classic 42 */
         free(bytes);
         file_view v;
