@@ -472,7 +472,7 @@ class Progress:
 
     def __init__(self, fn, arg=None):
         self.fn, self.arg, self.error = fn, arg, None
-        self.c = S.PROGRESS(self._call) if fn is not None else S.PROGRESS()
+        self.c = S.PROGRESS(self._call) if fn is not None else None
 
     def _call(self, frac, msg, _):
         try:
@@ -483,7 +483,9 @@ class Progress:
         return 1 if r is None or r else 0
 
     def install(self, opts):
-        opts.progress = self.c
+        """Sets opts.progress (left NULL, its default, without a callable)."""
+        if self.c is not None:
+            opts.progress = self.c
 
     def check(self, rc):
         if self.error is not None:
