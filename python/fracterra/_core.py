@@ -189,6 +189,11 @@ class _CChain:
         self.ref = ctypes.byref(s)
 
 
+def _chain_addresses(c):
+    return (ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value,
+            ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value)
+
+
 def chain_views(ptr):
     """(x, y): NumPy views of a library-allocated ft_chain's coordinates (no copy), the chain freed
     with the last of them."""
@@ -197,9 +202,21 @@ def chain_views(ptr):
         lib.ft_chain_free(ptr)
         return np.empty(0), np.empty(0)
     owner = _Owner(ptr, lib.ft_chain_free)
-    addr = ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value, \
-        ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value
-    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in addr)
+    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in _chain_addresses(c))
+
+
+def chain_xy_view(ptr):
+    """An (n, 2) float64 NumPy view of a library-allocated ft_chain (no copy), the chain freed with the
+    view: column 0 is the chain's x array and column 1 its y array, so the row stride is 8 bytes and the
+    column stride is the distance from x to y. Each column is contiguous; the array is not C-ordered
+    (np.ascontiguousarray gives an interleaved copy)."""
+    c = ptr.contents
+    if c.n == 0:
+        lib.ft_chain_free(ptr)
+        return np.empty((0, 2))
+    owner = _Owner(ptr, lib.ft_chain_free)
+    ax, ay = _chain_addresses(c)
+    return np.asarray(_Memory(ax, (c.n, 2), "<f8", owner, (8, ay - ax)))
 
 
 class _Memory:
@@ -208,28 +225,38 @@ class _Memory:
 
     __slots__ = ("__array_interface__", "owner")
 
-    def __init__(self, addr, shape, typestr, owner):
-        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3}
+    def __init__(self, addr, shape, typestr, owner, strides=None):
+        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3,
+                                    "strides": strides}
         self.owner = owner
 
 
 class ChainSet:
-    """A list of ft_chain * made from Python coordinates, freed together."""
+    """A list of ft_chain * made from Python coordinates for a call taking `const ft_chain *const *`,
+    freed together: an (n, 2) array is copied by the library (stride 2 when C-ordered float64), an (x, y)
+    pair of arrays is read in place (no copy when they are contiguous float64)."""
 
     def __init__(self, chains):
-        self.ptrs = []
+        self.ptrs, self._owned, self._borrowed = [], [], []
         try:
             for coords, closed in chains:
-                self.ptrs.append(chain_from_coords(coords, None, closed))
+                if isinstance(coords, tuple):
+                    cc = _CChain(coords[0], coords[1], closed)
+                    self._borrowed.append(cc)
+                    self.ptrs.append(ctypes.pointer(cc.struct))
+                else:
+                    p = chain_from_coords(coords, None, closed)
+                    self._owned.append(p)
+                    self.ptrs.append(p)
         except Exception:
             self.close()
             raise
         self.array = (ctypes.POINTER(S.ft_chain) * max(1, len(self.ptrs)))(*self.ptrs)
 
     def close(self):
-        for p in self.ptrs:
+        for p in self._owned:
             lib.ft_chain_free(p)
-        self.ptrs = []
+        self.ptrs, self._owned, self._borrowed = [], [], []
 
     def __enter__(self):
         return self
