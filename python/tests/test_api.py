@@ -166,6 +166,61 @@ def test_chain_ops_answer_in_the_form_asked():
     assert np.array_equal(np.c_[sx, sy], ft.simplify(xy, tolerance=0.5))
 
 
+def test_n2_results_are_views_of_the_library_chain():
+    t = np.linspace(0, 10, 200)
+    xy = np.c_[t, np.sin(t) + 0.2 * np.sin(7 * t)]
+    ring = np.c_[np.cos(2 * np.pi * t / 10), np.sin(2 * np.pi * t / 10)][:-1]
+    cases = [(ft.enhance, xy, dict(sd=1.5)), (ft.smooth, xy, dict(passes=2)), (ft.weed, xy, dict(min_segment=0.2)),
+             (ft.simplify, xy, dict(tolerance=0.05)), (ft.remove_loops, xy, {}),
+             (ft.boundary, ring, dict(dim=1.3, min=0.01, seed=2))]
+    for fn, data, kw in cases:
+        closed = fn is ft.boundary
+        v = fn(data, closed=closed, **kw)
+        ex, ey = fn(data[:, 0], data[:, 1], closed=closed, **kw)
+        assert type(v) is np.ndarray and v.dtype == np.float64 and v.shape == (len(ex), 2), fn.__name__
+        assert not v.flags.owndata and v.flags.writeable
+        assert v[:, 0].flags.c_contiguous and v[:, 1].flags.c_contiguous  # x and y arrays of the chain
+        assert np.array_equal(v[:, 0], ex) and np.array_equal(v[:, 1], ey)
+        c = np.ascontiguousarray(v)
+        assert c.flags.c_contiguous and np.array_equal(c, v)
+        assert np.array_equal(ft.simplify(v, tolerance=0.1), ft.simplify(c, tolerance=0.1))  # a view reads as input
+    v = ft.enhance(xy, sd=1.5)
+    total = float(v.sum())
+    del xy
+    gc.collect()
+    _ = [np.ones(4096) for _ in range(64)]
+    assert float(v.sum()) == total  # the view keeps the library's chain alive
+    v[0, 1] = 5.0
+    assert v[0, 1] == 5.0
+
+
+def test_dim_line_reads_x_and_y_in_place():
+    t = np.linspace(0, 20, 400)
+    x, y = t.copy(), np.sin(3 * t) + 0.3 * np.sin(17 * t)
+    seen = []
+    real = _lib.lib.ft_line_dim
+
+    def spy(chains, n, *rest):
+        seen.append(ctypes.addressof(chains[0].contents.x.contents))
+        return real(chains, n, *rest)
+    _lib.lib.ft_line_dim = spy
+    try:
+        a = ft.dim_line(x, y)
+    finally:
+        _lib.lib.ft_line_dim = real
+    assert seen == [x.ctypes.data]  # the library walked x itself, not a copy
+    assert a.as_dict() == ft.dim_line(np.c_[x, y]).as_dict()
+    with pytest.raises(ValueError):
+        ft.dim_line(x, y[:-1])
+
+
+def test_options_defaults_are_fresh_copies():
+    a = ft._structs.ft_line_dim_opts.default()
+    a.min_r2, a.fit.regime = 0.9, 3
+    b = ft._structs.ft_line_dim_opts.default()
+    assert b.min_r2 != 0.9 and b.fit.regime == 0 and b.struct_size == ctypes.sizeof(b)
+
+
 def test_enhance_keep_vertices_keeps_the_input_vertices():
     t = np.linspace(0, 10, 50)
     xy = np.c_[t, np.sin(t)]
