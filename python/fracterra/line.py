@@ -1,9 +1,11 @@
 """Fractal dimension of chains and Dutton's enhancement with its companions (line.h, urban.h's
 boundary generator; docs/line-*.md, docs/urban-boundary.md). A chain is an (n, 2) float64 array of
 x, y, or two arrays x and y; a ring does not repeat its first vertex (closed=True). The chain
-operations answer in the form they were asked in: f(xy) gives a new (n, 2) array, f(x, y) gives
-(x, y): views of the library's result for weed, simplify and remove_loops (no copy in or out), new
-arrays for enhance, smooth and boundary (which run as the CLI's guarded layer steps)."""
+operations answer in the form they were asked in: f(xy) gives an (n, 2) array, f(x, y) gives (x, y),
+both views of the library's result chain (nothing is copied out; the (n, 2) view's columns are the
+chain's x and y arrays, so it is not C-ordered: np.ascontiguousarray gives an interleaved copy). weed,
+simplify, remove_loops and dim_line read x and y in place; an (n, 2) array, and any input of enhance,
+smooth and boundary (the CLI's guarded layer steps, which own their chain), is copied in once."""
 import ctypes
 import os
 
@@ -11,8 +13,8 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, check_ptr, parse_enum, FracterraError, FT_E_FORMAT, FT_E_EMPTY, FT_E_NOMEM, FT_E_CANCELLED
-from ._core import (chain_xy_view, xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
-                    Progress, crs_info, points_ground, FT_LOCAL_LAEA)
+from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, chain_xy_view, ChainSet, _CChain,
+                    take_result, Progress, crs_info, points_ground, FT_LOCAL_LAEA)
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
@@ -194,8 +196,8 @@ def _dim_line_by(path, by, layer, where, kw):
 
 def _chain_op(fn, coords, y, closed, *args):
     """Runs a chain operation. Called with x and y it reads them in place and returns (x, y); called
-    with an (n, 2) array, (n, 2) C-ordered float64 is read in place by the library's one copy in (stride
-    2) and the answer is an (n, 2) view. Either way the result is NumPy views of the library's result
+    with an (n, 2) array it copies it into a library chain once (read with stride 2 when C-ordered
+    float64) and returns an (n, 2) array. Either way the answer is NumPy views of the library's result
     chain (chain_views, chain_xy_view): nothing is copied out."""
     out = ctypes.POINTER(S.ft_chain)()
     if y is not None:
@@ -241,7 +243,7 @@ def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, it
     target dimension D_in + uc (sd - D_in) with D_in measured (or input_dim), or target_dim; literal_sd:
     Dutton's literal apex angle; unless allow_crossings, moves that would make the chain touch itself
     are reduced; keep_vertices (one iteration): the input's vertices stay, each new midpoint M of P N goes
-    to M - (dP + dN) / 2 (--keep-vertices). Returns a new (n, 2) array (or (x, y) arrays). End points of
+    to M - (dP + dN) / 2 (--keep-vertices). Returns an (n, 2) array (or (x, y) arrays). End points of
     open chains stay."""
     o = _dutton(sd, uc, st, sm, iterations, target_dim, input_dim, literal_sd, allow_crossings, keep_vertices)
     return _layer_step(_enhance_layer, coords, y, closed, o)
