@@ -340,9 +340,10 @@ class DimResult:
     of the one that gave D, or None), breaks (scales where neighbouring regimes meet, len(regimes) - 1),
     choice (why these rows give D), noise (the noise level of the segmentation), noise_model (dict of the
     lag estimators' nugget model: detected, removed, sigma_z, [sigma_xy,] nugget, H, F, floor; None when
-    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
+    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters).
+    table, segments and regimes are copied from the C result when first read (then it is freed)."""
 
-    def __init__(self, ptr):
+    def __init__(self, ptr, owner=None):
         r = ptr.contents
         self.method = r.method.decode() if r.method else None
         self.segmentation = r.segmentation.decode() if r.segmentation else None
@@ -355,27 +356,47 @@ class DimResult:
         self.slope = r.fit.slope
         self.intercept = r.fit.intercept
         self.units = r.units.decode()
-        t = r.table.contents if r.table else None
-        n = t.n if t else 0
-        self.table = np.zeros(n, TABLE_DTYPE)
-        for i in range(n):
-            row = t.rows[i]
-            self.table[i] = (row.scale, row.value, row.count, row.slope, bool(row.used))
-        self.segments = np.zeros(r.nsegments, SEGMENT_DTYPE)
-        for i in range(r.nsegments):
-            s = r.segments[i]
-            self.segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self._arrays, self._c = None, (ptr, owner)
+        if owner is None:
+            self._build()
         self.best = None if r.best == _NONE else int(r.best)
-        self.regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
-        for i in range(r.nregimes):
-            s = r.regimes[i]
-            self.regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
         self.regime = None if r.regime == _NONE or r.nregimes == 0 else int(r.regime)
         self.breaks = [float(r.breaks[i]) for i in range(r.nregimes - 1)] if r.breaks and r.nregimes > 1 else []
         self.choice = r.choice.decode() if r.choice else ""
         self.noise_model = _noise_model(r.nugget)
         self.warnings = [r.warnings[i].decode("utf-8", "replace") for i in range(r.nwarnings)]
         self.extra = {}
+
+    def _build(self):
+        """table, segments and regimes copied from the C result, which is released afterwards (with an
+        owner, the first access builds them: a caller that reads only D does not pay for them)."""
+        if self._arrays is not None:
+            return self._arrays
+        r = self._c[0].contents
+        t = r.table.contents if r.table else None
+        n = t.n if t else 0
+        table = np.zeros(n, TABLE_DTYPE)
+        for i in range(n):
+            row = t.rows[i]
+            table[i] = (row.scale, row.value, row.count, row.slope, bool(row.used))
+        segments = np.zeros(r.nsegments, SEGMENT_DTYPE)
+        for i in range(r.nsegments):
+            s = r.segments[i]
+            segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
+        for i in range(r.nregimes):
+            s = r.regimes[i]
+            regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self._arrays, self._c = (table, segments, regimes), None
+        return self._arrays
+
+    table = property(lambda self: self._build()[0], doc="the log-log table (structured array)")
+    segments = property(lambda self: self._build()[1], doc="the minimax segments (structured array)")
+    regimes = property(lambda self: self._build()[2], doc="the straight runs by increasing scale")
+
+    def __getstate__(self):
+        self._build()
+        return self.__dict__
 
     def as_dict(self):
         """The result as plain Python values (the CLI's JSON members of the same names)."""
@@ -396,26 +417,35 @@ class DimResult:
 
 
 def take_result(out, crs=None):
-    """A DimResult from an ft_dim_result ** the library filled; frees the C result. With crs (an
-    ft_crs_info from crs_info), the units and the no-CRS warning as the CLI sets them (cli_geo_units)."""
-    try:
-        if crs is not None:
-            geo_units(out, crs)
-        return DimResult(out)
-    finally:
-        lib.ft_dim_result_free(out)
+    """A DimResult from the ft_dim_result * the library filled (out, the pointer whose address the call
+    was given), which the DimResult owns from here: the C result is freed once its arrays are built or
+    with the DimResult. With crs (an ft_crs_info from crs_info), the units and the no-CRS warning as the
+    CLI sets them (cli_geo_units)."""
+    ptr = ctypes.cast(out, ctypes.POINTER(S.ft_dim_result))  # a copy of the pointer value
+    owner = _Owner(ptr, lib.ft_dim_result_free)
+    if crs is not None:
+        geo_units(ptr, crs)
+    return DimResult(ptr, owner)
 
 
 # ---- geographic input (the CLI's cli_geo.c) ----
 
 FT_LOCAL_LAEA, FT_LOCAL_TMERC = 0, 1
 NO_CRS_WARNING = "the input has no CRS: scales are in its own coordinate unit, taken as planar"
+_NO_CRS_WARNING_BYTES = NO_CRS_WARNING.encode()
+
+
+_no_crs = []  # the bytes of crs_info(None), asked of the library once (a value struct: no pointers)
 
 
 def crs_info(wkt):
-    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): an ft_crs_info."""
+    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): a new ft_crs_info."""
+    if wkt is None and _no_crs:
+        return S.ft_crs_info.from_buffer_copy(_no_crs[0])
     info = S.ft_crs_info()
     check(lib.ft_io_crs_info(wkt.encode() if isinstance(wkt, str) else wkt, ctypes.byref(info)))
+    if wkt is None:
+        _no_crs.append(bytes(info))
     return info
 
 
@@ -427,7 +457,7 @@ def geo_units(out, crs):
     if crs.scale_unit:
         lib.ft_dim_result_set_units(out, crs.scale_unit)
     elif not crs.has_crs:
-        lib.ft_dim_result_warn(out, b"%s", NO_CRS_WARNING.encode())
+        lib.ft_dim_result_warn(out, b"%s", _NO_CRS_WARNING_BYTES)
 
 
 def _local_crs(wkt, kind, x0, y0, x1, y1):

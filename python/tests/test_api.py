@@ -122,6 +122,22 @@ def test_result_table_and_dict():
     assert d["D"] == r.D and len(d["table"]) == len(r.table)
 
 
+def test_result_arrays_are_built_on_first_access():
+    g = ft.synth(128, 128, 2.5, seed=1, method="exact")
+    r, lazy = ft.dim_surface(g), ft.dim_surface(g)
+    assert r._c is not None  # the C result is kept until the arrays are asked for
+    want = (r.table.copy(), r.segments.copy(), r.regimes.copy())
+    assert r._c is None and r.table is r.table  # built once, the C result released
+    del g
+    gc.collect()
+    _ = [np.ones(4096) for _ in range(64)]
+    import pickle
+    back = pickle.loads(pickle.dumps(lazy))  # pickling builds them
+    for a, b in zip(want, (back.table, back.segments, back.regimes)):
+        assert a.dtype == b.dtype and a.tobytes() == b.tobytes()
+    assert back.as_dict() == r.as_dict() and len(want[0]) > 0 and len(want[2]) >= 1
+
+
 def test_reconstruct_from_points_honours_the_data():
     g = ft.synth(33, 33, 2.3, seed=4, cell=1.0)
     rng = np.random.default_rng(0)
