@@ -69,8 +69,12 @@ class _CGrid:
         if z.dtype != np.float32 or not z.flags.c_contiguous:
             z = np.ascontiguousarray(z, dtype=np.float32)
         mask = grid.mask
-        if mask is None and np.issubdtype(z.dtype, np.floating) and not np.isfinite(z).all():
-            mask = np.isfinite(z)
+        if mask is None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                total = z.sum()  # z is float32 here: a sum needs no temporary, unlike np.isfinite(z).all()
+            if not np.isfinite(total):  # a NaN or Inf cell, or a sum that overflowed (every cell may be finite)
+                finite = np.isfinite(z)
+                mask = None if finite.all() else finite
         self._z = z
         self._mask = None if mask is None else np.ascontiguousarray(mask, dtype=np.uint8)
         self._wkt = grid.wkt.encode() if grid.wkt else None

@@ -96,6 +96,18 @@ def test_nan_and_masked_arrays_are_nodata():
     assert r_nan.D == r_ma.D == r_mask.D != ft.dim_surface(g).D
 
 
+def test_non_finite_cells_are_found_without_a_false_mask():
+    import warnings
+    big = np.full((16, 16), 3e38, np.float32)  # every cell finite, their sum overflows
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _core._CGrid(ft.Grid(big))._mask is None
+        big[3, 4], big[5, 6] = np.inf, -np.inf  # Inf - Inf: a NaN sum
+        m = _core._CGrid(ft.Grid(big))._mask
+    assert m.dtype == np.uint8 and m.sum() == 16 * 16 - 2 and m[3, 4] == 0 and m[5, 6] == 0
+    assert _core._CGrid(ft.Grid(np.ones((4, 4))))._mask is None
+
+
 def test_gdal_round_trip_keeps_georeferencing(data):
     pytest.importorskip("osgeo.gdal")
     g = ft.read_grid(data("dem_luxembourg_terra_30s.tif"))
