@@ -76,6 +76,7 @@ def main():
         ("dim_map 2048², w 256", "ft_surface_dim_map", lambda: ft.dim_map(g, 256, 256)),
         ("hillshade 2048²", "ft_render_hillshade", lambda: ft.hillshade(g)),
         ("dim_line 10^5 vertices", "ft_line_dim", lambda: ft.dim_line(xy)),
+        ("dim_line 10^5 (x, y)", "ft_line_dim", lambda: ft.dim_line(x, y)),
         ("dim_line box 10^5", "ft_line_dim", lambda: ft.dim_line(xy, method="box")),
         ("enhance 10^5 (x, y)", "ft_line_enhance_layer", lambda: ft.enhance(x, y)),
         ("enhance 10^5 (n, 2)", "ft_line_enhance_layer", lambda: ft.enhance(xy)),

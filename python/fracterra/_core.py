@@ -69,8 +69,12 @@ class _CGrid:
         if z.dtype != np.float32 or not z.flags.c_contiguous:
             z = np.ascontiguousarray(z, dtype=np.float32)
         mask = grid.mask
-        if mask is None and np.issubdtype(z.dtype, np.floating) and not np.isfinite(z).all():
-            mask = np.isfinite(z)
+        if mask is None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                total = z.sum()  # z is float32 here: a sum needs no temporary, unlike np.isfinite(z).all()
+            if not np.isfinite(total):  # a NaN or Inf cell, or a sum that overflowed (every cell may be finite)
+                finite = np.isfinite(z)
+                mask = None if finite.all() else finite
         self._z = z
         self._mask = None if mask is None else np.ascontiguousarray(mask, dtype=np.uint8)
         self._wkt = grid.wkt.encode() if grid.wkt else None
@@ -189,6 +193,11 @@ class _CChain:
         self.ref = ctypes.byref(s)
 
 
+def _chain_addresses(c):
+    return (ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value,
+            ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value)
+
+
 def chain_views(ptr):
     """(x, y): NumPy views of a library-allocated ft_chain's coordinates (no copy), the chain freed
     with the last of them."""
@@ -197,9 +206,21 @@ def chain_views(ptr):
         lib.ft_chain_free(ptr)
         return np.empty(0), np.empty(0)
     owner = _Owner(ptr, lib.ft_chain_free)
-    addr = ctypes.c_void_p.from_buffer(c, S.ft_chain.x.offset).value, \
-        ctypes.c_void_p.from_buffer(c, S.ft_chain.y.offset).value
-    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in addr)
+    return tuple(np.asarray(_Memory(a, (c.n,), "<f8", owner)) for a in _chain_addresses(c))
+
+
+def chain_xy_view(ptr):
+    """An (n, 2) float64 NumPy view of a library-allocated ft_chain (no copy), the chain freed with the
+    view: column 0 is the chain's x array and column 1 its y array, so the row stride is 8 bytes and the
+    column stride is the distance from x to y. Each column is contiguous; the array is not C-ordered
+    (np.ascontiguousarray gives an interleaved copy)."""
+    c = ptr.contents
+    if c.n == 0:
+        lib.ft_chain_free(ptr)
+        return np.empty((0, 2))
+    owner = _Owner(ptr, lib.ft_chain_free)
+    ax, ay = _chain_addresses(c)
+    return np.asarray(_Memory(ax, (c.n, 2), "<f8", owner, (8, ay - ax)))
 
 
 class _Memory:
@@ -208,28 +229,38 @@ class _Memory:
 
     __slots__ = ("__array_interface__", "owner")
 
-    def __init__(self, addr, shape, typestr, owner):
-        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3}
+    def __init__(self, addr, shape, typestr, owner, strides=None):
+        self.__array_interface__ = {"data": (addr, False), "shape": shape, "typestr": typestr, "version": 3,
+                                    "strides": strides}
         self.owner = owner
 
 
 class ChainSet:
-    """A list of ft_chain * made from Python coordinates, freed together."""
+    """A list of ft_chain * made from Python coordinates for a call taking `const ft_chain *const *`,
+    freed together: an (n, 2) array is copied by the library (stride 2 when C-ordered float64), an (x, y)
+    pair of arrays is read in place (no copy when they are contiguous float64)."""
 
     def __init__(self, chains):
-        self.ptrs = []
+        self.ptrs, self._owned, self._borrowed = [], [], []
         try:
             for coords, closed in chains:
-                self.ptrs.append(chain_from_coords(coords, None, closed))
+                if isinstance(coords, tuple):
+                    cc = _CChain(coords[0], coords[1], closed)
+                    self._borrowed.append(cc)
+                    self.ptrs.append(ctypes.pointer(cc.struct))
+                else:
+                    p = chain_from_coords(coords, None, closed)
+                    self._owned.append(p)
+                    self.ptrs.append(p)
         except Exception:
             self.close()
             raise
         self.array = (ctypes.POINTER(S.ft_chain) * max(1, len(self.ptrs)))(*self.ptrs)
 
     def close(self):
-        for p in self.ptrs:
+        for p in self._owned:
             lib.ft_chain_free(p)
-        self.ptrs = []
+        self.ptrs, self._owned, self._borrowed = [], [], []
 
     def __enter__(self):
         return self
@@ -313,9 +344,10 @@ class DimResult:
     of the one that gave D, or None), breaks (scales where neighbouring regimes meet, len(regimes) - 1),
     choice (why these rows give D), noise (the noise level of the segmentation), noise_model (dict of the
     lag estimators' nugget model: detected, removed, sigma_z, [sigma_xy,] nugget, H, F, floor; None when
-    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters)."""
+    not fitted), warnings (list of str), slope and intercept of the least-squares line, and extra (what the call adds, e.g. counters).
+    table, segments and regimes are copied from the C result when first read (then it is freed)."""
 
-    def __init__(self, ptr):
+    def __init__(self, ptr, owner=None):
         r = ptr.contents
         self.method = r.method.decode() if r.method else None
         self.segmentation = r.segmentation.decode() if r.segmentation else None
@@ -328,27 +360,47 @@ class DimResult:
         self.slope = r.fit.slope
         self.intercept = r.fit.intercept
         self.units = r.units.decode()
-        t = r.table.contents if r.table else None
-        n = t.n if t else 0
-        self.table = np.zeros(n, TABLE_DTYPE)
-        for i in range(n):
-            row = t.rows[i]
-            self.table[i] = (row.scale, row.value, row.count, row.slope, bool(row.used))
-        self.segments = np.zeros(r.nsegments, SEGMENT_DTYPE)
-        for i in range(r.nsegments):
-            s = r.segments[i]
-            self.segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self._arrays, self._c = None, (ptr, owner)
+        if owner is None:
+            self._build()
         self.best = None if r.best == _NONE else int(r.best)
-        self.regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
-        for i in range(r.nregimes):
-            s = r.regimes[i]
-            self.regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
         self.regime = None if r.regime == _NONE or r.nregimes == 0 else int(r.regime)
         self.breaks = [float(r.breaks[i]) for i in range(r.nregimes - 1)] if r.breaks and r.nregimes > 1 else []
         self.choice = r.choice.decode() if r.choice else ""
         self.noise_model = _noise_model(r.nugget)
         self.warnings = [r.warnings[i].decode("utf-8", "replace") for i in range(r.nwarnings)]
         self.extra = {}
+
+    def _build(self):
+        """table, segments and regimes copied from the C result, which is released afterwards (with an
+        owner, the first access builds them: a caller that reads only D does not pay for them)."""
+        if self._arrays is not None:
+            return self._arrays
+        r = self._c[0].contents
+        t = r.table.contents if r.table else None
+        n = t.n if t else 0
+        table = np.zeros(n, TABLE_DTYPE)
+        for i in range(n):
+            row = t.rows[i]
+            table[i] = (row.scale, row.value, row.count, row.slope, bool(row.used))
+        segments = np.zeros(r.nsegments, SEGMENT_DTYPE)
+        for i in range(r.nsegments):
+            s = r.segments[i]
+            segments[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        regimes = np.zeros(r.nregimes, SEGMENT_DTYPE)
+        for i in range(r.nregimes):
+            s = r.regimes[i]
+            regimes[i] = tuple(getattr(s, f) for f, _ in S.ft_loglog_segment._fields_)
+        self._arrays, self._c = (table, segments, regimes), None
+        return self._arrays
+
+    table = property(lambda self: self._build()[0], doc="the log-log table (structured array)")
+    segments = property(lambda self: self._build()[1], doc="the minimax segments (structured array)")
+    regimes = property(lambda self: self._build()[2], doc="the straight runs by increasing scale")
+
+    def __getstate__(self):
+        self._build()
+        return self.__dict__
 
     def as_dict(self):
         """The result as plain Python values (the CLI's JSON members of the same names)."""
@@ -369,26 +421,35 @@ class DimResult:
 
 
 def take_result(out, crs=None):
-    """A DimResult from an ft_dim_result ** the library filled; frees the C result. With crs (an
-    ft_crs_info from crs_info), the units and the no-CRS warning as the CLI sets them (cli_geo_units)."""
-    try:
-        if crs is not None:
-            geo_units(out, crs)
-        return DimResult(out)
-    finally:
-        lib.ft_dim_result_free(out)
+    """A DimResult from the ft_dim_result * the library filled (out, the pointer whose address the call
+    was given), which the DimResult owns from here: the C result is freed once its arrays are built or
+    with the DimResult. With crs (an ft_crs_info from crs_info), the units and the no-CRS warning as the
+    CLI sets them (cli_geo_units)."""
+    ptr = ctypes.cast(out, ctypes.POINTER(S.ft_dim_result))  # a copy of the pointer value
+    owner = _Owner(ptr, lib.ft_dim_result_free)
+    if crs is not None:
+        geo_units(ptr, crs)
+    return DimResult(ptr, owner)
 
 
 # ---- geographic input (the CLI's cli_geo.c) ----
 
 FT_LOCAL_LAEA, FT_LOCAL_TMERC = 0, 1
 NO_CRS_WARNING = "the input has no CRS: scales are in its own coordinate unit, taken as planar"
+_NO_CRS_WARNING_BYTES = NO_CRS_WARNING.encode()
+
+
+_no_crs = []  # the bytes of crs_info(None), asked of the library once (a value struct: no pointers)
 
 
 def crs_info(wkt):
-    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): an ft_crs_info."""
+    """The library's CRS service (ft_io_crs_info) on a WKT (None: no CRS): a new ft_crs_info."""
+    if wkt is None and _no_crs:
+        return S.ft_crs_info.from_buffer_copy(_no_crs[0])
     info = S.ft_crs_info()
     check(lib.ft_io_crs_info(wkt.encode() if isinstance(wkt, str) else wkt, ctypes.byref(info)))
+    if wkt is None:
+        _no_crs.append(bytes(info))
     return info
 
 
@@ -400,7 +461,7 @@ def geo_units(out, crs):
     if crs.scale_unit:
         lib.ft_dim_result_set_units(out, crs.scale_unit)
     elif not crs.has_crs:
-        lib.ft_dim_result_warn(out, b"%s", NO_CRS_WARNING.encode())
+        lib.ft_dim_result_warn(out, b"%s", _NO_CRS_WARNING_BYTES)
 
 
 def _local_crs(wkt, kind, x0, y0, x1, y1):
@@ -472,7 +533,7 @@ class Progress:
 
     def __init__(self, fn, arg=None):
         self.fn, self.arg, self.error = fn, arg, None
-        self.c = S.PROGRESS(self._call) if fn is not None else S.PROGRESS()
+        self.c = S.PROGRESS(self._call) if fn is not None else None
 
     def _call(self, frac, msg, _):
         try:
@@ -483,7 +544,9 @@ class Progress:
         return 1 if r is None or r else 0
 
     def install(self, opts):
-        opts.progress = self.c
+        """Sets opts.progress (left NULL, its default, without a callable)."""
+        if self.c is not None:
+            opts.progress = self.c
 
     def check(self, rc):
         if self.error is not None:

@@ -226,10 +226,18 @@ def check_ptr(p):
     return p
 
 
+_parsed = {}  # (parser's name, name) -> value, for the names the library's parser accepted
+
+
 def parse_enum(parser, name, what):
-    """An enum value from its name through the library's own parser (ft_*_method_parse)."""
+    """An enum value from its name through the library's own parser (ft_*_method_parse), asked once
+    per name."""
     if not isinstance(name, str):
         raise TypeError("%s must be a string, got %r" % (what, name))
-    v = _int()
-    check(parser(name.encode(), ctypes.byref(v)))
-    return v.value
+    key = (parser.__name__, name)
+    v = _parsed.get(key)
+    if v is None:
+        c = _int()
+        check(parser(name.encode(), ctypes.byref(c)))
+        v = _parsed[key] = c.value
+    return v

@@ -34,11 +34,16 @@ class _Opts(c.Structure):
 
     @classmethod
     def default(cls):
-        """The FT_*_OPTS_DEFAULT values, struct_size set in this struct and every nested one (FT_OPTS)."""
-        o = cls()
-        _set_sizes(o)
-        _apply(o, cls._defaults_)
-        return o
+        """The FT_*_OPTS_DEFAULT values, struct_size set in this struct and every nested one (FT_OPTS): a
+        copy of the class's default bytes, made once (the defaults are numbers and NULL pointers only)."""
+        proto = cls.__dict__.get("_default_bytes")
+        if proto is None:
+            o = cls()
+            _set_sizes(o)
+            _apply(o, cls._defaults_)
+            proto = bytes(o)
+            cls._default_bytes = proto
+        return cls.from_buffer_copy(proto)
 
 
 def _set_sizes(obj):

@@ -1,9 +1,11 @@
 """Fractal dimension of chains and Dutton's enhancement with its companions (line.h, urban.h's
 boundary generator; docs/line-*.md, docs/urban-boundary.md). A chain is an (n, 2) float64 array of
 x, y, or two arrays x and y; a ring does not repeat its first vertex (closed=True). The chain
-operations answer in the form they were asked in: f(xy) gives a new (n, 2) array, f(x, y) gives
-(x, y): views of the library's result for weed, simplify and remove_loops (no copy in or out), new
-arrays for enhance, smooth and boundary (which run as the CLI's guarded layer steps)."""
+operations answer in the form they were asked in: f(xy) gives an (n, 2) array, f(x, y) gives (x, y),
+both views of the library's result chain (nothing is copied out; the (n, 2) view's columns are the
+chain's x and y arrays, so it is not C-ordered: np.ascontiguousarray gives an interleaved copy). weed,
+simplify, remove_loops and dim_line read x and y in place; an (n, 2) array, and any input of enhance,
+smooth and boundary (the CLI's guarded layer steps, which own their chain), is copied in once."""
 import ctypes
 import os
 
@@ -11,8 +13,8 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, check_ptr, parse_enum, FracterraError, FT_E_FORMAT, FT_E_EMPTY, FT_E_NOMEM, FT_E_CANCELLED
-from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, ChainSet, _CChain, take_result,
-                    Progress, crs_info, points_ground, FT_LOCAL_LAEA)
+from ._core import (xy_arrays, chain_from_coords, chain_to_numpy, chain_views, chain_xy_view, ChainSet, _CChain,
+                    take_result, Progress, crs_info, points_ground, FT_LOCAL_LAEA)
 from ._common import set_fit, set_scales, path_bytes
 
 __all__ = ["read_chains", "dim_line", "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary",
@@ -57,9 +59,10 @@ def _coords(c):
 
 
 def _chain_list(coords, y, closed):
-    """[((n, 2) coords, closed)] from one chain (x and y, or an (n, 2) array) or a list of (n, 2) arrays."""
+    """[(coords, closed)] from one chain (x and y, kept as an (x, y) pair that ChainSet reads in place, or an
+    (n, 2) array) or a list of (n, 2) arrays."""
     if y is not None:
-        return [(np.column_stack(xy_arrays(coords, y)), bool(closed))]
+        return [(xy_arrays(coords, y), bool(closed))]
     if isinstance(coords, np.ndarray) and coords.ndim == 2:
         return [(_coords(coords), bool(closed))]
     items = list(coords)
@@ -127,6 +130,7 @@ def _project_chains(items, wkt, crs, bbox):
     box-counts them (cli_geo_layer_local)."""
     if not items:
         return items
+    items = [(np.column_stack(c) if isinstance(c, tuple) else c, cl) for c, cl in items]
     xy = np.concatenate([c for c, _ in items])
     x, y = points_ground(xy[:, 0], xy[:, 1], wkt, crs, FT_LOCAL_LAEA, bbox)
     out, k = [], 0
@@ -191,9 +195,10 @@ def _dim_line_by(path, by, layer, where, kw):
 
 
 def _chain_op(fn, coords, y, closed, *args):
-    """Runs a chain operation. Called with x and y it reads them in place and returns (x, y), NumPy
-    views of the library's result (no copy either way); called with an (n, 2) array it returns a new
-    (n, 2) array (one copy in, one out)."""
+    """Runs a chain operation. Called with x and y it reads them in place and returns (x, y); called
+    with an (n, 2) array it copies it into a library chain once (read with stride 2 when C-ordered
+    float64) and returns an (n, 2) array. Either way the answer is NumPy views of the library's result
+    chain (chain_views, chain_xy_view): nothing is copied out."""
     out = ctypes.POINTER(S.ft_chain)()
     if y is not None:
         cin = _CChain(coords, y, closed)
@@ -202,19 +207,16 @@ def _chain_op(fn, coords, y, closed, *args):
     cin = chain_from_coords(_coords(coords), None, closed)
     try:
         check(fn(cin, *args, ctypes.byref(out)))
-        try:
-            return chain_to_numpy(out)
-        finally:
-            lib.ft_chain_free(out)
     finally:
         lib.ft_chain_free(cin)
+    return chain_xy_view(out)
 
 
 def _layer_step(step, coords, y, closed, opts):
     """Runs a layer-level operation (the CLI's: one plan, the crossing guard) on one chain held in a
     one-part layer; answers as _chain_op does (x and y: (x, y) arrays; (n, 2): an (n, 2) array).
-    The library's copy into the layer is the only copy in; x and y come back as views of the result
-    chain, taken from the layer before it is freed (no copy); an (n, 2) result is one interleaving copy."""
+    The library's copy into the layer is the only copy in; the result chain is taken from the layer
+    before it is freed and answered as views (chain_views, chain_xy_view): no copy out."""
     cin = chain_from_coords(coords, y, closed) if y is not None else chain_from_coords(_coords(coords), None, closed)
     lay = lib.ft_layer_create(b"chain", None)
     if not lay:
@@ -228,13 +230,11 @@ def _layer_step(step, coords, y, closed, opts):
         check(lib.ft_layer_add_part(lay, cin, 1 if closed else 0, 0))  # the layer owns cin from here
         check(step(lay, ctypes.byref(opts), 0, None))
         part = lay.contents.parts[0]
-        if y is None:
-            return chain_to_numpy(part.chain)
         result = ctypes.cast(part.chain, ctypes.POINTER(S.ft_chain))  # a copy of the pointer value
         part.chain = None  # detached: freed with the last view, not with the layer
-        return chain_views(result)
     finally:
         lib.ft_layer_free(lay)
+    return chain_views(result) if y is not None else chain_xy_view(result)
 
 
 def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, iterations=1, target_dim=None,
@@ -243,7 +243,7 @@ def enhance(coords, y=None, *, closed=False, sd=1.3, uc=1.0, st=None, sm=0.0, it
     target dimension D_in + uc (sd - D_in) with D_in measured (or input_dim), or target_dim; literal_sd:
     Dutton's literal apex angle; unless allow_crossings, moves that would make the chain touch itself
     are reduced; keep_vertices (one iteration): the input's vertices stay, each new midpoint M of P N goes
-    to M - (dP + dN) / 2 (--keep-vertices). Returns a new (n, 2) array (or (x, y) arrays). End points of
+    to M - (dP + dN) / 2 (--keep-vertices). Returns an (n, 2) array (or (x, y) arrays). End points of
     open chains stay."""
     o = _dutton(sd, uc, st, sm, iterations, target_dim, input_dim, literal_sd, allow_crossings, keep_vertices)
     return _layer_step(_enhance_layer, coords, y, closed, o)

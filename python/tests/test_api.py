@@ -96,6 +96,18 @@ def test_nan_and_masked_arrays_are_nodata():
     assert r_nan.D == r_ma.D == r_mask.D != ft.dim_surface(g).D
 
 
+def test_non_finite_cells_are_found_without_a_false_mask():
+    import warnings
+    big = np.full((16, 16), 3e38, np.float32)  # every cell finite, their sum overflows
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _core._CGrid(ft.Grid(big))._mask is None
+        big[3, 4], big[5, 6] = np.inf, -np.inf  # Inf - Inf: a NaN sum
+        m = _core._CGrid(ft.Grid(big))._mask
+    assert m.dtype == np.uint8 and m.sum() == 16 * 16 - 2 and m[3, 4] == 0 and m[5, 6] == 0
+    assert _core._CGrid(ft.Grid(np.ones((4, 4))))._mask is None
+
+
 def test_gdal_round_trip_keeps_georeferencing(data):
     pytest.importorskip("osgeo.gdal")
     g = ft.read_grid(data("dem_luxembourg_terra_30s.tif"))
@@ -120,6 +132,22 @@ def test_result_table_and_dict():
     assert used["scale"][0] == r.range[0] and used["scale"][-1] == r.range[1]
     d = r.as_dict()
     assert d["D"] == r.D and len(d["table"]) == len(r.table)
+
+
+def test_result_arrays_are_built_on_first_access():
+    g = ft.synth(128, 128, 2.5, seed=1, method="exact")
+    r, lazy = ft.dim_surface(g), ft.dim_surface(g)
+    assert r._c is not None  # the C result is kept until the arrays are asked for
+    want = (r.table.copy(), r.segments.copy(), r.regimes.copy())
+    assert r._c is None and r.table is r.table  # built once, the C result released
+    del g
+    gc.collect()
+    _ = [np.ones(4096) for _ in range(64)]
+    import pickle
+    back = pickle.loads(pickle.dumps(lazy))  # pickling builds them
+    for a, b in zip(want, (back.table, back.segments, back.regimes)):
+        assert a.dtype == b.dtype and a.tobytes() == b.tobytes()
+    assert back.as_dict() == r.as_dict() and len(want[0]) > 0 and len(want[2]) >= 1
 
 
 def test_reconstruct_from_points_honours_the_data():
@@ -164,6 +192,61 @@ def test_chain_ops_answer_in_the_form_asked():
     sx, sy = ft.simplify(x, y, tolerance=0.5)
     assert not sx.flags.owndata and not sy.flags.owndata  # views of the library's chain
     assert np.array_equal(np.c_[sx, sy], ft.simplify(xy, tolerance=0.5))
+
+
+def test_n2_results_are_views_of_the_library_chain():
+    t = np.linspace(0, 10, 200)
+    xy = np.c_[t, np.sin(t) + 0.2 * np.sin(7 * t)]
+    ring = np.c_[np.cos(2 * np.pi * t / 10), np.sin(2 * np.pi * t / 10)][:-1]
+    cases = [(ft.enhance, xy, dict(sd=1.5)), (ft.smooth, xy, dict(passes=2)), (ft.weed, xy, dict(min_segment=0.2)),
+             (ft.simplify, xy, dict(tolerance=0.05)), (ft.remove_loops, xy, {}),
+             (ft.boundary, ring, dict(dim=1.3, min=0.01, seed=2))]
+    for fn, data, kw in cases:
+        closed = fn is ft.boundary
+        v = fn(data, closed=closed, **kw)
+        ex, ey = fn(data[:, 0], data[:, 1], closed=closed, **kw)
+        assert type(v) is np.ndarray and v.dtype == np.float64 and v.shape == (len(ex), 2), fn.__name__
+        assert not v.flags.owndata and v.flags.writeable
+        assert v[:, 0].flags.c_contiguous and v[:, 1].flags.c_contiguous  # x and y arrays of the chain
+        assert np.array_equal(v[:, 0], ex) and np.array_equal(v[:, 1], ey)
+        c = np.ascontiguousarray(v)
+        assert c.flags.c_contiguous and np.array_equal(c, v)
+        assert np.array_equal(ft.simplify(v, tolerance=0.1), ft.simplify(c, tolerance=0.1))  # a view reads as input
+    v = ft.enhance(xy, sd=1.5)
+    total = float(v.sum())
+    del xy
+    gc.collect()
+    _ = [np.ones(4096) for _ in range(64)]
+    assert float(v.sum()) == total  # the view keeps the library's chain alive
+    v[0, 1] = 5.0
+    assert v[0, 1] == 5.0
+
+
+def test_dim_line_reads_x_and_y_in_place():
+    t = np.linspace(0, 20, 400)
+    x, y = t.copy(), np.sin(3 * t) + 0.3 * np.sin(17 * t)
+    seen = []
+    real = _lib.lib.ft_line_dim
+
+    def spy(chains, n, *rest):
+        seen.append(ctypes.addressof(chains[0].contents.x.contents))
+        return real(chains, n, *rest)
+    _lib.lib.ft_line_dim = spy
+    try:
+        a = ft.dim_line(x, y)
+    finally:
+        _lib.lib.ft_line_dim = real
+    assert seen == [x.ctypes.data]  # the library walked x itself, not a copy
+    assert a.as_dict() == ft.dim_line(np.c_[x, y]).as_dict()
+    with pytest.raises(ValueError):
+        ft.dim_line(x, y[:-1])
+
+
+def test_options_defaults_are_fresh_copies():
+    a = ft._structs.ft_line_dim_opts.default()
+    a.min_r2, a.fit.regime = 0.9, 3
+    b = ft._structs.ft_line_dim_opts.default()
+    assert b.min_r2 != 0.9 and b.fit.regime == 0 and b.struct_size == ctypes.sizeof(b)
 
 
 def test_enhance_keep_vertices_keeps_the_input_vertices():
