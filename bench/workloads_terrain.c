@@ -5,6 +5,10 @@
  *    4096² (plan made beforehand, one thread) as the in-process peer, so ours/peer is the multiple of the
  *    c2r floor (the issue's target: at most 1.5, peak memory under 300 MB);
  *  - terrain.synth.fft.4096.threads: the same on OMP_NUM_THREADS threads (same cells, bit for bit);
+ *  - terrain.synth.fft.4096.reuse: the same synthesis through ft_terrain_synth_into with a workspace and
+ *    grid made (and every page touched) untimed, as the floor's buffer is: like against like, no page
+ *    fault in either timed region (issue 17: the allocating call's slow runs are the first touch of
+ *    fresh memory, docs/bench.md);
  *  - terrain.synth.sra.4096: the same with method sra, one thread (target: under 1.5 s); no in-process peer
  *    (r.surf.fractal is a whole GRASS session: cli.synth.sra.4096 compares like with like);
  *  - terrain.fftw.c2r.4096: the c2r transform alone;
@@ -70,6 +74,8 @@ static int synth(ft_synth_method m)
 static int c2r_prepare(ft_bench_case *c);
 static int c2r_run(ft_bench_case *c);
 
+static ft_synth_workspace *held_ws; /* in the child only */
+
 /* In process: the fft synthesis against the bare c2r transform of the same size (its floor). */
 static int synth_setup(ft_bench_case *c)
 {
@@ -98,6 +104,30 @@ static int synth_sra_run(ft_bench_case *c)
 {
     (void)c;
     return synth(FT_SYNTH_SRA);
+}
+
+/* terrain.synth.fft.4096.reuse: one synthesis untimed (workspace and grid touched, plans made), then the
+ * timed one into the same memory. */
+static int synth_reuse_prepare(ft_bench_case *c)
+{
+    one_thread(c);
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.dim = SYNTH_DIM;
+    o.seed = BENCH_SEED + 1;
+    held_grid = ft_grid_create(SYNTH_N, SYNTH_N);
+    if (held_grid == NULL)
+        return FT_E_NOMEM;
+    int rc = ft_synth_workspace_create(SYNTH_N, SYNTH_N, &o, &held_ws);
+    return rc == FT_OK ? ft_terrain_synth_into(&o, held_ws, held_grid) : rc;
+}
+
+static int synth_reuse_run(ft_bench_case *c)
+{
+    (void)c;
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    o.dim = SYNTH_DIM;
+    o.seed = BENCH_SEED;
+    return ft_terrain_synth_into(&o, held_ws, held_grid);
 }
 
 /* terrain.fftw.c2r.4096: the spectrum is filled and the plan made untimed. */
@@ -251,6 +281,9 @@ static const ft_bench_workload terrain_workloads[] = {
      FT_BENCH_CELLS, synth_setup, one_thread, synth_fft_run, NULL},
     {"terrain.synth.fft.4096.threads", "the same fft synthesis on OMP_NUM_THREADS threads", FT_BENCH_CELLS,
      synth_setup, NULL, synth_fft_run, NULL},
+    {"terrain.synth.fft.4096.reuse", "the same fft synthesis into a reused grid and workspace "
+     "(ft_terrain_synth_into, memory touched untimed like the floor's), one thread", FT_BENCH_CELLS, synth_setup,
+     synth_reuse_prepare, synth_reuse_run, NULL},
     {"terrain.fftw.c2r.4096", "one in-place FFTW complex-to-real 4096x4096 transform, one thread",
      FT_BENCH_CELLS, c2r_setup, c2r_prepare, c2r_run, NULL},
     {"terrain.synth.sra.4096", "successive random addition, 4096x4096, D=2.3, one thread", FT_BENCH_CELLS,

@@ -52,6 +52,19 @@ typedef struct {
 /** A new nx x ny grid of a fractional Brownian surface. Same options and seed => bit-identical cells on
  *  any thread count. */
 FT_API int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out);
+
+/** Working memory for repeated syntheses of one size, method and periodic flag into the caller's grid
+ *  (Monte Carlo realizations, a bench loop): for method fft the padded half-spectrum (1.6 x the grid's
+ *  bytes with the default pad), every page touched here, so that the syntheses that reuse it take no
+ *  page fault and allocate nothing of the grid's size. The other methods keep nothing in it. */
+typedef struct ft_synth_workspace ft_synth_workspace;
+FT_API int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, ft_synth_workspace **ws);
+FT_API void ft_synth_workspace_free(ft_synth_workspace *ws);
+/** ft_terrain_synth into out (its nx x ny cells overwritten, its mask dropped: every cell valid, its
+ *  geotransform set from the options; its CRS and nodata fields left as they are), with ws made for
+ *  the same size, method and periodic flag: the cells are ft_terrain_synth's bit for bit. On error the
+ *  cells are undefined. */
+FT_API int ft_terrain_synth_into(const ft_synth_opts *opts, ft_synth_workspace *ws, ft_grid *out);
 FT_API const char *ft_synth_method_name(ft_synth_method m);
 FT_API int ft_synth_method_parse(const char *name, ft_synth_method *m);
 /** The D the raw algorithm runs at (H = 3 - raw D) when sra or midpoint is asked for D on an nx x ny grid

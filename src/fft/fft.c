@@ -315,15 +315,26 @@ static int row_pass(fftwf_complex *spec, size_t ny, size_t nx)
     return 0;
 }
 
-int ft_fft_c2r_2df(size_t ny, size_t nx, fftwf_complex *spec)
+int ft_fft_c2r_2df_rows(size_t ny, size_t nx, fftwf_complex *spec, size_t nrows)
 {
     int rc = check_size("c2r", ny, nx, spec, spec);
     if (rc != FT_OK)
         return rc;
+    if (nrows == 0 || nrows > ny)
+        return ft_error(FT_E_INVALID, "fft: %zu output rows asked of a %zu-row transform", nrows, ny);
+    /* whole batches only, so every row kept goes through the plan (and batch) of the full row pass */
+    size_t rows = (nrows + ROW_BLOCK - 1) / ROW_BLOCK * ROW_BLOCK;
+    if (rows > ny)
+        rows = ny;
     size_t ncx = nx / 2 + 1;
-    if (column_pass(spec, ny, ncx) || row_pass(spec, ny, nx))
+    if (column_pass(spec, ny, ncx) || row_pass(spec, rows, nx))
         return ft_error(FT_E_NOMEM, "fft: out of memory or no FFTW plan for a %zu x %zu transform", ny, nx);
     return FT_OK;
+}
+
+int ft_fft_c2r_2df(size_t ny, size_t nx, fftwf_complex *spec)
+{
+    return ft_fft_c2r_2df_rows(ny, nx, spec, ny);
 }
 
 int ft_fft_c2c_1d(size_t n, fftw_complex *in, fftw_complex *out, int sign)

@@ -73,6 +73,10 @@ int ft_fft_c2r_2d(size_t ny, size_t nx, fftw_complex *in, double *out);
  *  same conventions as ft_fft_c2r_2d. Computed as blocked column then row passes of 1-D transforms over
  *  the OpenMP threads; bit-identical on any thread count. 0, FT_E_INVALID or FT_E_NOMEM. */
 int ft_fft_c2r_2df(size_t ny, size_t nx, fftwf_complex *spec);
+/** ft_fft_c2r_2df when only the first nrows (1 <= nrows <= ny) output rows are wanted (a cropped
+ *  synthesis): the column pass is whole, the row pass stops after the batch that holds row nrows - 1.
+ *  Those rows are ft_fft_c2r_2df's bit for bit; the rows after them are left undefined. */
+int ft_fft_c2r_2df_rows(size_t ny, size_t nx, fftwf_complex *spec, size_t nrows);
 
 /** 1-D complex transform of n points, sign FT_FFT_FORWARD or FT_FFT_BACKWARD (unnormalised); in-place
  *  when in == out. Errors as above. */

@@ -244,6 +244,63 @@ static void test_reproducible(void **state)
     }
 }
 
+/* ft_terrain_synth_into: the cells of ft_terrain_synth bit for bit, for every method, reusing one
+ * workspace and one grid over several seeds (periodic fft too); the grid's mask is dropped and its
+ * geotransform set; a workspace of another size, method or periodic flag is refused. */
+static void test_synth_into(void **state)
+{
+    (void)state;
+    for (int m = 0; m < 6; m++)
+        for (int periodic = 0; periodic < 2; periodic++) {
+            if (periodic && m != FT_SYNTH_FFT)
+                continue;
+            ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+            o.method = (ft_synth_method)m;
+            o.periodic = periodic;
+            o.dim = 2.45;
+            o.cell = 10.0;
+            ft_synth_workspace *ws = NULL;
+            assert_int_equal(ft_synth_workspace_create(131, 97, &o, &ws), FT_OK);
+            ft_grid *out = ft_grid_create(131, 97);
+            assert_non_null(out);
+            assert_int_equal(ft_grid_ensure_mask(out), FT_OK);
+            out->mask[5] = 0;
+            for (uint64_t seed = 3; seed < 6; seed++) {
+                o.seed = seed;
+                ft_grid *ref = NULL;
+                assert_int_equal(ft_terrain_synth(131, 97, &o, &ref), FT_OK);
+                assert_int_equal(ft_terrain_synth_into(&o, ws, out), FT_OK);
+                assert_memory_equal(out->z, ref->z, 131 * 97 * sizeof(float));
+                assert_null(out->mask);
+                for (int k = 0; k < 6; k++)
+                    assert_true(out->gt[k] == ref->gt[k]);
+                ft_grid_free(ref);
+            }
+            ft_synth_opts other = o;
+            other.method = m == FT_SYNTH_FFT ? FT_SYNTH_SRA : FT_SYNTH_FFT;
+            assert_int_equal(ft_terrain_synth_into(&other, ws, out), FT_E_INVALID);
+            assert_non_null(strstr(ft_last_error(), "workspace is for method"));
+            ft_grid *small = ft_grid_create(130, 97);
+            assert_int_equal(ft_terrain_synth_into(&o, ws, small), FT_E_INVALID);
+            assert_non_null(strstr(ft_last_error(), "131 x 97"));
+            if (m == FT_SYNTH_FFT) {
+                other = o;
+                other.periodic = !periodic;
+                assert_int_equal(ft_terrain_synth_into(&other, ws, out), FT_E_INVALID);
+            }
+            assert_int_equal(ft_terrain_synth_into(&o, NULL, out), FT_E_INVALID);
+            o.dim = 3.5;
+            assert_int_equal(ft_terrain_synth_into(&o, ws, out), FT_E_INVALID);
+            ft_grid_free(small);
+            ft_grid_free(out);
+            ft_synth_workspace_free(ws);
+        }
+    ft_synth_workspace *ws = NULL;
+    assert_int_equal(ft_synth_workspace_create(0, 10, NULL, &ws), FT_E_INVALID);
+    assert_null(ws);
+    ft_synth_workspace_free(NULL);
+}
+
 static void test_sigma_and_georef(void **state)
 {
     (void)state;
@@ -361,7 +418,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_input),      cmocka_unit_test(test_odd_sizes),
-        cmocka_unit_test(test_reproducible),   cmocka_unit_test(test_sigma_and_georef),
+        cmocka_unit_test(test_reproducible),   cmocka_unit_test(test_synth_into),   cmocka_unit_test(test_sigma_and_georef),
         cmocka_unit_test(test_cancel),         cmocka_unit_test(test_fft_spectrum_slope),
         cmocka_unit_test(test_fft_accuracy),   cmocka_unit_test(test_sra_accuracy),
         cmocka_unit_test(test_exact_accuracy), cmocka_unit_test(test_calibrated_accuracy),

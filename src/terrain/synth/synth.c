@@ -143,3 +143,98 @@ int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **
     *out = g;
     return FT_OK;
 }
+
+/* ---- Repeated syntheses into the caller's grid (ft_synth_workspace) ---- */
+
+struct ft_synth_workspace {
+    size_t nx, ny;
+    ft_synth_method method;
+    int periodic;
+    fftwf_complex *spec; /* fft: the padded half-spectrum, every page touched at creation */
+    size_t bins;
+};
+
+int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, ft_synth_workspace **ws)
+{
+    if (ws == NULL)
+        return ft_error(FT_E_INVALID, "synth: workspace pointer is NULL");
+    *ws = NULL;
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
+        return FT_E_INVALID;
+    int rc = validate(nx, ny, &o);
+    if (rc != FT_OK)
+        return rc;
+    ft_synth_workspace *w = ft_calloc(1, sizeof *w);
+    if (w == NULL)
+        return FT_E_NOMEM;
+    w->nx = nx;
+    w->ny = ny;
+    w->method = o.method;
+    w->periodic = o.periodic;
+    if (o.method == FT_SYNTH_FFT && (rc = ft_synth_fft_workspace(nx, ny, o.periodic, &w->spec, &w->bins)) != FT_OK) {
+        free(w);
+        return rc;
+    }
+    *ws = w;
+    return FT_OK;
+}
+
+void ft_synth_workspace_free(ft_synth_workspace *ws)
+{
+    if (ws == NULL)
+        return;
+    free(ws->spec);
+    free(ws);
+}
+
+/* The options and grid match the workspace they are run with. */
+static int check_workspace(const ft_synth_workspace *ws, const ft_synth_opts *o, const ft_grid *out)
+{
+    if (ws->nx != out->nx || ws->ny != out->ny)
+        return ft_error(FT_E_INVALID, "synth: the workspace is for %zu x %zu, the grid is %zu x %zu", ws->nx, ws->ny,
+                        out->nx, out->ny);
+    if (ws->method != o->method)
+        return ft_error(FT_E_INVALID, "synth: the workspace is for method %s, the options ask for %s",
+                        ft_synth_method_name(ws->method), ft_synth_method_name(o->method));
+    if (ws->periodic != o->periodic)
+        return ft_error(FT_E_INVALID, "synth: the workspace is for periodic = %d, the options have %d", ws->periodic,
+                        o->periodic);
+    return FT_OK;
+}
+
+int ft_terrain_synth_into(const ft_synth_opts *opts, ft_synth_workspace *ws, ft_grid *out)
+{
+    if (ws == NULL || out == NULL || out->z == NULL)
+        return ft_error(FT_E_INVALID, "synth: %s is NULL", ws == NULL ? "the workspace" : "the output grid");
+    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
+    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
+        return FT_E_INVALID;
+    int rc = validate(out->nx, out->ny, &o);
+    if (rc == FT_OK)
+        rc = check_workspace(ws, &o, out);
+    if (rc != FT_OK)
+        return rc;
+    size_t nx = out->nx, ny = out->ny;
+    double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
+    switch (o.method) {
+    case FT_SYNTH_FFT: rc = ft_synth_fft_into(nx, ny, H, &o, ws->spec, out->z); break;
+    case FT_SYNTH_SRA:
+    case FT_SYNTH_SRA_RAW: rc = ft_synth_sra_fill(nx, ny, H, &o, out->z); break;
+    case FT_SYNTH_MIDPOINT:
+    case FT_SYNTH_MIDPOINT_RAW: rc = ft_synth_midpoint_fill(nx, ny, H, &o, out->z); break;
+    case FT_SYNTH_EXACT: rc = ft_synth_exact_fill(nx, ny, H, &o, out->z); break;
+    }
+    if (rc == FT_OK && o.sigma > 0.0)
+        rc = rescale(out->z, nx, ny, o.sigma);
+    if (rc == FT_OK)
+        rc = ft_progress(o.progress, o.progress_arg, 1.0, "synth: done");
+    if (rc != FT_OK)
+        return rc;
+    free(out->mask); /* every cell is valid */
+    out->mask = NULL;
+    double gt[6] = {o.origin_x, o.cell, 0.0, o.origin_y, 0.0, -o.cell};
+    for (int i = 0; i < 6; i++)
+        out->gt[i] = gt[i];
+    return FT_OK;
+}

@@ -323,36 +323,31 @@ static fftwf_complex *alloc_spectrum(size_t n)
 }
 
 /* The output's upper-left nx x ny corner of the transformed rows (stride rs floats) plus the plane
- * a_x j + a_y i, written over the spectrum's own memory: cell (i, j) goes from float i rs + j to i nx + j,
- * never above where it came from (nx <= rs), and everything it overwrites has been read (rows in order,
- * cells in order), so no second buffer is touched. One pass in order: memory-bound, and threads would
- * need a barrier for every wave of rows that may move at once (measured: more CPU, no gain under load). */
-static void crop_in_place(float *re, size_t nx, size_t ny, size_t rs, double ax, double ay)
+ * a_x j + a_y i, written to dst. dst may be re itself: cell (i, j) then goes from float i rs + j to
+ * i nx + j, never above where it came from (nx <= rs), and everything it overwrites has been read (rows
+ * in order, cells in order), so no second buffer is touched. One pass in order: memory-bound, and threads
+ * would need a barrier for every wave of rows that may move at once (measured: more CPU, no gain under
+ * load). */
+static void crop(const float *re, float *dst, size_t nx, size_t ny, size_t rs, double ax, double ay)
 {
     for (size_t i = 0; i < ny; i++) {
         const float *src = re + i * rs;
-        float *dst = re + i * nx;
+        float *out = dst + i * nx;
         for (size_t j = 0; j < nx; j++)
-            dst[j] = (float)((double)src[j] + ax * (double)j + ay * (double)i);
+            out[j] = (float)((double)src[j] + ax * (double)j + ay * (double)i);
     }
 }
 
-int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z)
+/* The synthesis up to the crop: the half-spectrum filled in spec (py x (px/2+1) bins), transformed in
+ * place (only the ny rows the output keeps: the padded rows below are never read), and the DC plane's
+ * slopes. */
+static int synthesize(size_t ny, size_t px, size_t py, double H, const ft_synth_opts *o,
+                      fftwf_complex *spec, double *ax, double *ay)
 {
-    *z = NULL;
-    size_t px = padded_size(nx, o->periodic), py = padded_size(ny, o->periodic);
-    if (px == 0 || py == 0 || px > INT_MAX || py > INT_MAX || py > SIZE_MAX / (px / 2 + 1))
-        return ft_error(FT_E_INVALID, "synth: fft grid for %zu x %zu is too large", nx, ny);
-    size_t ncx = px / 2 + 1, rs = ft_fft_real_stride(px);
-    fftwf_complex *spec = alloc_spectrum(py * ncx);
-    if (spec == NULL)
-        return FT_E_NOMEM;
     int rc = ft_progress(o->progress, o->progress_arg, 0.05, "fft: spectrum");
     fft_amp_ctx *ctx = ft_malloc(sizeof *ctx);
-    if (ctx == NULL) {
-        free(spec);
+    if (ctx == NULL)
         return FT_E_NOMEM;
-    }
     ctx->py = py;
     ctx->px = px;
     ctx->expo = -(H + 1.0) / 2.0;
@@ -363,27 +358,72 @@ int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, fl
     if (rc == FT_OK)
         rc = ft_progress(o->progress, o->progress_arg, 0.4, "fft: inverse transform");
     if (rc == FT_OK)
-        rc = ft_fft_c2r_2df(py, px, spec);
+        rc = ft_fft_c2r_2df_rows(py, px, spec, ny);
+    if (rc == FT_OK)
+        rc = ft_synth_fft_plane(px, py, H, o, ax, ay);
+    return rc;
+}
+
+/* The padded grid of an nx x ny output, checked against the sizes the transform can take. */
+static int grid_size(size_t nx, size_t ny, int periodic, size_t *px, size_t *py)
+{
+    *px = padded_size(nx, periodic);
+    *py = padded_size(ny, periodic);
+    if (*px == 0 || *py == 0 || *px > INT_MAX || *py > INT_MAX || *py > SIZE_MAX / (*px / 2 + 1))
+        return ft_error(FT_E_INVALID, "synth: fft grid for %zu x %zu is too large", nx, ny);
+    return FT_OK;
+}
+
+int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z)
+{
+    *z = NULL;
+    size_t px, py;
+    int rc = grid_size(nx, ny, o->periodic, &px, &py);
+    if (rc != FT_OK)
+        return rc;
+    fftwf_complex *spec = alloc_spectrum(py * (px / 2 + 1));
+    if (spec == NULL)
+        return FT_E_NOMEM;
     double ax = 0.0, ay = 0.0;
-    if (rc == FT_OK && !o->periodic) {
-        ft_rng *r = ft_rng_create(o->seed, FT_SYNTH_STREAM_FFT - 1);
-        if (r == NULL)
-            rc = FT_E_NOMEM;
-        else {
-            double sd = dc_plane_sd(px, py, H);
-            ax = ft_rng_gaussian(r, sd);
-            ay = ft_rng_gaussian(r, sd);
-            ft_rng_free(r);
-        }
-    }
+    rc = synthesize(ny, px, py, H, o, spec, &ax, &ay);
     if (rc != FT_OK) {
         free(spec);
         return rc;
     }
-    crop_in_place((float *)spec, nx, ny, rs, ax, ay);
+    crop((float *)spec, (float *)spec, nx, ny, ft_fft_real_stride(px), ax, ay);
     float *cells = realloc(spec, nx * ny * sizeof *cells); /* shrinks in place (or keeps the block) */
     *z = cells != NULL ? cells : (float *)spec;
     return FT_OK;
+}
+
+int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **spec, size_t *bins)
+{
+    *spec = NULL;
+    *bins = 0;
+    size_t px, py;
+    int rc = grid_size(nx, ny, periodic, &px, &py);
+    if (rc != FT_OK)
+        return rc;
+    size_t n = py * (px / 2 + 1);
+    fftwf_complex *p = alloc_spectrum(n);
+    if (p == NULL)
+        return FT_E_NOMEM;
+    memset(p, 0, n * sizeof *p); /* every page faulted in now, not in the syntheses that reuse it */
+    *spec = p;
+    *bins = n;
+    return FT_OK;
+}
+
+int ft_synth_fft_into(size_t nx, size_t ny, double H, const ft_synth_opts *o, fftwf_complex *spec, float *z)
+{
+    size_t px, py;
+    int rc = grid_size(nx, ny, o->periodic, &px, &py);
+    double ax = 0.0, ay = 0.0;
+    if (rc == FT_OK)
+        rc = synthesize(ny, px, py, H, o, spec, &ax, &ay);
+    if (rc == FT_OK)
+        crop((const float *)spec, z, nx, ny, ft_fft_real_stride(px), ax, ay);
+    return rc;
 }
 
 /* ---- Slabs of rows for the distributed run (synth_fft_rows.c; docs/tiling.md). Same helpers, same
