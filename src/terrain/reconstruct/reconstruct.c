@@ -9,13 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <stdio.h>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-#include "fracterra/surface.h"
 #include "internal.h"
 #include "terrain/reconstruct/reconstruct_internal.h"
 
@@ -322,50 +320,6 @@ int ft_recon_job_params(const ft_recon_opts *o, const ft_points *pts, const ft_g
             return rc;
         info->sigma0 = ft_recon_line_at(&pe, cell);
         par->T0 = ft_recon_fractal_gain(D) * ft_recon_temperature0(info->k, info->sigma0);
-        if (bound && getenv("FT_CV")) {
-            double Tcv = 0.0;
-            size_t nh = 0;
-            double tens = par->tension;
-            rc = ft_recon_temperature_cv(bound, o->lambda, tens, par->H, o->seed, &Tcv, &nh);
-            if (rc != FT_OK)
-                return rc;
-            fprintf(stderr, "CV D %.2f held %zu Tcv %.6g T0 %.6g ratio %.4f\n", D, nh, Tcv, par->T0, Tcv / par->T0);
-            if (getenv("FT_MM")) {
-                int hmax = atoi(getenv("FT_MM"));
-                double tg[64] = {0};
-                for (int h = 1; h <= hmax; h++) {
-                    double S = ft_recon_line_at(&pe, h * cell);
-                    tg[h] = S * S / (1.0 - 2.0 / M_PI);
-                }
-                if (getenv("FT_MM_ABS")) {
-                    ft_recon_line yl = {0};
-                    ft_points_dim_opts yo = FT_POINTS_DIM_OPTS_DEFAULT;
-                    yo.method = FT_POINTS_YOKOYA;
-                    yo.noise_mode = -1;
-                    double x0, y0, x1, y1;
-                    ft_points_bbox(pts, &x0, &y0, &x1, &y1);
-                    double sp = sqrt((x1 - x0) * (y1 - y0) / (double)pts->n);
-                    yo.min_lag = 0.5 * sp;
-                    yo.max_lag = 1.5 * sp;
-                    ft_dim_result *yr = NULL;
-                    if (ft_surface_dim_points(pts, &yo, &yr) != FT_OK)
-                        return FT_E_NUMERIC;
-                    yl.a = yr->fit.intercept;
-                    yl.b = yr->fit.slope;
-                    ft_dim_result_free(yr);
-                    for (int h = 1; h <= hmax; h++)
-                        tg[32 + h] = ft_recon_line_at(&yl, h * cell);
-                }
-                rc = ft_recon_temperature_mm(bound, o->lambda, tens, par->H, o->seed, tg, hmax, &Tcv);
-                if (rc != FT_OK)
-                    return rc;
-                nh = 1;
-                fprintf(stderr, "MM D %.2f Tmm %.6g T0 %.6g ratio %.4f\n", D, Tcv, par->T0, Tcv / par->T0);
-            }
-            double f = atof(getenv("FT_CV"));
-            if (f > 0.0 && nh > 0)
-                par->T0 = f * Tcv;
-        }
     }
     info->temperature = par->T0;
     return FT_OK;

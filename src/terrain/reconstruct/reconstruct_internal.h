@@ -194,20 +194,6 @@ double ft_recon_fractal_gain(double D);
 /** The blend the fractal method's k was calibrated with (its tension when opts->tension is from D). */
 #define FT_RECON_FRACTAL_TENSION 0.1
 
-/* ---- recon_crossval.c ---- */
-/** The fractal method's temperature from the data's prediction residuals: a seeded part of p's fixed data
- *  (hard data only) held out, predicted by the T = 0 solution from the rest (prior of exponent H at
- *  lambda, tension), T = mean squared residual / the same of a T = 1 sample of the prior conditioned on
- *  the rest. On the central FT_RECON_CV_SIDE² window of larger grids. *T = 0 and *nheld = 0 when there is
- *  no estimate (soft data, fewer than FT_RECON_CV_MIN data to hold out). */
-int ft_recon_temperature_cv(const ft_recon_problem *p, double lambda, double tension, double H, uint64_t seed,
-                            double *T, size_t *nheld);
-int ft_recon_temperature_mm(const ft_recon_problem *p, double lambda, double tension, double H, uint64_t seed,
-                            const double *target, int hmax, double *T);
-#define FT_RECON_CV_SIDE 256
-#define FT_RECON_CV_MIN 256
-#define FT_RECON_CV_RADIUS_MAX 3.0
-
 /* ---- recon_perturb.c ---- */
 /** The fractal method: u = ustar + delta, delta an exact draw of N(0, lambda T0 A_ff^-1) (the prior at
  *  temperature T0 conditioned on delta = 0 at the fixed nodes) by perturbation and optimization.
