@@ -60,8 +60,9 @@ FT_API int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_
 typedef struct ft_synth_workspace ft_synth_workspace;
 FT_API int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, ft_synth_workspace **ws);
 FT_API void ft_synth_workspace_free(ft_synth_workspace *ws);
-/** ft_terrain_synth into out (its nx x ny cells overwritten, its mask dropped: every cell valid, its
- *  geotransform set from the options; its CRS and nodata fields left as they are), with ws made for
+/** ft_terrain_synth into out (its nx x ny cells overwritten, its mask, if any, set to all valid and
+ *  kept, its geotransform set from the options; its CRS and nodata fields left as they are; no pointer
+ *  of out is freed or replaced, so out may wrap the caller's arrays), with ws made for
  *  the same size, method and periodic flag: the cells are ft_terrain_synth's bit for bit. On error the
  *  cells are undefined. */
 FT_API int ft_terrain_synth_into(const ft_synth_opts *opts, ft_synth_workspace *ws, ft_grid *out);

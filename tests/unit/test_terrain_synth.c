@@ -245,7 +245,7 @@ static void test_reproducible(void **state)
 }
 
 /* ft_terrain_synth_into: the cells of ft_terrain_synth bit for bit, for every method, reusing one
- * workspace and one grid over several seeds (periodic fft too); the grid's mask is dropped and its
+ * workspace and one grid over several seeds (periodic fft too); the grid's mask is set all valid and its
  * geotransform set; a workspace of another size, method or periodic flag is refused. */
 static void test_synth_into(void **state)
 {
@@ -271,7 +271,9 @@ static void test_synth_into(void **state)
                 assert_int_equal(ft_terrain_synth(131, 97, &o, &ref), FT_OK);
                 assert_int_equal(ft_terrain_synth_into(&o, ws, out), FT_OK);
                 assert_memory_equal(out->z, ref->z, 131 * 97 * sizeof(float));
-                assert_null(out->mask);
+                assert_non_null(out->mask);
+                for (size_t c = 0; c < 131 * 97; c++)
+                    assert_int_equal(out->mask[c], 1);
                 for (int k = 0; k < 6; k++)
                     assert_true(out->gt[k] == ref->gt[k]);
                 ft_grid_free(ref);

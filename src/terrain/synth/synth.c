@@ -11,6 +11,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include <strings.h>
 
 #include "fracterra/core.h"
@@ -231,8 +232,8 @@ int ft_terrain_synth_into(const ft_synth_opts *opts, ft_synth_workspace *ws, ft_
         rc = ft_progress(o.progress, o.progress_arg, 1.0, "synth: done");
     if (rc != FT_OK)
         return rc;
-    free(out->mask); /* every cell is valid */
-    out->mask = NULL;
+    if (out->mask != NULL) /* every cell is valid; the mask stays the caller's memory */
+        memset(out->mask, 1, nx * ny);
     double gt[6] = {o.origin_x, o.cell, 0.0, o.origin_y, 0.0, -o.cell};
     for (int i = 0; i < 6; i++)
         out->gt[i] = gt[i];
