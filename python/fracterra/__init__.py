@@ -12,8 +12,8 @@ from ._core import Grid, DimResult
 from .surface import dim_surface, dim_map, dim_points, read_points, SURFACE_METHODS
 from .line import (read_chains, dim_line, enhance, smooth, weed, simplify, remove_loops, boundary, edit_file,
                    LINE_METHODS)
-from .terrain import (synth, reconstruct, ReconInfo, clarke_fit, clarke_simulate, ClarkeModel, hillshade,
-                      hillshade_file, fill, SYNTH_METHODS, RECON_METHODS)
+from .terrain import (synth, Synthesizer, reconstruct, ReconInfo, clarke_fit, clarke_simulate, ClarkeModel,
+                      hillshade, hillshade_file, fill, SYNTH_METHODS, RECON_METHODS)
 from .urban import dim_area
 from .profile import dim_profile, PROFILE_METHODS
 from .contour import mountain, MOUNTAIN_METHODS
@@ -24,6 +24,6 @@ __version__ = _clib.ft_version().decode()
 __all__ = ["FracterraError", "Grid", "DimResult", "library_path", "__version__",
            "dim_surface", "dim_map", "dim_points", "read_points", "dim_line", "read_chains", "dim_area", "dim_profile",
            "enhance", "smooth", "weed", "simplify", "remove_loops", "boundary", "edit_file",
-           "synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel",
+           "synth", "Synthesizer", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel",
            "hillshade", "hillshade_file", "fill", "mountain", "read_grid", "write_grid", "from_gdal", "to_gdal",
            "SURFACE_METHODS", "LINE_METHODS", "SYNTH_METHODS", "RECON_METHODS", "MOUNTAIN_METHODS", "PROFILE_METHODS"]

@@ -149,6 +149,9 @@ _PROTOTYPES = [
     # terrain
     ("ft_synth_method_parse", _int, [_str, _P(_int)]),
     ("ft_terrain_synth", _int, [_sz, _sz, _P(S.ft_synth_opts), _P(_P(S.ft_grid))]),
+    ("ft_synth_workspace_create", _int, [_sz, _sz, _P(S.ft_synth_opts), _P(_vp)]),
+    ("ft_synth_workspace_free", None, [_vp]),
+    ("ft_terrain_synth_into", _int, [_P(S.ft_synth_opts), _vp, _P(S.ft_grid)]),
     ("ft_recon_method_parse", _int, [_str, _P(_int)]),
     ("ft_reconstruct_points", _int, [_P(S.ft_points), _P(S.ft_grid), _P(S.ft_recon_opts), _P(_P(S.ft_grid)),
                                      _P(_P(S.ft_grid)), _P(S.ft_recon_info)]),

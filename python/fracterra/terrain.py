@@ -8,10 +8,10 @@ import numpy as np
 
 from . import _structs as S
 from ._lib import lib, check, parse_enum
-from ._core import as_grid, _CGrid, _CPoints, grid_from_c, Progress
+from ._core import Grid, as_grid, _CGrid, _CPoints, grid_from_c, Progress
 from ._common import path_bytes
 
-__all__ = ["synth", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel", "hillshade",
+__all__ = ["synth", "Synthesizer", "reconstruct", "ReconInfo", "clarke_fit", "clarke_simulate", "ClarkeModel", "hillshade",
            "hillshade_file", "fill", "SYNTH_METHODS", "RECON_METHODS"]
 
 SYNTH_METHODS = ("fft", "sra", "midpoint", "exact", "sra-raw", "midpoint-raw")
@@ -31,16 +31,21 @@ def _wkt_of(crs):
         c_free(out)
 
 
-def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), periodic=False, seed=1,
-          crs=None, progress=None, progress_arg=None):
-    """A fractional Brownian surface of dimension dim in (2, 3) on nx x ny cells, as `fracterra synth`:
-    a Grid (north-up geotransform from origin = upper-left corner and cell; crs as the CLI's --crs)."""
+def _synth_opts(method, dim, sigma, cell, origin, periodic, seed):
     o = S.ft_synth_opts.default()
     o.method = parse_enum(lib.ft_synth_method_parse, method, "method")
     o.dim, o.sigma, o.cell = float(dim), float(sigma), float(cell)
     o.origin_x, o.origin_y = (float(v) for v in origin)
     o.periodic = 1 if periodic else 0
     o.seed = int(seed)
+    return o
+
+
+def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), periodic=False, seed=1,
+          crs=None, progress=None, progress_arg=None):
+    """A fractional Brownian surface of dimension dim in (2, 3) on nx x ny cells, as `fracterra synth`:
+    a Grid (north-up geotransform from origin = upper-left corner and cell; crs as the CLI's --crs)."""
+    o = _synth_opts(method, dim, sigma, cell, origin, periodic, seed)
     wkt = _wkt_of(crs)
     pr = Progress(progress, progress_arg)
     pr.install(o)
@@ -49,6 +54,53 @@ def synth(nx, ny, dim, *, method="fft", sigma=1.0, cell=1.0, origin=(0.0, 0.0), 
     g = grid_from_c(out)
     g.wkt = wkt
     return g
+
+
+class Synthesizer:
+    """Many surfaces of one size, method and periodic flag into reused memory (ft_synth_workspace,
+    ft_terrain_synth_into): the working memory (for fft the padded spectrum, 1.6x the grid) is allocated
+    and touched once here, so a loop of realizations faults in no fresh memory. Calling it gives the
+    Grid `synth` would give for the same arguments, bit for bit; with out= (a C-contiguous float32
+    (ny, nx) array) the cells are written there and the Grid wraps out. Use as a context manager or
+    call close() to free the workspace early."""
+
+    def __init__(self, nx, ny, *, method="fft", periodic=False):
+        self.nx, self.ny, self.method, self.periodic = int(nx), int(ny), method, bool(periodic)
+        o = _synth_opts(method, 2.5, 1.0, 1.0, (0.0, 0.0), periodic, 1)
+        ws = ctypes.c_void_p()
+        check(lib.ft_synth_workspace_create(self.nx, self.ny, ctypes.byref(o), ctypes.byref(ws)))
+        self._ws = ws
+
+    def __call__(self, dim, *, sigma=1.0, cell=1.0, origin=(0.0, 0.0), seed=1, crs=None, out=None):
+        if self._ws is None:
+            raise ValueError("this Synthesizer is closed")
+        shape = (self.ny, self.nx)
+        if out is None:
+            out = np.empty(shape, dtype=np.float32)
+        elif not (isinstance(out, np.ndarray) and out.dtype == np.float32 and out.shape == shape
+                  and out.flags.c_contiguous and out.flags.writeable):
+            raise ValueError("out must be a writeable C-contiguous float32 array of shape %r" % (shape,))
+        o = _synth_opts(self.method, dim, sigma, cell, origin, self.periodic, seed)
+        wkt = _wkt_of(crs)
+        g = S.ft_grid()
+        g.ny, g.nx = shape
+        g.z = out.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+        check(lib.ft_terrain_synth_into(ctypes.byref(o), self._ws, ctypes.byref(g)))
+        return Grid(out, geotransform=tuple(g.gt), wkt=wkt)
+
+    def close(self):
+        if getattr(self, "_ws", None) is not None:
+            lib.ft_synth_workspace_free(self._ws)
+            self._ws = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        self.close()
 
 
 class ReconInfo:

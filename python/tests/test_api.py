@@ -267,3 +267,27 @@ def test_version_is_cmakes_project_version():
     root = os.path.join(os.path.dirname(__file__), os.pardir, os.pardir)
     text = open(os.path.join(root, "CMakeLists.txt")).read()
     assert ft.__version__ == re.search(r"project\(fracterra VERSION ([0-9.]+)", text).group(1)
+
+
+def test_synthesizer_reuses_memory_and_gives_synth_cells():
+    """Synthesizer (ft_terrain_synth_into): the cells and geotransform of synth, into out= when given."""
+    for method, periodic in (("fft", False), ("fft", True), ("sra", False)):
+        with ft.Synthesizer(131, 97, method=method, periodic=periodic) as s:
+            out = np.full((97, 131), np.nan, dtype=np.float32)
+            for seed in (3, 4):
+                ref = ft.synth(131, 97, 2.45, method=method, periodic=periodic, seed=seed, cell=10.0,
+                               origin=(500.0, 900.0), sigma=3.0)
+                g = s(2.45, seed=seed, cell=10.0, origin=(500.0, 900.0), sigma=3.0, out=out)
+                assert g.z is out
+                assert np.array_equal(out, ref.z)
+                assert g.geotransform == ref.geotransform
+                assert np.array_equal(s(2.45, seed=seed, cell=10.0, origin=(500.0, 900.0), sigma=3.0).z, ref.z)
+            with pytest.raises(ValueError, match="C-contiguous float32"):
+                s(2.45, out=np.zeros((97, 130), dtype=np.float32))
+            with pytest.raises(ft.FracterraError, match="dimension"):
+                s(3.5)
+    s.close()
+    with pytest.raises(ValueError, match="closed"):
+        s(2.3)
+    with pytest.raises(ft.FracterraError, match="size"):
+        ft.Synthesizer(0, 10)
