@@ -45,12 +45,14 @@ typedef struct {
     ft_chain *dense; /* owned; NULL if in is the caller's chain */
     unsigned char *split;
     ft_chain *out;
+    double *raw; /* x, y of every input vertex's raw position (its input position if it stays); in fused.raw */
 } pass_chain;
 
 typedef struct {
     pass_chain *pc;
     ft_segment_blocks g; /* blocks of the input segments */
     uint32_t *ofirst;    /* per block: the output index of its first vertex */
+    double *raw;         /* every chain's raw positions, computed once for the boxes and the walk */
     ft_dutton_pass_params pp;
 } fused;
 
@@ -72,7 +74,20 @@ static inline void box_add(double box[4], double x, double y)
     box[3] = dmax(box[3], y);
 }
 
-/* The widened box of block b's input vertices and the raw positions of those that move. */
+/* The raw positions of block b's vertices but its last (the next block's first; an open chain's last block
+ * writes the chain's last vertex too): a vertex that stays keeps its input position. */
+static void block_raw(const fused *F, size_t b)
+{
+    const ft_segment_blocks *g = &F->g;
+    const pass_chain *p = &F->pc[g->chain[b]];
+    size_t v0 = g->first[b], v1 = v0 + g->count[b];
+    if (!p->in->closed && v1 == p->in->n - 1)
+        v1++;
+    for (size_t v = v0; v < v1; v++)
+        (void)ft_dutton_raw_vertex(p->in, p->split, &F->pp, v, &p->raw[2 * v], &p->raw[2 * v + 1]);
+}
+
+/* The widened box of block b's input vertices and their raw positions (block_raw, done for every block). */
 static void block_box(const fused *F, size_t b, double box[4])
 {
     const ft_segment_blocks *g = &F->g;
@@ -82,10 +97,8 @@ static void block_box(const fused *F, size_t b, double box[4])
     box[2] = box[3] = -INFINITY;
     for (size_t v = v0; v <= v1; v++) {
         size_t i = v < n ? v : v - n;
-        double x, y;
         box_add(box, p->in->x[i], p->in->y[i]);
-        if (ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &x, &y))
-            box_add(box, x, y);
+        box_add(box, p->raw[2 * i], p->raw[2 * i + 1]);
     }
     ft_segment_box_widen(box);
 }
@@ -188,12 +201,9 @@ static void walk_blocks(const fused *F, const unsigned char *local, unsigned cha
                 k += 1 + p->split[v];
             if (v == g->first[b] && (b > g->chain_block[c] || p->in->closed))
                 continue; /* owned by the block before */
-            double rx, ry;
-            if (!ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &rx, &ry))
-                continue;
-            double bx = ox[ki], by = oy[ki], dx = rx - bx, dy = ry - by;
+            double bx = ox[ki], by = oy[ki], dx = p->raw[2 * i] - bx, dy = p->raw[2 * i + 1] - by;
             if (dx == 0.0 && dy == 0.0)
-                continue;
+                continue; /* stays (block_raw), or moves by nothing */
             size_t ka = ki > 0 ? ki - 1 : nout - 1, kc = ki + 1 < nout ? ki + 1 : 0;
             double a[2] = {ox[ka], oy[ka]}, cc[2] = {ox[kc], oy[kc]}, b0[2] = {bx, by}, t = 0.0;
             for (int q = 0; q < 3; q++) {
@@ -305,12 +315,21 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
         local = ft_malloc(nb ? nb : 1);
         part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
-        if (F.ofirst == NULL || local == NULL || part == NULL)
+        size_t nv = 0;
+        for (size_t c = 0; c < n; c++)
+            nv += F.pc[c].in->n;
+        F.raw = ft_malloc(2 * (nv ? nv : 1) * sizeof *F.raw);
+        for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
+            F.pc[c].raw = F.raw + 2 * off;
+        if (F.ofirst == NULL || local == NULL || part == NULL || F.raw == NULL)
             rc = FT_E_NOMEM;
     }
     if (rc == FT_OK) {
         first_outputs(&F);
         long long nbl = (long long)nb;
+#pragma omp parallel for schedule(static)
+        for (long long b = 0; b < nbl; b++)
+            block_raw(&F, (size_t)b);
 #pragma omp parallel for schedule(static)
         for (long long b = 0; b < nbl; b++) {
             block_box(&F, (size_t)b, F.g.box + 4 * b);
@@ -345,6 +364,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     free(local);
     free(part);
     free(F.ofirst);
+    free(F.raw);
     ft_segment_blocks_free(&F.g);
     free_chains(F.pc, n, rc == FT_OK);
     return rc;
