@@ -45,6 +45,7 @@ typedef struct {
     ft_chain *dense; /* owned; NULL if in is the caller's chain */
     unsigned char *split;
     ft_chain *out;
+    int all_split; /* every segment split: output segment s comes from input segment s / 2 */
     double *raw; /* x, y of every input vertex's raw position (its input position if it stays); in fused.raw */
 } pass_chain;
 
@@ -87,9 +88,11 @@ static void block_raw(const fused *F, size_t b)
         (void)ft_dutton_raw_vertex(p->in, p->split, &F->pp, v, &p->raw[2 * v], &p->raw[2 * v + 1]);
 }
 
-/* The widened box of block b's input vertices and their raw positions (block_raw, done for every block). */
-static void block_box(const fused *F, size_t b, double box[4])
+/* The widened box of block b's input vertices and their raw positions (block_raw, done for every block);
+ * returns the largest move of its vertices along an axis. */
+static double block_box(const fused *F, size_t b, double box[4])
 {
+    double move = 0.0;
     const ft_segment_blocks *g = &F->g;
     const pass_chain *p = &F->pc[g->chain[b]];
     size_t n = p->in->n, v0 = g->first[b], v1 = v0 + g->count[b];
@@ -99,8 +102,10 @@ static void block_box(const fused *F, size_t b, double box[4])
         size_t i = v < n ? v : v - n;
         box_add(box, p->in->x[i], p->in->y[i]);
         box_add(box, p->raw[2 * i], p->raw[2 * i + 1]);
+        move = dmax(move, dmax(fabs(p->raw[2 * i] - p->in->x[i]), fabs(p->raw[2 * i + 1] - p->in->y[i])));
     }
     ft_segment_box_widen(box);
+    return move;
 }
 
 /* Block b's output with no move: its vertices at their input positions, each split segment's midpoint after
@@ -245,6 +250,7 @@ static int prepare_chain(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_
     ft_dutton_mark_splits(q->in, nseg, pp->w, q->split);
     for (size_t i = 0; i < nseg; i++)
         extra += q->split[i];
+    q->all_split = extra == nseg;
     if (n > SIZE_MAX / 2 || n + extra >= UINT32_MAX)
         return ft_error(FT_E_NOMEM, "enhance: %zu vertices overflow", n + extra);
     q->out = ft_chain_create(n + extra, q->in->closed);
@@ -283,14 +289,94 @@ static void first_outputs(fused *F)
     }
 }
 
+/* The index of the pass before, kept for the next pass's near lists (ft_segment_blocks_join_carried). */
+struct ft_dutton_carry {
+    ft_segment_blocks g;  /* its blocks and boxes (near lists freed) */
+    ft_segment_wide wide; /* its wide lists; start NULL when there is nothing to carry */
+    size_t *nout;         /* per chain: the vertices of its output */
+    int halved;           /* every segment was split: the next pass's blocks are these halved */
+};
+
+ft_dutton_carry *ft_dutton_carry_create(void)
+{
+    return ft_calloc(1, sizeof(ft_dutton_carry));
+}
+
+static void carry_clear(ft_dutton_carry *k)
+{
+    ft_segment_blocks_free(&k->g);
+    ft_segment_wide_free(&k->wide);
+    free(k->nout);
+    k->nout = NULL;
+    k->halved = 0;
+}
+
+void ft_dutton_carry_free(ft_dutton_carry *k)
+{
+    if (k != NULL)
+        carry_clear(k);
+    free(k);
+}
+
+/* Whether this pass's blocks are the carried pass's halved: the same chains, each the carried output itself
+ * (no vertex dropped since, none added by densification), every segment of the pass before split. */
+static int carry_fits(const ft_dutton_carry *k, const fused *F, size_t n)
+{
+    if (k == NULL || !k->halved || k->wide.start == NULL || k->g.nchain != n)
+        return 0;
+    for (size_t c = 0; c < n; c++)
+        if (F->pc[c].dense != NULL || F->pc[c].in->n != k->nout[c])
+            return 0;
+    return 1;
+}
+
+/* The slack of the wide lists: the passes after this one move by about CARRY_RATIO of the pass before's
+ * largest move (segments shrink by f / 2 each pass: 0.59 at D 1.3); two blocks come closer by up to twice
+ * the excess of each pass left. Only speed depends on it: a pass whose blocks left their parents' boxes by
+ * more joins on the grid again. */
+#define CARRY_RATIO 0.6
+static double carry_slack(double move, int passes_left)
+{
+    double s = 0.0, r = 1.0;
+    for (int k = 0; k < passes_left; k++)
+        s += (r *= CARRY_RATIO);
+    return 2.0 * move * s;
+}
+
+/* Keeps this pass's index (boxes, chains, wide lists) in k for the next one; F->g is left empty. */
+static int carry_keep(ft_dutton_carry *k, fused *F, size_t n, ft_segment_wide *wide)
+{
+    carry_clear(k);
+    free(F->g.near);
+    free(F->g.near_start);
+    F->g.near = F->g.near_start = NULL;
+    k->g = F->g;
+    F->g = (ft_segment_blocks){0};
+    k->wide = *wide;
+    *wide = (ft_segment_wide){0};
+    k->nout = ft_malloc((n ? n : 1) * sizeof *k->nout);
+    if (k->nout == NULL) {
+        carry_clear(k);
+        return FT_E_NOMEM;
+    }
+    k->halved = 1;
+    for (size_t c = 0; c < n; c++) {
+        k->nout[c] = F->pc[c].out->n;
+        k->halved &= F->pc[c].all_split;
+    }
+    return FT_OK;
+}
+
 int ft_dutton_plan_fusable(const ft_dutton_plan *p)
 {
     return p != NULL && !p->keep_vertices; /* keep_vertices moves the midpoints */
 }
 
 int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
-                           ft_line_guard_stats *stats)
+                           ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
 {
+    ft_segment_wide wide = {0};
+    int keep = carry != NULL && passes_left > 0;
     for (size_t c = 0; c < n; c++)
         out[c] = NULL;
     fused F = {0};
@@ -327,15 +413,22 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     if (rc == FT_OK) {
         first_outputs(&F);
         long long nbl = (long long)nb;
+        double move = 0.0;
 #pragma omp parallel for schedule(static)
         for (long long b = 0; b < nbl; b++)
             block_raw(&F, (size_t)b);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(max : move)
         for (long long b = 0; b < nbl; b++) {
-            block_box(&F, (size_t)b, F.g.box + 4 * b);
+            move = dmax(move, block_box(&F, (size_t)b, F.g.box + 4 * b));
             emit_base(&F, (size_t)b);
         }
-        rc = ft_segment_blocks_join(&F.g, work);
+        rc = 1;
+        if (carry_fits(carry, &F, n))
+            rc = ft_segment_blocks_join_carried(&F.g, work, &carry->g, &carry->wide, keep, &wide);
+        if (rc == 1 && keep)
+            rc = ft_segment_blocks_join_wide(&F.g, work, carry_slack(move, passes_left), &wide);
+        else if (rc == 1)
+            rc = ft_segment_blocks_join(&F.g, work);
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
@@ -360,6 +453,14 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         for (size_t c = 0; c < n; c++)
             out[c] = F.pc[c].out;
     }
+    if (carry != NULL && rc == FT_OK && keep)
+        rc = carry_keep(carry, &F, n, &wide);
+    else if (carry != NULL)
+        carry_clear(carry);
+    ft_segment_wide_free(&wide);
+    if (rc != FT_OK)
+        for (size_t c = 0; c < n; c++)
+            out[c] = NULL;
     free(work);
     free(local);
     free(part);
