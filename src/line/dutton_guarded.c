@@ -429,6 +429,8 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
             rc = ft_segment_blocks_join_wide(&F.g, work, carry_slack(move, passes_left), &wide);
         else if (rc == 1)
             rc = ft_segment_blocks_join(&F.g, work);
+        if (carry != NULL)
+            carry_clear(carry); /* used: its memory is not held through the walk */
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
