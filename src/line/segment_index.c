@@ -404,17 +404,20 @@ static inline size_t parent_of(const ft_segment_blocks *g, const ft_segment_bloc
     return prev->chain_block[c] + (b - g->chain_block[c]) / 2;
 }
 
-/* How far any block's box sticks out of its parent's box (0 if inside), the largest over the blocks. */
-static double largest_excess(const ft_segment_blocks *g, const ft_segment_blocks *prev)
+/* How far any block's box sticks out of its parent's box (0 if inside), the largest over the blocks, and the
+ * largest coordinate of any box (*m). */
+static double largest_excess(const ft_segment_blocks *g, const ft_segment_blocks *prev, double *m)
 {
-    double e = 0.0;
+    double e = 0.0, big = 0.0;
     long long nb = (long long)g->nblock;
-#pragma omp parallel for schedule(static) reduction(max : e)
+#pragma omp parallel for schedule(static) reduction(max : e, big)
     for (long long b = 0; b < nb; b++) {
         const double *q = g->box + 4 * b, *p = prev->box + 4 * parent_of(g, prev, (size_t)b);
         double x = dmax(dmax(p[0] - q[0], p[1] - q[1]), dmax(q[2] - p[2], q[3] - p[3]));
         e = dmax(e, x);
+        big = dmax(big, dmax(dmax(fabs(q[0]), fabs(q[1])), dmax(fabs(q[2]), fabs(q[3]))));
     }
+    *m = big;
     return e;
 }
 
@@ -461,11 +464,8 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
         if (g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) &&
             g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) - 1)
             return 1;
-    double m = 0.0;
-    for (size_t b = 0; b < nb; b++)
-        for (int i = 0; i < 4; i++)
-            m = dmax(m, fabs(g->box[4 * b + i]));
-    double slack = pw->sigma - 2.0 * largest_excess(g, prev) * (1.0 + 1e-9) - 4.0 * WIDEN * m;
+    double m, e = largest_excess(g, prev, &m);
+    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * WIDEN * m; /* rounding of e and of the widening */
     if (!(slack >= 0.0))
         return 1; /* a block left its parent's box by more than the parents' lists allow for */
     double sigma = want_wide ? slack : -1.0;
