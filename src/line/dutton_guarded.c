@@ -10,7 +10,17 @@
  * output segment of input segment s (from V_s to M_s, from M_s to V_s+1) stays in the bounding box of V_s,
  * V_s+1 and their raw positions. So the index is built on the input's segments (half as many blocks as the
  * output's), from positions computed on the fly; the output chain is written once with the base geometry
- * and the walk moves its vertices in place: no base chain, no raw chain.
+ * and the walk moves its vertices in place: no base chain, no raw chain. The raw positions are computed once
+ * per pass (block_raw) and read by the boxes and the walk.
+ *
+ * From the second pass on, the near lists come from the pass before's index (ft_dutton_carry,
+ * ft_segment_blocks_join_carried) instead of a grid: where every segment was split and nothing was dropped,
+ * local block j of a chain is made of the output of local block j / 2 before, so its box lies in that
+ * parent's box widened by the largest excess E of the pass (measured, not assumed); a pass's lists are kept
+ * also for the reach widened by a slack sigma, and if 2 E fits in sigma every block near a child is a child
+ * of its parent's wide list: filtered by the reach, the very lists of the grid join, so the same bits. The
+ * slack is guessed from the pass's largest move (carry_slack); a pass whose blocks left their parents' boxes
+ * by more joins on the grid.
  *
  * Order and threads, as in move_guard.c: blocks of FT_SEGMENT_BLOCK / 2 input segments (when every segment
  * is split, the very blocks of FT_SEGMENT_BLOCK output segments that move_guard.c cuts), chunks of

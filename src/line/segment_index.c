@@ -11,7 +11,9 @@
  * pair found once, in the lowest cell the two share. A vertex whose segments lie in b and the next block
  * sweeps only points of that reach, so every segment it may touch is in b's list: where a chain runs clear of
  * others, three or four blocks. Indexing blocks instead of segments makes the grid FT_SEGMENT_BLOCK times
- * smaller, and the guard then scans short runs of consecutive segments, in memory order.
+ * smaller, and the guard then scans short runs of consecutive segments, in memory order. The fused
+ * enhancement (dutton_guarded.c) makes the lists of its later passes from the pass before's instead
+ * (ft_segment_blocks_join_carried: children of the parent's wide list, filtered; the same lists, no grid).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
