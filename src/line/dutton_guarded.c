@@ -56,7 +56,7 @@ typedef struct {
     unsigned char *split;
     ft_chain *out;
     int all_split; /* every segment split: output segment s comes from input segment s / 2 */
-    double *raw; /* x, y of every input vertex's raw position (its input position if it stays); in fused.raw */
+    double *raw;   /* x, y of each input vertex's raw position (its input position if it stays); in fused.raw */
 } pass_chain;
 
 typedef struct {

@@ -474,7 +474,8 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
     /* One scan per block, into room for every child of its parent's wide list (its place: from the parent's
      * offset, the second child after the first's room), then packed. */
     size_t room = 4 * (size_t)pw->start[prev->nblock] + 2 * prev->nblock;
-    uint32_t *tn = ft_malloc((room ? room : 1) * sizeof *tn), *tw = want_wide ? ft_malloc((room ? room : 1) * sizeof *tw) : NULL;
+    uint32_t *tn = ft_malloc((room ? room : 1) * sizeof *tn);
+    uint32_t *tw = want_wide ? ft_malloc((room ? room : 1) * sizeof *tw) : NULL;
     g->near_start = ft_calloc(nb + 1, sizeof *g->near_start);
     if (want_wide) {
         wide->start = ft_calloc(nb + 1, sizeof *wide->start);
