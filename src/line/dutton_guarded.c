@@ -10,7 +10,17 @@
  * output segment of input segment s (from V_s to M_s, from M_s to V_s+1) stays in the bounding box of V_s,
  * V_s+1 and their raw positions. So the index is built on the input's segments (half as many blocks as the
  * output's), from positions computed on the fly; the output chain is written once with the base geometry
- * and the walk moves its vertices in place: no base chain, no raw chain.
+ * and the walk moves its vertices in place: no base chain, no raw chain. The raw positions are computed once
+ * per pass (block_raw) and read by the boxes and the walk.
+ *
+ * From the second pass on, the near lists come from the pass before's index (ft_dutton_carry,
+ * ft_segment_blocks_join_carried) instead of a grid: where every segment was split and nothing was dropped,
+ * local block j of a chain is made of the output of local block j / 2 before, so its box lies in that
+ * parent's box widened by the largest excess E of the pass (measured, not assumed); a pass's lists are kept
+ * also for the reach widened by a slack sigma, and if 2 E fits in sigma every block near a child is a child
+ * of its parent's wide list: filtered by the reach, the very lists of the grid join, so the same bits. The
+ * slack is guessed from the pass's largest move (carry_slack); a pass whose blocks left their parents' boxes
+ * by more joins on the grid.
  *
  * Order and threads, as in move_guard.c: blocks of FT_SEGMENT_BLOCK / 2 input segments (when every segment
  * is split, the very blocks of FT_SEGMENT_BLOCK output segments that move_guard.c cuts), chunks of
@@ -45,12 +55,15 @@ typedef struct {
     ft_chain *dense; /* owned; NULL if in is the caller's chain */
     unsigned char *split;
     ft_chain *out;
+    int all_split; /* every segment split: output segment s comes from input segment s / 2 */
+    double *raw;   /* x, y of each input vertex's raw position (its input position if it stays); in fused.raw */
 } pass_chain;
 
 typedef struct {
     pass_chain *pc;
     ft_segment_blocks g; /* blocks of the input segments */
     uint32_t *ofirst;    /* per block: the output index of its first vertex */
+    double *raw;         /* every chain's raw positions, computed once for the boxes and the walk */
     ft_dutton_pass_params pp;
 } fused;
 
@@ -72,9 +85,24 @@ static inline void box_add(double box[4], double x, double y)
     box[3] = dmax(box[3], y);
 }
 
-/* The widened box of block b's input vertices and the raw positions of those that move. */
-static void block_box(const fused *F, size_t b, double box[4])
+/* The raw positions of block b's vertices but its last (the next block's first; an open chain's last block
+ * writes the chain's last vertex too): a vertex that stays keeps its input position. */
+static void block_raw(const fused *F, size_t b)
 {
+    const ft_segment_blocks *g = &F->g;
+    const pass_chain *p = &F->pc[g->chain[b]];
+    size_t v0 = g->first[b], v1 = v0 + g->count[b];
+    if (!p->in->closed && v1 == p->in->n - 1)
+        v1++;
+    for (size_t v = v0; v < v1; v++)
+        (void)ft_dutton_raw_vertex(p->in, p->split, &F->pp, v, &p->raw[2 * v], &p->raw[2 * v + 1]);
+}
+
+/* The widened box of block b's input vertices and their raw positions (block_raw, done for every block);
+ * returns the largest move of its vertices along an axis. */
+static double block_box(const fused *F, size_t b, double box[4])
+{
+    double move = 0.0;
     const ft_segment_blocks *g = &F->g;
     const pass_chain *p = &F->pc[g->chain[b]];
     size_t n = p->in->n, v0 = g->first[b], v1 = v0 + g->count[b];
@@ -82,12 +110,12 @@ static void block_box(const fused *F, size_t b, double box[4])
     box[2] = box[3] = -INFINITY;
     for (size_t v = v0; v <= v1; v++) {
         size_t i = v < n ? v : v - n;
-        double x, y;
         box_add(box, p->in->x[i], p->in->y[i]);
-        if (ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &x, &y))
-            box_add(box, x, y);
+        box_add(box, p->raw[2 * i], p->raw[2 * i + 1]);
+        move = dmax(move, dmax(fabs(p->raw[2 * i] - p->in->x[i]), fabs(p->raw[2 * i + 1] - p->in->y[i])));
     }
     ft_segment_box_widen(box);
+    return move;
 }
 
 /* Block b's output with no move: its vertices at their input positions, each split segment's midpoint after
@@ -188,12 +216,9 @@ static void walk_blocks(const fused *F, const unsigned char *local, unsigned cha
                 k += 1 + p->split[v];
             if (v == g->first[b] && (b > g->chain_block[c] || p->in->closed))
                 continue; /* owned by the block before */
-            double rx, ry;
-            if (!ft_dutton_raw_vertex(p->in, p->split, &F->pp, i, &rx, &ry))
-                continue;
-            double bx = ox[ki], by = oy[ki], dx = rx - bx, dy = ry - by;
+            double bx = ox[ki], by = oy[ki], dx = p->raw[2 * i] - bx, dy = p->raw[2 * i + 1] - by;
             if (dx == 0.0 && dy == 0.0)
-                continue;
+                continue; /* stays (block_raw), or moves by nothing */
             size_t ka = ki > 0 ? ki - 1 : nout - 1, kc = ki + 1 < nout ? ki + 1 : 0;
             double a[2] = {ox[ka], oy[ka]}, cc[2] = {ox[kc], oy[kc]}, b0[2] = {bx, by}, t = 0.0;
             for (int q = 0; q < 3; q++) {
@@ -235,6 +260,7 @@ static int prepare_chain(const ft_chain *in, const ft_dutton_plan *p, ft_dutton_
     ft_dutton_mark_splits(q->in, nseg, pp->w, q->split);
     for (size_t i = 0; i < nseg; i++)
         extra += q->split[i];
+    q->all_split = extra == nseg;
     if (n > SIZE_MAX / 2 || n + extra >= UINT32_MAX)
         return ft_error(FT_E_NOMEM, "enhance: %zu vertices overflow", n + extra);
     q->out = ft_chain_create(n + extra, q->in->closed);
@@ -273,14 +299,94 @@ static void first_outputs(fused *F)
     }
 }
 
+/* The index of the pass before, kept for the next pass's near lists (ft_segment_blocks_join_carried). */
+struct ft_dutton_carry {
+    ft_segment_blocks g;  /* its blocks and boxes (near lists freed) */
+    ft_segment_wide wide; /* its wide lists; start NULL when there is nothing to carry */
+    size_t *nout;         /* per chain: the vertices of its output */
+    int halved;           /* every segment was split: the next pass's blocks are these halved */
+};
+
+ft_dutton_carry *ft_dutton_carry_create(void)
+{
+    return ft_calloc(1, sizeof(ft_dutton_carry));
+}
+
+static void carry_clear(ft_dutton_carry *k)
+{
+    ft_segment_blocks_free(&k->g);
+    ft_segment_wide_free(&k->wide);
+    free(k->nout);
+    k->nout = NULL;
+    k->halved = 0;
+}
+
+void ft_dutton_carry_free(ft_dutton_carry *k)
+{
+    if (k != NULL)
+        carry_clear(k);
+    free(k);
+}
+
+/* Whether this pass's blocks are the carried pass's halved: the same chains, each the carried output itself
+ * (no vertex dropped since, none added by densification), every segment of the pass before split. */
+static int carry_fits(const ft_dutton_carry *k, const fused *F, size_t n)
+{
+    if (k == NULL || !k->halved || k->wide.start == NULL || k->g.nchain != n)
+        return 0;
+    for (size_t c = 0; c < n; c++)
+        if (F->pc[c].dense != NULL || F->pc[c].in->n != k->nout[c])
+            return 0;
+    return 1;
+}
+
+/* The slack of the wide lists: the passes after this one move by about CARRY_RATIO of the pass before's
+ * largest move (segments shrink by f / 2 each pass: 0.59 at D 1.3); two blocks come closer by up to twice
+ * the excess of each pass left. Only speed depends on it: a pass whose blocks left their parents' boxes by
+ * more joins on the grid again. */
+#define CARRY_RATIO 0.6
+static double carry_slack(double move, int passes_left)
+{
+    double s = 0.0, r = 1.0;
+    for (int k = 0; k < passes_left; k++)
+        s += (r *= CARRY_RATIO);
+    return 2.0 * move * s;
+}
+
+/* Keeps this pass's index (boxes, chains, wide lists) in k for the next one; F->g is left empty. */
+static int carry_keep(ft_dutton_carry *k, fused *F, size_t n, ft_segment_wide *wide)
+{
+    carry_clear(k);
+    free(F->g.near);
+    free(F->g.near_start);
+    F->g.near = F->g.near_start = NULL;
+    k->g = F->g;
+    F->g = (ft_segment_blocks){0};
+    k->wide = *wide;
+    *wide = (ft_segment_wide){0};
+    k->nout = ft_malloc((n ? n : 1) * sizeof *k->nout);
+    if (k->nout == NULL) {
+        carry_clear(k);
+        return FT_E_NOMEM;
+    }
+    k->halved = 1;
+    for (size_t c = 0; c < n; c++) {
+        k->nout[c] = F->pc[c].out->n;
+        k->halved &= F->pc[c].all_split;
+    }
+    return FT_OK;
+}
+
 int ft_dutton_plan_fusable(const ft_dutton_plan *p)
 {
     return p != NULL && !p->keep_vertices; /* keep_vertices moves the midpoints */
 }
 
 int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
-                           ft_line_guard_stats *stats)
+                           ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
 {
+    ft_segment_wide wide = {0};
+    int keep = carry != NULL && passes_left > 0;
     for (size_t c = 0; c < n; c++)
         out[c] = NULL;
     fused F = {0};
@@ -305,18 +411,36 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
         local = ft_malloc(nb ? nb : 1);
         part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
-        if (F.ofirst == NULL || local == NULL || part == NULL)
+        size_t nv = 0;
+        for (size_t c = 0; c < n; c++)
+            nv += F.pc[c].in->n;
+        F.raw = ft_malloc(2 * (nv ? nv : 1) * sizeof *F.raw);
+        for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
+            F.pc[c].raw = F.raw + 2 * off;
+        if (F.ofirst == NULL || local == NULL || part == NULL || F.raw == NULL)
             rc = FT_E_NOMEM;
     }
     if (rc == FT_OK) {
         first_outputs(&F);
         long long nbl = (long long)nb;
+        double move = 0.0;
 #pragma omp parallel for schedule(static)
+        for (long long b = 0; b < nbl; b++)
+            block_raw(&F, (size_t)b);
+#pragma omp parallel for schedule(static) reduction(max : move)
         for (long long b = 0; b < nbl; b++) {
-            block_box(&F, (size_t)b, F.g.box + 4 * b);
+            move = dmax(move, block_box(&F, (size_t)b, F.g.box + 4 * b));
             emit_base(&F, (size_t)b);
         }
-        rc = ft_segment_blocks_join(&F.g, work);
+        rc = 1;
+        if (carry_fits(carry, &F, n))
+            rc = ft_segment_blocks_join_carried(&F.g, work, &carry->g, &carry->wide, keep, &wide);
+        if (rc == 1 && keep)
+            rc = ft_segment_blocks_join_wide(&F.g, work, carry_slack(move, passes_left), &wide);
+        else if (rc == 1)
+            rc = ft_segment_blocks_join(&F.g, work);
+        if (carry != NULL)
+            carry_clear(carry); /* used: its memory is not held through the walk */
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
@@ -341,10 +465,19 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         for (size_t c = 0; c < n; c++)
             out[c] = F.pc[c].out;
     }
+    if (carry != NULL && rc == FT_OK && keep)
+        rc = carry_keep(carry, &F, n, &wide);
+    else if (carry != NULL)
+        carry_clear(carry);
+    ft_segment_wide_free(&wide);
+    if (rc != FT_OK)
+        for (size_t c = 0; c < n; c++)
+            out[c] = NULL;
     free(work);
     free(local);
     free(part);
     free(F.ofirst);
+    free(F.raw);
     ft_segment_blocks_free(&F.g);
     free_chains(F.pc, n, rc == FT_OK);
     return rc;

@@ -84,10 +84,18 @@ static inline int ft_dutton_raw_vertex(const ft_chain *in, const unsigned char *
  *  guard). */
 int ft_dutton_plan_fusable(const ft_dutton_plan *p);
 
+/** What one fused pass hands the next: its block index, so that the next pass's near lists come from it
+ *  with no grid join (dutton_guarded.c). */
+typedef struct ft_dutton_carry ft_dutton_carry;
+ft_dutton_carry *ft_dutton_carry_create(void);
+void ft_dutton_carry_free(ft_dutton_carry *k);
+
 /** One guarded pass of the enhancement over the chain set in[0..n) (guard fused into the pass,
  *  dutton_guarded.c): out[c] receives chain c's result (repeated vertices not yet removed); stats (may be
- *  NULL) is added to. On failure every out[c] is NULL. */
+ *  NULL) is added to. carry (may be NULL) holds the pass before's index, which this pass uses if in is that
+ *  pass's output unchanged, and receives this pass's when passes_left (the passes still to come) > 0. The
+ *  result does not depend on carry. On failure every out[c] is NULL. */
 int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
-                           ft_line_guard_stats *stats);
+                           ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left);
 
 #endif /* FRACTERRA_LINE_DUTTON_INTERNAL_H */

@@ -57,13 +57,13 @@ static void free_set(ft_chain **c, size_t n)
 
 /* One pass over the set: chains[c] replaced by the guarded (or raw) result. */
 static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int guard,
-                    ft_line_guard_stats *stats)
+                    ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
 {
     ft_chain **base = ft_calloc(n ? n : 1, sizeof *base), **raw = ft_calloc(n ? n : 1, sizeof *raw);
     int rc = base == NULL || raw == NULL ? FT_E_NOMEM : FT_OK;
     int fused = pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE && ft_dutton_plan_fusable(ctx);
     if (rc == FT_OK && fused)
-        rc = ft_dutton_pass_guarded((const ft_chain *const *)chains, n, ctx, base, stats);
+        rc = ft_dutton_pass_guarded((const ft_chain *const *)chains, n, ctx, base, stats, carry, passes_left);
     for (size_t c = 0; c < n && rc == FT_OK && !fused; c++)
         rc = pass(chains[c], ctx, guard ? &base[c] : NULL, &raw[c]);
     if (rc == FT_OK && guard && !fused)
@@ -96,8 +96,13 @@ int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const 
     for (size_t c = 0; c < n && rc == FT_OK; c++)
         if ((work[c] = ft_chain_copy(chains[c])) == NULL)
             rc = FT_E_NOMEM;
+    ft_dutton_carry *carry = NULL; /* the fused enhancement's index, from pass to pass */
+    if (rc == FT_OK && passes > 1 && pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE &&
+        ft_dutton_plan_fusable(ctx) && (carry = ft_dutton_carry_create()) == NULL)
+        rc = FT_E_NOMEM;
     for (int k = 0; k < passes && rc == FT_OK; k++)
-        rc = one_pass(work, n, pass, ctx, guard, stats);
+        rc = one_pass(work, n, pass, ctx, guard, stats, carry, passes - k - 1);
+    ft_dutton_carry_free(carry);
     if (rc == FT_OK)
         for (size_t c = 0; c < n; c++) {
             ft_chain *t = chains[c];

@@ -11,7 +11,9 @@
  * pair found once, in the lowest cell the two share. A vertex whose segments lie in b and the next block
  * sweeps only points of that reach, so every segment it may touch is in b's list: where a chain runs clear of
  * others, three or four blocks. Indexing blocks instead of segments makes the grid FT_SEGMENT_BLOCK times
- * smaller, and the guard then scans short runs of consecutive segments, in memory order.
+ * smaller, and the guard then scans short runs of consecutive segments, in memory order. The fused
+ * enhancement (dutton_guarded.c) makes the lists of its later passes from the pass before's instead
+ * (ft_segment_blocks_join_carried: children of the parent's wide list, filtered; the same lists, no grid).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -217,16 +219,45 @@ static void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, co
     reach[3] = dmax(p[3], q[3]);
 }
 
+static inline int box_meets(const double *q, const double *r)
+{
+    return !((q[2] < r[0]) | (q[0] > r[2]) | (q[3] < r[1]) | (q[1] > r[3])); /* near_blocks' test, no branch */
+}
+
+static void widen_by(double r[4], double s)
+{
+    r[0] -= s;
+    r[1] -= s;
+    r[2] += s;
+    r[3] += s;
+}
+
+/* Packs per-block counts (start[b + 1]) into offsets; fails past 2^32 - 2 entries. */
+static int pack_starts(uint32_t *start, size_t nb)
+{
+    size_t total = 0;
+    for (size_t b = 0; b < nb; b++) {
+        total += start[b + 1];
+        if (total >= UINT32_MAX)
+            return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 block pairs (%zu blocks)", nb);
+        start[b + 1] = (uint32_t)total;
+    }
+    return FT_OK;
+}
+
 /* The near lists of every block, each block independently (any thread count gives the same lists): into
- * NEAR_SLOTS slots per block, then packed; the few blocks with more are listed again in their packed place. */
-static int join(ft_segment_blocks *g, const ft_chain *const *base, const double *box)
+ * NEAR_SLOTS slots per block, then packed; the few blocks with more are listed again in their packed place.
+ * With wide, the query is the reach widened by sigma (wide's lists) and the near lists are those filtered by
+ * the reach itself: the very lists of the query with sigma = 0. */
+static int join(ft_segment_blocks *g, const ft_chain *const *base, const double *box, double sigma,
+                ft_segment_wide *wide)
 {
     size_t nb = g->nblock;
     block_grid G = {0};
     int rc = grid_build(&G, box, nb);
     uint32_t *slots = rc == FT_OK ? ft_malloc(NEAR_SLOTS * nb * sizeof *slots) : NULL;
-    g->near_start = slots != NULL ? ft_calloc(nb + 1, sizeof *g->near_start) : NULL;
-    if (g->near_start == NULL) {
+    uint32_t *start = slots != NULL ? ft_calloc(nb + 1, sizeof *start) : NULL;
+    if (start == NULL) {
         free(slots);
         grid_free(&G);
         return rc == FT_OK ? FT_E_NOMEM : rc;
@@ -237,29 +268,24 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
         double reach[4];
         size_t rr[4];
         reach_of(g, base, box, (size_t)b, reach);
+        widen_by(reach, sigma);
         cells_of(&G, reach, rr);
-        g->near_start[b + 1] = (uint32_t)near_blocks(&G, box, reach, rr, slots + NEAR_SLOTS * b, NEAR_SLOTS);
+        start[b + 1] = (uint32_t)near_blocks(&G, box, reach, rr, slots + NEAR_SLOTS * b, NEAR_SLOTS);
     }
-    size_t total = 0;
-    for (size_t b = 0; b < nb; b++) {
-        total += g->near_start[b + 1];
-        if (total >= UINT32_MAX) {
-            free(slots);
-            grid_free(&G);
-            return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 block pairs (%zu blocks)", nb);
-        }
-        g->near_start[b + 1] = (uint32_t)total;
-    }
-    g->near = ft_malloc((total ? total : 1) * sizeof *g->near);
-    if (g->near == NULL) {
+    uint32_t *list = NULL;
+    rc = pack_starts(start, nb);
+    if (rc == FT_OK && (list = ft_malloc((start[nb] ? start[nb] : 1) * sizeof *list)) == NULL)
+        rc = FT_E_NOMEM;
+    if (rc != FT_OK) {
+        free(start);
         free(slots);
         grid_free(&G);
-        return FT_E_NOMEM;
+        return rc;
     }
 #pragma omp parallel for schedule(static)
     for (long long b = 0; b < nbl; b++) {
-        size_t k = g->near_start[b + 1] - g->near_start[b];
-        uint32_t *out = g->near + g->near_start[b];
+        size_t k = start[b + 1] - start[b];
+        uint32_t *out = list + start[b];
         if (k <= NEAR_SLOTS) {
             for (size_t j = 0; j < k; j++)
                 out[j] = slots[NEAR_SLOTS * b + j];
@@ -267,12 +293,45 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
             double reach[4];
             size_t rr[4];
             reach_of(g, base, box, (size_t)b, reach);
+            widen_by(reach, sigma);
             cells_of(&G, reach, rr);
             near_blocks(&G, box, reach, rr, out, k);
         }
     }
     free(slots);
     grid_free(&G);
+    if (wide == NULL) {
+        g->near_start = start;
+        g->near = list;
+        return FT_OK;
+    }
+    wide->start = start;
+    wide->near = list;
+    wide->sigma = sigma;
+    g->near_start = ft_calloc(nb + 1, sizeof *g->near_start);
+    g->near = ft_malloc((start[nb] ? start[nb] : 1) * sizeof *g->near);
+    if (g->near_start == NULL || g->near == NULL)
+        return FT_E_NOMEM;
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nbl; b++) {
+        double reach[4];
+        uint32_t k = 0;
+        reach_of(g, base, box, (size_t)b, reach);
+        for (uint32_t e = start[b]; e < start[b + 1]; e++)
+            k += box_meets(box + 4 * (size_t)list[e], reach);
+        g->near_start[b + 1] = k;
+    }
+    if ((rc = pack_starts(g->near_start, nb)) != FT_OK)
+        return rc;
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nbl; b++) {
+        double reach[4];
+        uint32_t *out = g->near + g->near_start[b];
+        reach_of(g, base, box, (size_t)b, reach);
+        for (uint32_t e = start[b]; e < start[b + 1]; e++)
+            if (box_meets(box + 4 * (size_t)list[e], reach))
+                *out++ = list[e];
+    }
     return FT_OK;
 }
 
@@ -313,9 +372,152 @@ int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains
 
 int ft_segment_blocks_join(ft_segment_blocks *g, const ft_chain *const *chains)
 {
-    int rc = g->nblock > 0 ? join(g, chains, g->box) : FT_OK;
+    int rc = g->nblock > 0 ? join(g, chains, g->box, 0.0, NULL) : FT_OK;
     if (rc != FT_OK)
         ft_segment_blocks_free(g);
+    return rc;
+}
+
+int ft_segment_blocks_join_wide(ft_segment_blocks *g, const ft_chain *const *chains, double sigma,
+                                ft_segment_wide *wide)
+{
+    *wide = (ft_segment_wide){0};
+    int rc = g->nblock > 0 ? join(g, chains, g->box, sigma, wide) : FT_OK;
+    if (rc != FT_OK) {
+        ft_segment_blocks_free(g);
+        ft_segment_wide_free(wide);
+    }
+    return rc;
+}
+
+void ft_segment_wide_free(ft_segment_wide *w)
+{
+    free(w->start);
+    free(w->near);
+    *w = (ft_segment_wide){0};
+}
+
+/* ---- the near lists carried from the pass before --------------------------------------------------- */
+
+/* Block b's parent: local block j of its chain comes from local block j / 2 of the same chain before. */
+static inline size_t parent_of(const ft_segment_blocks *g, const ft_segment_blocks *prev, size_t b)
+{
+    uint32_t c = g->chain[b];
+    return prev->chain_block[c] + (b - g->chain_block[c]) / 2;
+}
+
+/* How far any block's box sticks out of its parent's box (0 if inside), the largest over the blocks, and the
+ * largest coordinate of any box (*m). */
+static double largest_excess(const ft_segment_blocks *g, const ft_segment_blocks *prev, double *m)
+{
+    double e = 0.0, big = 0.0;
+    long long nb = (long long)g->nblock;
+#pragma omp parallel for schedule(static) reduction(max : e, big)
+    for (long long b = 0; b < nb; b++) {
+        const double *q = g->box + 4 * b, *p = prev->box + 4 * parent_of(g, prev, (size_t)b);
+        double x = dmax(dmax(p[0] - q[0], p[1] - q[1]), dmax(q[2] - p[2], q[3] - p[3]));
+        e = dmax(e, x);
+        big = dmax(big, dmax(dmax(fabs(q[0]), fabs(q[1])), dmax(fabs(q[2]), fabs(q[3]))));
+    }
+    *m = big;
+    return e;
+}
+
+/* Block b's near list (reach) and wide list (reach widened by sigma, if wide is not NULL) from the children of
+ * its parent's wide list, in increasing order, written branch-free: near and wide have room for every child
+ * of that list and one more. Returns the counts. */
+static void carried_lists(const ft_segment_blocks *g, const ft_chain *const *chains, const ft_segment_blocks *prev,
+                          const ft_segment_wide *pw, double sigma, size_t b, uint32_t *near, uint32_t *wide,
+                          size_t *nn, size_t *nw)
+{
+    double reach[4], wr[4];
+    reach_of(g, chains, g->box, b, reach);
+    for (int i = 0; i < 4; i++)
+        wr[i] = reach[i];
+    widen_by(wr, sigma);
+    size_t P = parent_of(g, prev, b), kn = 0, kw = 0;
+    for (uint32_t e = pw->start[P]; e < pw->start[P + 1]; e++) {
+        uint32_t Q = pw->near[e], c = prev->chain[Q];
+        size_t d0 = g->chain_block[c] + 2 * (size_t)(Q - prev->chain_block[c]);
+        size_t d1 = d0 + 2 < g->chain_block[c + 1] ? d0 + 2 : g->chain_block[c + 1];
+        for (size_t d = d0; d < d1; d++) {
+            const double *q = g->box + 4 * d;
+            near[kn] = (uint32_t)d;
+            kn += (size_t)box_meets(q, reach);
+            if (wide != NULL) {
+                wide[kw] = (uint32_t)d;
+                kw += (size_t)box_meets(q, wr);
+            }
+        }
+    }
+    *nn = kn;
+    *nw = kw;
+}
+
+int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *chains,
+                                   const ft_segment_blocks *prev, const ft_segment_wide *pw, int want_wide,
+                                   ft_segment_wide *wide)
+{
+    size_t nb = g->nblock;
+    *wide = (ft_segment_wide){0};
+    if (pw->start == NULL || prev->nchain != g->nchain)
+        return 1;
+    for (size_t c = 0; c < g->nchain; c++) /* every chain's blocks twice its parent's (rounded) */
+        if (g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) &&
+            g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) - 1)
+            return 1;
+    double m, e = largest_excess(g, prev, &m);
+    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * WIDEN * m; /* rounding of e and of the widening */
+    if (!(slack >= 0.0))
+        return 1; /* a block left its parent's box by more than the parents' lists allow for */
+    double sigma = want_wide ? slack : -1.0;
+    /* One scan per block, into room for every child of its parent's wide list (its place: from the parent's
+     * offset, the second child after the first's room), then packed. */
+    size_t room = 4 * (size_t)pw->start[prev->nblock] + 2 * prev->nblock;
+    uint32_t *tn = ft_malloc((room ? room : 1) * sizeof *tn);
+    uint32_t *tw = want_wide ? ft_malloc((room ? room : 1) * sizeof *tw) : NULL;
+    g->near_start = ft_calloc(nb + 1, sizeof *g->near_start);
+    if (want_wide) {
+        wide->start = ft_calloc(nb + 1, sizeof *wide->start);
+        wide->sigma = sigma;
+    }
+    int rc = FT_OK;
+    if (tn == NULL || g->near_start == NULL || (want_wide && (tw == NULL || wide->start == NULL)))
+        rc = FT_E_NOMEM;
+    long long nbl = rc == FT_OK ? (long long)nb : 0;
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < nbl; b++) {
+        size_t P = parent_of(g, prev, (size_t)b), len = 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
+        size_t at = 4 * (size_t)pw->start[P] + 2 * P + ((b - g->chain_block[g->chain[b]]) % 2 ? len : 0), kn, kw;
+        carried_lists(g, chains, prev, pw, sigma, (size_t)b, tn + at, tw ? tw + at : NULL, &kn, &kw);
+        g->near_start[b + 1] = (uint32_t)kn;
+        if (want_wide)
+            wide->start[b + 1] = (uint32_t)kw;
+    }
+    if (rc == FT_OK)
+        rc = pack_starts(g->near_start, nb);
+    if (rc == FT_OK && want_wide)
+        rc = pack_starts(wide->start, nb);
+    if (rc == FT_OK) {
+        g->near = ft_malloc((g->near_start[nb] ? g->near_start[nb] : 1) * sizeof *g->near);
+        if (want_wide)
+            wide->near = ft_malloc((wide->start[nb] ? wide->start[nb] : 1) * sizeof *wide->near);
+        if (g->near == NULL || (want_wide && wide->near == NULL))
+            rc = FT_E_NOMEM;
+    }
+    if (rc == FT_OK) {
+#pragma omp parallel for schedule(static)
+        for (long long b = 0; b < nbl; b++) {
+            size_t P = parent_of(g, prev, (size_t)b), len = 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
+            size_t at = 4 * (size_t)pw->start[P] + 2 * P + ((b - g->chain_block[g->chain[b]]) % 2 ? len : 0);
+            for (uint32_t j = 0; j < g->near_start[b + 1] - g->near_start[b]; j++)
+                g->near[g->near_start[b] + j] = tn[at + j];
+            for (uint32_t j = 0; want_wide && j < wide->start[b + 1] - wide->start[b]; j++)
+                wide->near[wide->start[b] + j] = tw[at + j];
+        }
+    }
+    free(tn);
+    free(tw);
     return rc;
 }
 

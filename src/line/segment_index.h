@@ -41,6 +41,30 @@ void ft_segment_blocks_free(ft_segment_blocks *g);
 int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains, size_t n, size_t per_block);
 int ft_segment_blocks_join(ft_segment_blocks *g, const ft_chain *const *chains);
 
+/** Wide near lists: for every block, the blocks whose boxes meet its reach widened by sigma on every side
+ *  (start: nblock + 1 offsets into near). Kept from one pass of the fused enhancement to the next. */
+typedef struct {
+    uint32_t *start, *near;
+    double sigma;
+} ft_segment_wide;
+
+/** ft_segment_blocks_join that also fills *wide (sigma >= 0); the near lists are the same. On failure g and
+ *  wide are freed. */
+int ft_segment_blocks_join_wide(ft_segment_blocks *g, const ft_chain *const *chains, double sigma,
+                                ft_segment_wide *wide);
+void ft_segment_wide_free(ft_segment_wide *w);
+
+/** The near lists of g (boxes filled) from the pass before's index prev and its wide lists pw, with no grid:
+ *  g's blocks must be prev's halved (local block j of chain c comes from prev's local block j / 2: every
+ *  segment of the pass before was split and nothing added or removed since). A block's box lies in its
+ *  parent's widened by E, the largest excess; if 2 E fits in pw's sigma, every block near g's block b is a
+ *  child of a block in the wide list of b's parent, and filtering those children by b's reach gives exactly
+ *  the lists of ft_segment_blocks_join. With want_wide, *wide gets g's wide lists for the slack left
+ *  (pw's sigma - 2 E). Returns 1, g's lists untouched, when the lists cannot be carried (then join). */
+int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *chains,
+                                   const ft_segment_blocks *prev, const ft_segment_wide *pw, int want_wide,
+                                   ft_segment_wide *wide);
+
 /** Widens a swept box {xmin, ymin, xmax, ymax} by 1e-9 of its largest coordinate, so that no rounding of the
  *  positions it was built from falls outside it: the one rule of both guards' blocks. */
 void ft_segment_box_widen(double box[4]);

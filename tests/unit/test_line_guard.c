@@ -20,6 +20,7 @@
 #include <omp.h>
 #include "fracterra/io.h"
 #include "fracterra/line.h"
+#include "line/segment_index.h"
 
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
 #define STATES FT_TEST_DATA "/dcw_us_states_small_albers5070.geojson"
@@ -439,6 +440,128 @@ static void test_fused_matches_unfused(void **state)
     ft_layer_free(l);
 }
 
+/* A made-up displacement of vertex i of chain c, each coordinate in [-m, m]. */
+static double wobble(size_t c, size_t i, int axis, double m)
+{
+    uint64_t h = (uint64_t)(c * 1000003u + i * 2 + (size_t)axis + 1) * UINT64_C(0x9E3779B97F4A7C15);
+    h ^= h >> 29;
+    return m * (2.0 * (double)(h % 1000003u) / 1000002.0 - 1.0);
+}
+
+/* Swept boxes of g's blocks: each vertex and its wobble of size m, widened as the guards do. */
+static void fill_boxes(ft_segment_blocks *g, ft_chain *const *ch, double m)
+{
+    for (size_t b = 0; b < g->nblock; b++) {
+        const ft_chain *c = ch[g->chain[b]];
+        double *q = g->box + 4 * b;
+        q[0] = q[1] = INFINITY;
+        q[2] = q[3] = -INFINITY;
+        for (size_t v = g->first[b]; v <= g->first[b] + g->count[b]; v++) {
+            size_t i = v < c->n ? v : v - c->n;
+            double x[2] = {c->x[i], c->x[i] + wobble(g->chain[b], i, 0, m)};
+            double y[2] = {c->y[i], c->y[i] + wobble(g->chain[b], i, 1, m)};
+            for (int k = 0; k < 2; k++) {
+                q[0] = fmin(q[0], x[k]);
+                q[1] = fmin(q[1], y[k]);
+                q[2] = fmax(q[2], x[k]);
+                q[3] = fmax(q[3], y[k]);
+            }
+        }
+        ft_segment_box_widen(q);
+    }
+}
+
+/* Chains with every segment split, each vertex moved halfway towards its wobble of size m (as a pass
+ * leaves them: inside the swept boxes), each midpoint on the segment's input. */
+static ft_chain *halved(const ft_chain *c, size_t k, double m)
+{
+    size_t ns = ft_chain_segments(c);
+    ft_chain *h = ft_chain_create(c->n + ns, c->closed);
+    assert_non_null(h);
+    for (size_t i = 0, o = 0; i < c->n; i++) {
+        size_t j = i + 1 < c->n ? i + 1 : 0;
+        h->x[o] = c->x[i] + 0.5 * wobble(k, i, 0, m);
+        h->y[o++] = c->y[i] + 0.5 * wobble(k, i, 1, m);
+        if (i < ns) {
+            h->x[o] = 0.5 * (c->x[i] + c->x[j]);
+            h->y[o++] = 0.5 * (c->y[i] + c->y[j]);
+        }
+    }
+    h->n = c->n + ns;
+    return h;
+}
+
+static void lists_equal(const uint32_t *s1, const uint32_t *l1, const uint32_t *s2, const uint32_t *l2, size_t nb)
+{
+    assert_memory_equal(s1, s2, (nb + 1) * sizeof *s1);
+    assert_memory_equal(l1, l2, s1[nb] * sizeof *l1);
+}
+
+/* The near lists carried from the pass before (ft_segment_blocks_join_carried, used by the fused enhancement
+ * from its second pass on) are the grid join's, list for list, and so are the wide lists it hands on; when a
+ * block leaves its parent's box by more than the slack allows, it refuses (the caller joins on the grid).
+ * A tight spiral (arms 0.8 apart, blocks about 2 long: lists reach across arms), a ring inside it and a line
+ * across both. */
+static void test_carried_index(void **state)
+{
+    (void)state;
+    ft_chain *c[3] = {ft_chain_create(3000, 0), ft_chain_create(400, 1), ft_chain_create(300, 0)};
+    for (size_t i = 0; i < 3000; i++) {
+        double t = 0.05 * (double)i, r = 5.0 + 0.8 * t / (2.0 * M_PI);
+        c[0]->x[i] = r * cos(t);
+        c[0]->y[i] = r * sin(t);
+    }
+    for (size_t i = 0; i < 400; i++) {
+        c[1]->x[i] = 3.0 * cos(2.0 * M_PI * (double)i / 400.0);
+        c[1]->y[i] = 3.0 * sin(2.0 * M_PI * (double)i / 400.0);
+    }
+    for (size_t i = 0; i < 300; i++) {
+        c[2]->x[i] = -20.0 + 40.0 * (double)i / 299.0;
+        c[2]->y[i] = 0.3;
+    }
+    c[0]->n = 3000, c[1]->n = 400, c[2]->n = 300;
+    ft_segment_blocks prev, g, ref;
+    ft_segment_wide pw, w, wref;
+    assert_int_equal(ft_segment_blocks_layout(&prev, (const ft_chain *const *)c, 3, 4), FT_OK);
+    fill_boxes(&prev, c, 0.2);
+    assert_int_equal(ft_segment_blocks_join_wide(&prev, (const ft_chain *const *)c, 0.5, &pw), FT_OK);
+    ft_chain *h[3];
+    for (size_t k = 0; k < 3; k++)
+        h[k] = halved(c[k], k, 0.2);
+    size_t far = 0; /* near-list entries that are not the block itself or its chain neighbours */
+    for (int refuse = 0; refuse < 2; refuse++) {
+        assert_int_equal(ft_segment_blocks_layout(&g, (const ft_chain *const *)h, 3, 4), FT_OK);
+        assert_int_equal(ft_segment_blocks_layout(&ref, (const ft_chain *const *)h, 3, 4), FT_OK);
+        fill_boxes(&g, h, refuse ? 0.4 : 0.1); /* excess 0.1: 2 E fits in 0.5; 0.4 does not */
+        memcpy(ref.box, g.box, 4 * g.nblock * sizeof *g.box);
+        int rc = ft_segment_blocks_join_carried(&g, (const ft_chain *const *)h, &prev, &pw, 1, &w);
+        if (refuse) {
+            assert_int_equal(rc, 1);
+            assert_null(g.near_start);
+        } else {
+            assert_int_equal(rc, FT_OK);
+            assert_true(w.sigma > 0.0 && w.sigma < 0.5);
+            assert_int_equal(ft_segment_blocks_join_wide(&ref, (const ft_chain *const *)h, w.sigma, &wref), FT_OK);
+            lists_equal(g.near_start, g.near, ref.near_start, ref.near, g.nblock);
+            lists_equal(w.start, w.near, wref.start, wref.near, g.nblock);
+            for (size_t b = 0; b < g.nblock; b++)
+                for (uint32_t e = g.near_start[b]; e < g.near_start[b + 1]; e++)
+                    far += g.near[e] + 1 < b || g.near[e] > b + 2;
+            ft_segment_wide_free(&wref);
+        }
+        ft_segment_wide_free(&w);
+        ft_segment_blocks_free(&g);
+        ft_segment_blocks_free(&ref);
+    }
+    assert_true(far > 1000); /* the lists do reach across the spiral's arms */
+    ft_segment_wide_free(&pw);
+    ft_segment_blocks_free(&prev);
+    for (size_t k = 0; k < 3; k++) {
+        ft_chain_free(c[k]);
+        ft_chain_free(h[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -450,6 +573,7 @@ int main(void)
         cmocka_unit_test(test_no_jump_over_island),
         cmocka_unit_test(test_thread_count),
         cmocka_unit_test(test_fused_matches_unfused),
+        cmocka_unit_test(test_carried_index),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
