@@ -96,9 +96,16 @@ static double effective_scale(const ft_grid *dem, double scale)
     return per_lat;
 }
 
-/* The engine's shade of dem with the options of o at the given scale, as gdaldem's Byte values in a float
- * grid: 1 + 254 s / 255 rounded for a shade s in [0, 255], 0 (the grid's nodata value) for nodata. */
-static int shade_bytes(const ft_grid *dem, const ft_io_hillshade_opts *o, double scale, ft_grid **out)
+/* gdaldem's Byte value of the engine's shade s in [0, 255]: 1 + 254 s / 255 rounded (the argument is
+ * positive, so the truncation is the floor); 0 (nodata) where the shade is nodata. */
+static inline unsigned char shade_byte(float s, uint8_t valid)
+{
+    return valid ? (unsigned char)(int)(1.0 + 254.0 * (double)s / 255.0 + 0.5) : 0;
+}
+
+/* The engine's shade of dem with the options of o at the given scale (as gdaldem's Byte values when bytes is
+ * set: then in a float grid whose nodata value is 0). */
+static int shade_engine(const ft_grid *dem, const ft_io_hillshade_opts *o, double scale, int bytes, ft_grid **out)
 {
     ft_hillshade_opts ro = FT_HILLSHADE_OPTS_DEFAULT;
     ro.azimuth = o->azimuth;
@@ -106,11 +113,11 @@ static int shade_bytes(const ft_grid *dem, const ft_io_hillshade_opts *o, double
     ro.z_factor = o->z_factor;
     ro.scale = scale;
     int rc = ft_render_hillshade(dem, &ro, out);
-    if (rc != FT_OK)
+    if (rc != FT_OK || !bytes)
         return rc;
     ft_grid *g = *out;
     for (size_t k = 0; k < g->nx * g->ny; k++)
-        g->z[k] = g->mask[k] ? (float)floor(1.0 + 254.0 * (double)g->z[k] / 255.0 + 0.5) : 0.0f;
+        g->z[k] = (float)shade_byte(g->z[k], g->mask[k]);
     g->nodata_value = 0.0;
     return FT_OK;
 }
@@ -166,13 +173,12 @@ static int shade_window_rows(const ft_grid *win, size_t p, size_t first, size_t 
                              double scale, unsigned char *px, shade_sink sink, void *ctx)
 {
     ft_grid *sh = NULL;
-    int rc = shade_bytes(win, o, scale, &sh);
+    int rc = shade_engine(win, o, scale, 0, &sh);
     if (rc != FT_OK)
         return rc;
-    size_t nx = win->nx;
-    const float *z = sh->z + (first - p) * nx;
+    size_t nx = win->nx, k0 = (first - p) * nx;
     for (size_t k = 0; k < (last - first) * nx; k++)
-        px[k] = (unsigned char)z[k];
+        px[k] = shade_byte(sh->z[k0 + k], sh->mask[k0 + k]);
     ft_grid_free(sh);
     return sink(ctx, first, last - first, px);
 }
@@ -598,7 +604,7 @@ static int shade_rows(ft_grid_reader *r, const ft_grid *h, const ft_io_hillshade
     ft_grid *win = NULL, *sh = NULL;
     int rc = ft_io_grid_reader_read(r, 0, y0, nx, y1 - y0, &win);
     if (rc == FT_OK)
-        rc = shade_bytes(win, o, effective_scale(h, o->scale), &sh);
+        rc = shade_engine(win, o, effective_scale(h, o->scale), 1, &sh);
     ft_grid_free(win);
     ft_grid *g = rc == FT_OK ? ft_grid_create(nx, nrows) : NULL;
     if (rc == FT_OK && (g == NULL || ft_grid_ensure_mask(g) != FT_OK))
