@@ -25,6 +25,7 @@
 #include <stdlib.h>
 
 #define FT_HS_NODATA (-9999.0)
+#define FT_HS_PARALLEL_CELLS 4.0e6
 
 static int check_opts(const ft_grid *dem, const ft_hillshade_opts *o)
 {
@@ -241,7 +242,10 @@ int ft_render_hillshade(const ft_grid *dem, const ft_hillshade_opts *opts, ft_gr
     shade_params p;
     shade_params_init(dem, o, &p);
     const long ny = (long)dem->ny;
-#pragma omp parallel for schedule(static)
+    /* The vectorised run shades a cell in a few nanoseconds: below FT_HS_PARALLEL_CELLS (a stripe of a
+     * streamed file) a second thread costs more in start and spin-wait than it saves. */
+    const int parallel = (double)dem->nx * (double)dem->ny > FT_HS_PARALLEL_CELLS;
+#pragma omp parallel for schedule(static) if (parallel)
     for (long row = 0; row < ny; row++)
         shade_row(dem, (size_t)row, &p, hs);
     *out = hs;
