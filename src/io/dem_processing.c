@@ -97,10 +97,11 @@ static double effective_scale(const ft_grid *dem, double scale)
 }
 
 /* gdaldem's Byte value of the engine's shade s in [0, 255]: 1 + 254 s / 255 rounded (the argument is
- * positive, so the truncation is the floor); 0 (nodata) where the shade is nodata. */
+ * positive, so the truncation is the floor); 0 (nodata) where valid is 0 (the engine's nodata shade is
+ * -9999: the product stays in int). Without a branch, so that a row of them is vectorised. */
 static inline unsigned char shade_byte(float s, uint8_t valid)
 {
-    return valid ? (unsigned char)(int)(1.0 + 254.0 * (double)s / 255.0 + 0.5) : 0;
+    return (unsigned char)((int)(1.0 + 254.0 * (double)s / 255.0 + 0.5) * (int)valid);
 }
 
 /* The engine's shade of dem with the options of o at the given scale (as gdaldem's Byte values when bytes is
@@ -176,9 +177,12 @@ static int shade_window_rows(const ft_grid *win, size_t p, size_t first, size_t 
     int rc = shade_engine(win, o, scale, 0, &sh);
     if (rc != FT_OK)
         return rc;
-    size_t nx = win->nx, k0 = (first - p) * nx;
-    for (size_t k = 0; k < (last - first) * nx; k++)
-        px[k] = shade_byte(sh->z[k0 + k], sh->mask[k0 + k]);
+    size_t nx = win->nx, n = (last - first) * nx;
+    const float *restrict z = sh->z + (first - p) * nx;
+    const uint8_t *restrict valid = sh->mask + (first - p) * nx;
+    unsigned char *restrict out = px;
+    for (size_t k = 0; k < n; k++)
+        out[k] = shade_byte(z[k], valid[k]);
     ft_grid_free(sh);
     return sink(ctx, first, last - first, px);
 }
