@@ -29,6 +29,8 @@
 #include <cpl_string.h>
 #include <cpl_vsi.h>
 #include <gdal_utils.h>
+#include <omp.h>
+#include <pthread.h>
 
 #include "fracterra/render.h"
 #include "internal.h"
@@ -187,34 +189,85 @@ static int shade_window_rows(const ft_grid *win, size_t p, size_t first, size_t 
     return sink(ctx, first, last - first, px);
 }
 
+/* Reads rows [a, b) of the band of r into *c (none when a == b) and counts their valid cells into *valid. */
+static int read_chunk(ft_grid_reader *r, size_t a, size_t b, ft_grid **c, size_t *valid)
+{
+    *c = NULL;
+    if (a >= b)
+        return FT_OK;
+    int rc = ft_io_grid_reader_read(r, 0, a, ft_io_grid_reader_header(r)->nx, b - a, c);
+    if (rc == FT_OK)
+        *valid += ft_grid_count_valid(*c);
+    return rc;
+}
+
+/* One window to shade and hand to the sink, on a thread of its own: its result and message (ft_error's and
+ * GDAL's are per thread) come back here. */
+typedef struct {
+    const ft_grid *win;
+    size_t p, first, last;
+    const ft_io_hillshade_opts *o;
+    double scale;
+    unsigned char *px;
+    shade_sink sink;
+    void *ctx;
+    int rc;
+    char msg[1024];
+} shade_step;
+
+static void *shade_step_run(void *arg)
+{
+    shade_step *s = arg;
+    ft_io_enter(); /* GDAL's messages of the sink's writes, caught as on the caller's thread */
+    s->rc = s->last > s->first ? shade_window_rows(s->win, s->p, s->first, s->last, s->o, s->scale, s->px, s->sink,
+                                                   s->ctx)
+                               : FT_OK;
+    if (s->rc != FT_OK)
+        snprintf(s->msg, sizeof s->msg, "%s", ft_last_error());
+    ft_io_leave(FT_OK);
+    return NULL;
+}
+
 /* The shade of the band of r, chunk by chunk of whole blocks (so that no block is decoded twice): each chunk
  * is shaded in a window with the two rows above it, and the rows whose 3 x 3 window is complete (the last
  * row waits for the next chunk) go to the sink; the window's first and last rows are the band's edges only
- * where they are, so every cell is the whole-DEM engine's. *valid: the band's valid cells. */
+ * where they are, so every cell is the whole-DEM engine's. With more than one OpenMP thread allowed the
+ * steps overlap: this thread reads and decodes the next chunk while a second one (joined, not spinning)
+ * shades the window and hands it to the sink. *valid: the band's valid cells. */
 static int stream_shade(ft_grid_reader *r, const ft_io_hillshade_opts *o, double scale, shade_sink sink, void *ctx,
                         size_t *valid)
 {
     const ft_grid *h = ft_io_grid_reader_header(r);
-    size_t nx = h->nx, ny = h->ny, chunk = chunk_rows(r, nx, ny), cap = chunk + 2, held = 0;
-    ft_grid *win = ft_grid_create(nx, cap);
+    size_t nx = h->nx, ny = h->ny, chunk = chunk_rows(r, nx, ny), cap = chunk + 2;
+    ft_grid *win = ft_grid_create(nx, cap), *next = NULL;
     unsigned char *px = ft_malloc(nx * (chunk + 1));
-    int rc = win != NULL && px != NULL ? FT_OK : FT_E_NOMEM;
-    if (rc == FT_OK)
-        memcpy(win->gt, h->gt, sizeof win->gt);
+    int rc = win != NULL && px != NULL ? FT_OK : FT_E_NOMEM, overlap = omp_get_max_threads() > 1;
     *valid = 0;
-    for (size_t a = 0; rc == FT_OK && a < ny; a += chunk) {
-        size_t b = a + chunk < ny ? a + chunk : ny;
-        ft_grid *c = NULL;
-        if ((rc = ft_io_grid_reader_read(r, 0, a, nx, b - a, &c)) != FT_OK)
-            break;
-        *valid += ft_grid_count_valid(c);
-        rc = window_append(win, held, cap, c);
-        ft_grid_free(c);
-        size_t first = a > 0 ? a - 1 : 0, last = b < ny ? b - 1 : ny;
-        if (rc == FT_OK && last > first)
-            rc = shade_window_rows(win, a - held, first, last, o, scale, px, sink, ctx);
-        held = window_keep_two(win);
+    if (rc == FT_OK) {
+        memcpy(win->gt, h->gt, sizeof win->gt);
+        win->ny = 0;
+        rc = read_chunk(r, 0, chunk, &next, valid);
     }
+    for (size_t a = 0; rc == FT_OK && a < ny; a += chunk) {
+        size_t b = a + chunk < ny ? a + chunk : ny, nb = b + chunk < ny ? b + chunk : ny;
+        size_t held = window_keep_two(win);
+        rc = window_append(win, held, cap, next);
+        ft_grid_free(next);
+        next = NULL;
+        if (rc != FT_OK)
+            break;
+        shade_step st = {.win = win, .p = a - held, .first = a > 0 ? a - 1 : 0, .last = b < ny ? b - 1 : ny,
+                         .o = o, .scale = scale, .px = px, .sink = sink, .ctx = ctx};
+        pthread_t th;
+        int threaded = overlap && pthread_create(&th, NULL, shade_step_run, &st) == 0;
+        int read_rc = read_chunk(r, b, nb, &next, valid);
+        if (threaded)
+            pthread_join(th, NULL);
+        else
+            shade_step_run(&st);
+        rc = st.rc != FT_OK ? ft_error(st.rc, "%s", st.msg) : read_rc;
+    }
+    ft_grid_free(next);
     if (win != NULL)
         win->ny = cap;
     ft_grid_free(win);
