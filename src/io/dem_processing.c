@@ -29,6 +29,8 @@
 #include <cpl_string.h>
 #include <cpl_vsi.h>
 #include <gdal_utils.h>
+#include <omp.h>
+#include <pthread.h>
 
 #include "fracterra/render.h"
 #include "internal.h"
@@ -96,9 +98,17 @@ static double effective_scale(const ft_grid *dem, double scale)
     return per_lat;
 }
 
-/* The engine's shade of dem with the options of o at the given scale, as gdaldem's Byte values in a float
- * grid: 1 + 254 s / 255 rounded for a shade s in [0, 255], 0 (the grid's nodata value) for nodata. */
-static int shade_bytes(const ft_grid *dem, const ft_io_hillshade_opts *o, double scale, ft_grid **out)
+/* gdaldem's Byte value of the engine's shade s in [0, 255]: 1 + 254 s / 255 rounded (the argument is
+ * positive, so the truncation is the floor); 0 (nodata) where valid is 0 (the engine's nodata shade is
+ * -9999: the product stays in int). Without a branch, so that a row of them is vectorised. */
+static inline unsigned char shade_byte(float s, uint8_t valid)
+{
+    return (unsigned char)((int)(1.0 + 254.0 * (double)s / 255.0 + 0.5) * (int)valid);
+}
+
+/* The engine's shade of dem with the options of o at the given scale (as gdaldem's Byte values when bytes is
+ * set: then in a float grid whose nodata value is 0). */
+static int shade_engine(const ft_grid *dem, const ft_io_hillshade_opts *o, double scale, int bytes, ft_grid **out)
 {
     ft_hillshade_opts ro = FT_HILLSHADE_OPTS_DEFAULT;
     ro.azimuth = o->azimuth;
@@ -106,12 +116,194 @@ static int shade_bytes(const ft_grid *dem, const ft_io_hillshade_opts *o, double
     ro.z_factor = o->z_factor;
     ro.scale = scale;
     int rc = ft_render_hillshade(dem, &ro, out);
-    if (rc != FT_OK)
+    if (rc != FT_OK || !bytes)
         return rc;
     ft_grid *g = *out;
     for (size_t k = 0; k < g->nx * g->ny; k++)
-        g->z[k] = g->mask[k] ? (float)floor(1.0 + 254.0 * (double)g->z[k] / 255.0 + 0.5) : 0.0f;
+        g->z[k] = (float)shade_byte(g->z[k], g->mask[k]);
     g->nodata_value = 0.0;
+    return FT_OK;
+}
+
+/* ---- the whole DEM streamed: chunks of whole blocks of rows, each shaded with the two rows above it ---- */
+
+/* Receives rows [row0, row0 + nrows) of the shade as gdaldem's bytes. */
+typedef int (*shade_sink)(void *ctx, size_t row0, size_t nrows, const unsigned char *px);
+
+/* Rows per read: whole blocks of the band, about 1 M cells, at least 2 rows (the engine's smallest grid). */
+static size_t chunk_rows(ft_grid_reader *r, size_t nx, size_t ny)
+{
+    size_t by = 1, want = ((size_t)1 << 20) / nx;
+    ft_io_grid_reader_block(r, NULL, &by);
+    size_t rows = (want / by > 0 ? want / by : 1) * by;
+    rows = rows < 2 ? 2 : rows;
+    return rows < ny ? rows : ny;
+}
+
+/* Appends the chunk c (rows of the band, nx wide) to the window win, which holds `held` rows and has room
+ * for `cap`; the window gets a mask (all valid so far) on the first chunk that has one. */
+static int window_append(ft_grid *win, size_t held, size_t cap, const ft_grid *c)
+{
+    size_t nx = win->nx, n = nx * c->ny;
+    if (c->mask != NULL && win->mask == NULL) {
+        win->ny = cap;
+        if (ft_grid_ensure_mask(win) != FT_OK)
+            return FT_E_NOMEM;
+    }
+    memcpy(win->z + held * nx, c->z, n * sizeof *c->z);
+    if (win->mask != NULL) {
+        if (c->mask != NULL)
+            memcpy(win->mask + held * nx, c->mask, n);
+        else
+            memset(win->mask + held * nx, 1, n);
+    }
+    win->ny = held + c->ny;
+    return FT_OK;
+}
+
+/* Keeps the window's last two rows (the next chunk's rows above) at its start. */
+static size_t window_keep_two(ft_grid *win)
+{
+    size_t nx = win->nx, keep = win->ny < 2 ? win->ny : 2, from = (win->ny - keep) * nx;
+    memmove(win->z, win->z + from, keep * nx * sizeof *win->z);
+    if (win->mask != NULL)
+        memmove(win->mask, win->mask + from, keep * nx);
+    return keep;
+}
+
+/* Shades the window win, whose row 0 is band row p, and hands rows [first, last) of the band to the sink. */
+static int shade_window_rows(const ft_grid *win, size_t p, size_t first, size_t last, const ft_io_hillshade_opts *o,
+                             double scale, unsigned char *px, shade_sink sink, void *ctx)
+{
+    ft_grid *sh = NULL;
+    int rc = shade_engine(win, o, scale, 0, &sh);
+    if (rc != FT_OK)
+        return rc;
+    size_t nx = win->nx, n = (last - first) * nx;
+    const float *restrict z = sh->z + (first - p) * nx;
+    const uint8_t *restrict valid = sh->mask + (first - p) * nx;
+    unsigned char *restrict out = px;
+    for (size_t k = 0; k < n; k++)
+        out[k] = shade_byte(z[k], valid[k]);
+    ft_grid_free(sh);
+    return sink(ctx, first, last - first, px);
+}
+
+/* Reads rows [a, b) of the band of r into *c (none when a == b) and counts their valid cells into *valid. */
+static int read_chunk(ft_grid_reader *r, size_t a, size_t b, ft_grid **c, size_t *valid)
+{
+    *c = NULL;
+    if (a >= b)
+        return FT_OK;
+    int rc = ft_io_grid_reader_read(r, 0, a, ft_io_grid_reader_header(r)->nx, b - a, c);
+    if (rc == FT_OK)
+        *valid += ft_grid_count_valid(*c);
+    return rc;
+}
+
+/* One window to shade and hand to the sink, on a thread of its own: its result and message (ft_error's and
+ * GDAL's are per thread) come back here. */
+typedef struct {
+    const ft_grid *win;
+    size_t p, first, last;
+    const ft_io_hillshade_opts *o;
+    double scale;
+    unsigned char *px;
+    shade_sink sink;
+    void *ctx;
+    int rc;
+    char msg[1024];
+} shade_step;
+
+static void *shade_step_run(void *arg)
+{
+    shade_step *s = arg;
+    ft_io_enter(); /* GDAL's messages of the sink's writes, caught as on the caller's thread */
+    s->rc = s->last > s->first ? shade_window_rows(s->win, s->p, s->first, s->last, s->o, s->scale, s->px, s->sink,
+                                                   s->ctx)
+                               : FT_OK;
+    if (s->rc != FT_OK)
+        snprintf(s->msg, sizeof s->msg, "%s", ft_last_error());
+    ft_io_leave(FT_OK);
+    return NULL;
+}
+
+/* The shade of the band of r, chunk by chunk of whole blocks (so that no block is decoded twice): each chunk
+ * is shaded in a window with the two rows above it, and the rows whose 3 x 3 window is complete (the last
+ * row waits for the next chunk) go to the sink; the window's first and last rows are the band's edges only
+ * where they are, so every cell is the whole-DEM engine's. With more than one OpenMP thread allowed the
+ * steps overlap: this thread reads and decodes the next chunk while a second one (joined, not spinning)
+ * shades the window and hands it to the sink. *valid: the band's valid cells. */
+static int stream_shade(ft_grid_reader *r, const ft_io_hillshade_opts *o, double scale, shade_sink sink, void *ctx,
+                        size_t *valid)
+{
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    size_t nx = h->nx, ny = h->ny, chunk = chunk_rows(r, nx, ny), cap = chunk + 2;
+    ft_grid *win = ft_grid_create(nx, cap), *next = NULL;
+    unsigned char *px = ft_malloc(nx * (chunk + 1));
+    int rc = win != NULL && px != NULL ? FT_OK : FT_E_NOMEM, overlap = omp_get_max_threads() > 1;
+    *valid = 0;
+    if (rc == FT_OK) {
+        memcpy(win->gt, h->gt, sizeof win->gt);
+        win->ny = 0;
+        rc = read_chunk(r, 0, chunk, &next, valid);
+    }
+    for (size_t a = 0; rc == FT_OK && a < ny; a += chunk) {
+        size_t b = a + chunk < ny ? a + chunk : ny, nb = b + chunk < ny ? b + chunk : ny;
+        size_t held = window_keep_two(win);
+        rc = window_append(win, held, cap, next);
+        ft_grid_free(next);
+        next = NULL;
+        if (rc != FT_OK)
+            break;
+        shade_step st = {.win = win, .p = a - held, .first = a > 0 ? a - 1 : 0, .last = b < ny ? b - 1 : ny,
+                         .o = o, .scale = scale, .px = px, .sink = sink, .ctx = ctx};
+        pthread_t th;
+        int threaded = overlap && pthread_create(&th, NULL, shade_step_run, &st) == 0;
+        int read_rc = read_chunk(r, b, nb, &next, valid);
+        if (threaded)
+            pthread_join(th, NULL);
+        else
+            shade_step_run(&st);
+        rc = st.rc != FT_OK ? ft_error(st.rc, "%s", st.msg) : read_rc;
+    }
+    ft_grid_free(next);
+    if (win != NULL)
+        win->ny = cap;
+    ft_grid_free(win);
+    free(px);
+    return rc;
+}
+
+/* Sink: the rows into a whole-DEM byte image. */
+typedef struct {
+    unsigned char *px;
+    size_t nx;
+} image_sink;
+
+static int sink_image(void *ctx, size_t row0, size_t nrows, const unsigned char *px)
+{
+    image_sink *s = ctx;
+    memcpy(s->px + row0 * s->nx, px, nrows * s->nx);
+    return FT_OK;
+}
+
+/* Sink: the rows written to band 1 of a dataset being created, its blocks flushed at once (GDAL's cache
+ * holds no more than a chunk of the output). */
+typedef struct {
+    GDALRasterBandH band;
+    const char *path;
+    size_t nx;
+} dataset_sink;
+
+static int sink_dataset(void *ctx, size_t row0, size_t nrows, const unsigned char *px)
+{
+    dataset_sink *s = ctx;
+    ft_io_gdal_reset();
+    if (GDALRasterIO(s->band, GF_Write, 0, (int)row0, (int)s->nx, (int)nrows, (void *)px, (int)s->nx, (int)nrows,
+                     GDT_Byte, 0, 0) != CE_None ||
+        GDALFlushRasterCache(s->band) != CE_None || ft_io_gdal_failed())
+        return ft_io_fail(FT_E_IO, "cannot write rows %zu-%zu of %s", row0, row0 + nrows - 1, s->path);
     return FT_OK;
 }
 
@@ -167,6 +359,15 @@ static int read_band(GDALDatasetH ds, int b, unsigned char *buf, int w, int h)
     return FT_OK;
 }
 
+/* The georeferencing of src on ds. */
+static void set_georef(GDALDatasetH ds, GDALDatasetH src)
+{
+    double gt[6];
+    if (GDALGetGeoTransform(src, gt) == CE_None)
+        GDALSetGeoTransform(ds, gt);
+    GDALSetProjection(ds, GDALGetProjectionRef(src));
+}
+
 /* A MEM Byte dataset of `bands` bands (1: the shade, 0 = nodata; 4: RGBA) holding px band after band, with
  * the georeferencing of src. */
 static int byte_image(GDALDatasetH src, int w, int h, int bands, unsigned char *px, GDALDatasetH *out)
@@ -175,10 +376,7 @@ static int byte_image(GDALDatasetH src, int w, int h, int bands, unsigned char *
     *out = mem ? GDALCreate(mem, "", w, h, bands, GDT_Byte, NULL) : NULL;
     if (*out == NULL)
         return ft_io_fail(FT_E_NOMEM, "hillshade: cannot make a %d x %d image", w, h);
-    double gt[6];
-    if (GDALGetGeoTransform(src, gt) == CE_None)
-        GDALSetGeoTransform(*out, gt);
-    GDALSetProjection(*out, GDALGetProjectionRef(src));
+    set_georef(*out, src);
     if (bands == 1) {
         GDALSetRasterNoDataValue(GDALGetRasterBand(*out, 1), 0.0);
     } else {
@@ -241,62 +439,105 @@ static int write_copy(GDALDatasetH ds, const char *path)
     return ok ? end : rc;
 }
 
-/* Reads the band through the grid reader, so that a hillshade is refused where `render` refuses the same
- * DEM: a truncated file (a read error, not a grid of zeros), fewer than 2 x 2 cells, no valid cell, or more
- * cells than the memory bound allows. */
-static int read_shadeable(GDALDatasetH src, const char *path, int band, ft_grid **out)
+/* Refuses what `render` refuses of the same DEM (reader r of path): fewer than 2 x 2 cells, more cells than
+ * the work bound allows; the image bytes held (`bytes` per cell) beyond the memory bound. A truncated file
+ * fails when its rows are read, a DEM without a valid cell once it has been read. */
+static int check_shadeable(ft_grid_reader *r, const char *path, double bytes)
 {
-    ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
-    go.band = band;
-    ft_grid *g = NULL;
-    int rc = ft_io_read_grid_ds(src, path, &go, &g);
-    if (rc == FT_OK && (g->nx < 2 || g->ny < 2))
-        rc = ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", path, g->nx,
-                      g->ny);
-    if (rc == FT_OK) {
-        char what[PATH_MAX + 64];
-        snprintf(what, sizeof what, "shading '%s' (%zu x %zu cells)", path, g->nx, g->ny);
-        rc = ft_check_work(4.0 * (double)g->nx * (double)g->ny, what); /* read, slope, shade, encode */
-    }
-    if (rc == FT_OK && ft_grid_count_valid(g) == 0)
-        rc = ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, g->nx * g->ny);
-    if (rc != FT_OK) {
-        ft_grid_free(g);
-        return rc;
-    }
-    *out = g;
-    return FT_OK;
+    const ft_grid *g = ft_io_grid_reader_header(r);
+    if (g->nx < 2 || g->ny < 2)
+        return ft_error(FT_E_INVALID, "%s has %zu x %zu cells; a hillshade needs at least 2 x 2", path, g->nx,
+                        g->ny);
+    char what[PATH_MAX + 64];
+    snprintf(what, sizeof what, "shading '%s' (%zu x %zu cells)", path, g->nx, g->ny);
+    double cells = (double)g->nx * (double)g->ny;
+    if (ft_check_work(4.0 * cells, what) != FT_OK) /* read, slope, shade, encode */
+        return FT_E_NOMEM;
+    return bytes > 0.0 ? ft_check_memory(bytes * cells, what) : FT_OK;
 }
 
-/* The shade of dem (read from src; freed as soon as it is shaded, to halve the peak memory) as bytes, times
- * the colour relief with o->color, written to out_path. */
-static int shade_and_write(GDALDatasetH src, ft_grid *dem, const ft_io_hillshade_opts *o, const char *out_path,
-                           const vsimem_names *n)
+static int no_valid_cell(const char *path, const ft_grid *h)
 {
-    ft_grid *sh = NULL;
-    size_t nx = dem->nx, ny = dem->ny, cells = nx * ny;
-    int rc = shade_bytes(dem, o, effective_scale(dem, o->scale), &sh);
-    ft_grid_free(dem);
+    return ft_error(FT_E_EMPTY, "%s has no valid cell (all %zu are nodata): nothing to shade", path, h->nx * h->ny);
+}
+
+/* The shade streamed into a Byte dataset created by drv (which can Create) at out_path: no more than a chunk
+ * of the DEM and of the shade in memory, as gdaldem, which works row by row. */
+static int shade_streamed(GDALDatasetH src, ft_grid_reader *r, const char *dem_path, const ft_io_hillshade_opts *o,
+                          GDALDriverH drv, const char *out_path)
+{
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    ft_io_stage st;
+    int rc = ft_io_stage_begin(out_path, drv, (double)h->nx * (double)h->ny, &st);
     if (rc != FT_OK)
         return rc;
-    unsigned char *px = ft_malloc(cells);
+    ft_io_gdal_reset();
+    GDALDatasetH ds = GDALCreate(drv, st.target, (int)h->nx, (int)h->ny, 1, GDT_Byte, NULL);
+    size_t valid = 0;
+    if (ds == NULL) {
+        rc = ft_io_fail(FT_E_IO, "cannot create %s", out_path);
+    } else {
+        set_georef(ds, src);
+        GDALSetRasterNoDataValue(GDALGetRasterBand(ds, 1), 0.0);
+        dataset_sink sink = {GDALGetRasterBand(ds, 1), out_path, h->nx};
+        rc = stream_shade(r, o, effective_scale(h, o->scale), sink_dataset, &sink, &valid);
+        ft_io_gdal_reset();
+        GDALClose(ds);
+        if (rc == FT_OK && ft_io_gdal_failed())
+            rc = ft_io_fail(FT_E_IO, "cannot write %s", out_path);
+    }
+    if (rc == FT_OK && valid == 0)
+        rc = no_valid_cell(dem_path, h);
+    int end = ft_io_stage_end(&st, rc == FT_OK);
+    return rc == FT_OK ? end : rc;
+}
+
+/* The shade as one image (for a driver that can only CreateCopy, and for the colour relief, which needs
+ * the whole DEM's range), times the colour relief with o->color, written to out_path. */
+static int shade_whole(GDALDatasetH src, ft_grid_reader *r, const char *dem_path, const ft_io_hillshade_opts *o,
+                       const char *out_path, const vsimem_names *n)
+{
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    size_t nx = h->nx, ny = h->ny, valid = 0;
+    image_sink sink = {ft_malloc(nx * ny), nx};
+    if (sink.px == NULL)
+        return ft_last_error_code();
+    int rc = stream_shade(r, o, effective_scale(h, o->scale), sink_image, &sink, &valid);
+    if (rc == FT_OK && valid == 0)
+        rc = no_valid_cell(dem_path, h);
     GDALDatasetH cr = NULL, img = NULL;
-    if (px == NULL)
-        rc = ft_last_error_code();
-    for (size_t k = 0; rc == FT_OK && k < cells; k++)
-        px[k] = (unsigned char)sh->z[k];
-    ft_grid_free(sh);
     if (rc == FT_OK && o->color)
         rc = run_color(src, o, n, &cr);
     if (rc == FT_OK)
-        rc = o->color ? combine(src, px, cr, &img) : byte_image(src, (int)nx, (int)ny, 1, px, &img);
+        rc = o->color ? combine(src, sink.px, cr, &img) : byte_image(src, (int)nx, (int)ny, 1, sink.px, &img);
     if (rc == FT_OK)
         rc = write_copy(img, out_path);
     if (img)
         GDALClose(img);
     if (cr)
         GDALClose(cr);
-    free(px);
+    free(sink.px);
+    return rc;
+}
+
+/* Streams the shade into a driver that can Create; else one image (the shade, the MEM copy, and with
+ * colour the relief's and the product's RGBA) is held and copied. */
+static int shade_file(GDALDatasetH src, ft_grid_reader *r, const char *dem_path, const char *out_path,
+                      const ft_io_hillshade_opts *o)
+{
+    GDALDriverH drv = NULL;
+    int rc = ft_io_find_driver(out_path, NULL, GDAL_DCAP_RASTER, &drv);
+    if (rc != FT_OK)
+        return rc;
+    int stream = !o->color && GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
+    if ((rc = check_shadeable(r, dem_path, stream ? 0.0 : o->color ? 10.0 : 2.0)) != FT_OK)
+        return rc;
+    if (stream)
+        return shade_streamed(src, r, dem_path, o, drv, out_path);
+    vsimem_names n;
+    names_init(&n);
+    rc = shade_whole(src, r, dem_path, o, out_path, &n);
+    names_release(&n);
     return rc;
 }
 
@@ -310,13 +551,12 @@ static int open_and_shade(const char *dem_path, const char *out_path, const ft_i
         rc = ft_error(FT_E_FORMAT, "%s has %d band(s), band %d was asked for", dem_path, GDALGetRasterCount(src),
                       o->band);
     } else {
-        ft_grid *dem = NULL;
-        if ((rc = read_shadeable(src, dem_path, o->band, &dem)) == FT_OK) {
-            vsimem_names n;
-            names_init(&n);
-            rc = shade_and_write(src, dem, o, out_path, &n); /* frees dem */
-            names_release(&n);
-        }
+        ft_read_grid_opts go = FT_READ_GRID_OPTS_DEFAULT;
+        go.band = o->band;
+        ft_grid_reader *r = NULL;
+        if ((rc = ft_io_grid_reader_open(dem_path, &go, &r)) == FT_OK)
+            rc = shade_file(src, r, dem_path, out_path, o);
+        ft_io_grid_reader_close(r);
     }
     GDALClose(src);
     return rc;
@@ -421,7 +661,7 @@ static int shade_rows(ft_grid_reader *r, const ft_grid *h, const ft_io_hillshade
     ft_grid *win = NULL, *sh = NULL;
     int rc = ft_io_grid_reader_read(r, 0, y0, nx, y1 - y0, &win);
     if (rc == FT_OK)
-        rc = shade_bytes(win, o, effective_scale(h, o->scale), &sh);
+        rc = shade_engine(win, o, effective_scale(h, o->scale), 1, &sh);
     ft_grid_free(win);
     ft_grid *g = rc == FT_OK ? ft_grid_create(nx, nrows) : NULL;
     if (rc == FT_OK && (g == NULL || ft_grid_ensure_mask(g) != FT_OK))

@@ -253,6 +253,7 @@ static const bad_case cases[] = {
     {"runaway", 2, "--max-memory needs a size", {"--max-memory", "lots", "info", VOLCANO}},
     /* exit 0 with nonsense */
     {"nonsense", 1, "trunc.tif", {"hillshade", "@/trunc.tif", "@/out.png"}},
+    {"nonsense", 1, "trunc.tif", {"hillshade", "@/trunc.tif", "@/out.tif"}}, /* streamed: fails mid-file */
     {"nonsense", 1, "1 x 20 cells", {"hillshade", "@/onexn.tif", "@/out.png"}},
     {"nonsense", 1, "no valid cell", {"hillshade", "@/nodata.tif", "@/out.tif"}},
     {"nonsense", 1, "no polygon", {"urban", "table", "@/lines.geojson", "--class", "c", "-o", "@/out.csv"}},

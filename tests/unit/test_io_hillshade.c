@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "fracterra/io.h"
+#include "fracterra/render.h"
 #include "ft_test_util.h"
 
 #define VOLCANO FT_TEST_DATA "/dem_volcano_maunga_whau_10m.tif"
@@ -130,11 +131,79 @@ static void test_degrees(void **state)
     assert_true(compare_with_gdaldem(LUX_DEGREES, &o, 1.0) > 1);
 }
 
+/* A DEM of 2048 x 1100 cells is streamed in three chunks of whole blocks (512, 512 and 76 rows; the
+ * chunk is about 1 M cells): nodata at and beside the chunk boundaries (rows 511/512, 1023), a first chunk
+ * without a mask and a last one without nodata after a masked one, a NaN cell, nodata on the edges. The
+ * GeoTIFF (streamed into the dataset) and the PNG (one image, CreateCopy) hold, cell for cell, the
+ * engine's shade of the whole grid in gdaldem's bytes (1 + 254 s / 255 rounded, 0 = nodata). */
+static void test_streamed_equals_whole_engine(void **state)
+{
+    (void)state;
+    const size_t nx = 2048, ny = 1100;
+    ft_grid *g = ft_grid_create(nx, ny);
+    assert_non_null(g);
+    g->gt[1] = 10.0;
+    g->gt[5] = -10.0;
+    uint64_t s = 12345;
+    for (size_t r = 0; r < ny; r++)
+        for (size_t c = 0; c < nx; c++) {
+            s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+            double noise = (double)(s >> 11) / 9007199254740992.0 - 0.5;
+            g->z[r * nx + c] = (float)(300.0 * sin(c / 97.0) * cos(r / 61.0) + 40.0 * sin(c / 7.0 + r / 11.0) + 5.0 * noise);
+        }
+    assert_int_equal(ft_grid_ensure_mask(g), FT_OK);
+    const size_t holes[][2] = {{100, 511}, {101, 512}, {0, 512}, {2047, 513}, {700, 1023}, {701, 1022}, {5, 0}};
+    for (size_t k = 0; k < sizeof holes / sizeof holes[0]; k++)
+        g->mask[holes[k][1] * nx + holes[k][0]] = 0;
+    for (size_t c = 1000; c < 1040; c++) /* a band of nodata across the boundary of the first two chunks */
+        for (size_t r = 509; r < 515; r++)
+            g->mask[r * nx + c] = 0;
+    g->z[800 * nx + 900] = NAN;
+    g->has_nodata = 1;
+    g->nodata_value = -32768.0;
+    const char *dem = ft_test_tmp("stream_dem.tif");
+    assert_int_equal(ft_io_write_grid(dem, g, NULL), FT_OK);
+    ft_grid_free(g);
+
+    ft_grid *whole = read_whole(dem), *sh = NULL;
+    ft_hillshade_opts ro = FT_HILLSHADE_OPTS_DEFAULT;
+    assert_int_equal(ft_render_hillshade(whole, &ro, &sh), FT_OK);
+    const char *outs[] = {ft_test_tmp("stream_shade.tif"), ft_test_tmp("stream_shade.png")};
+    for (size_t k = 0; k < 2; k++) {
+        unlink(outs[k]);
+        ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT;
+        if (ft_io_hillshade(dem, outs[k], &o) != FT_OK)
+            fail_msg("%s: %s", outs[k], ft_last_error());
+        ft_grid *b = read_whole(outs[k]);
+        assert_int_equal(b->nx, nx);
+        assert_int_equal(b->ny, ny);
+        size_t nodata = 0;
+        for (size_t i = 0; i < nx * ny; i++) {
+            int valid = sh->mask == NULL || sh->mask[i];
+            double want = valid ? floor(1.0 + 254.0 * (double)sh->z[i] / 255.0 + 0.5) : 0.0;
+            double got = ft_grid_is_valid(b, i % nx, i / nx) ? (double)b->z[i] : 0.0;
+            if (got != want)
+                fail_msg("%s: cell (%zu, %zu) is %g, the whole grid's engine gives %g", outs[k], i % nx, i / nx, got,
+                         want);
+            nodata += !valid;
+        }
+        assert_int_equal(nodata, 7 + 40 * 6 + 1);
+        ft_grid_free(b);
+    }
+    ft_grid_free(sh);
+    ft_grid_free(whole);
+    if (have_gdaldem()) {
+        ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT;
+        assert_true(compare_with_gdaldem(dem, &o, 1.0) <= 1);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_projected_and_volcano),
         cmocka_unit_test(test_degrees),
+        cmocka_unit_test(test_streamed_equals_whole_engine),
     };
     return cmocka_run_group_tests(tests, ft_test_dir_setup, ft_test_dir_teardown);
 }
