@@ -56,7 +56,8 @@ FT_API int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_
 /** Working memory for repeated syntheses of one size, method and periodic flag into the caller's grid
  *  (Monte Carlo realizations, a bench loop): for method fft the padded half-spectrum (1.6 x the grid's
  *  bytes with the default pad), every page touched here, so that the syntheses that reuse it take no
- *  page fault and allocate nothing of the grid's size. The other methods keep nothing in it. */
+ *  page fault and allocate nothing of the grid's size. The other methods keep nothing in it. A workspace
+ *  serves one call at a time (threads each need their own). */
 typedef struct ft_synth_workspace ft_synth_workspace;
 FT_API int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, ft_synth_workspace **ws);
 FT_API void ft_synth_workspace_free(ft_synth_workspace *ws);
