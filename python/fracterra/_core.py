@@ -64,12 +64,14 @@ class _CGrid:
     """An ft_grid over a Grid's memory for a call taking `const ft_grid *`: no copy when z is a
     C-contiguous float32 array (the library only reads it). Keeps what it points at alive."""
 
-    def __init__(self, grid):
+    def __init__(self, grid, nonfinite_is_nodata=False):
+        """nonfinite_is_nodata: the C function itself takes a non-finite cell as nodata (ft_render_hillshade),
+        so no mask need be made for NaN/Inf cells."""
         z = grid.z
         if z.dtype != np.float32 or not z.flags.c_contiguous:
             z = np.ascontiguousarray(z, dtype=np.float32)
         mask = grid.mask
-        if mask is None:
+        if mask is None and not nonfinite_is_nodata:
             with np.errstate(over="ignore", invalid="ignore"):
                 total = z.sum()  # z is float32 here: a sum needs no temporary, unlike np.isfinite(z).all()
             if not np.isfinite(total):  # a NaN or Inf cell, or a sum that overflowed (every cell may be finite)
@@ -106,9 +108,10 @@ class _Owner:
             self.ptr = None
 
 
-def grid_from_c(ptr):
+def grid_from_c(ptr, mask_view=False):
     """A Grid over a library-allocated ft_grid *: z is a view of its cells (no copy), freed with the
-    array; the mask, geotransform and CRS are copied."""
+    array; the geotransform and CRS are copied, and so is the mask unless mask_view (for a C function
+    whose mask bytes are exactly 0 or 1, read as a bool view)."""
     g = ptr.contents
     ny, nx = g.ny, g.nx
     owner = _Owner(ptr, lib.ft_grid_free)
@@ -119,7 +122,11 @@ def grid_from_c(ptr):
         buf._fracterra_owner = owner
         z = np.frombuffer(buf, dtype=np.float32).reshape(ny, nx)
     mask = None
-    if g.mask:
+    if g.mask and mask_view:
+        mbuf = (ctypes.c_uint8 * (nx * ny)).from_address(ctypes.addressof(g.mask.contents))
+        mbuf._fracterra_owner = owner
+        mask = np.frombuffer(mbuf, dtype=np.bool_).reshape(ny, nx)
+    elif g.mask:
         mask = np.ctypeslib.as_array(g.mask, shape=(ny * nx,)).reshape(ny, nx).astype(bool)
     wkt = g.crs_wkt.decode() if g.crs_wkt else None
     return Grid(z, mask=mask, geotransform=tuple(g.gt), wkt=wkt,

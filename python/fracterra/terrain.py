@@ -233,10 +233,11 @@ def hillshade(dem, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=1.0, geo
     -s). `fracterra hillshade` on files (same engine) is hillshade_file."""
     o = S.ft_hillshade_opts.default()
     o.azimuth, o.altitude, o.z_factor, o.scale = float(azimuth), float(altitude), float(z_factor), float(scale)
-    cg = _CGrid(as_grid(dem, geotransform))
+    # the engine takes a non-finite cell as nodata itself, and its mask bytes are 0 or 1 (render/hillshade.c)
+    cg = _CGrid(as_grid(dem, geotransform), nonfinite_is_nodata=True)
     out = ctypes.POINTER(S.ft_grid)()
     check(lib.ft_render_hillshade(cg.ref, ctypes.byref(o), ctypes.byref(out)))
-    return grid_from_c(out)
+    return grid_from_c(out, mask_view=True)
 
 
 def hillshade_file(dem_path, out_path, *, azimuth=315.0, altitude=45.0, z_factor=1.0, scale=0.0, color=False,

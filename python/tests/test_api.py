@@ -291,3 +291,24 @@ def test_synthesizer_reuses_memory_and_gives_synth_cells():
         s(2.3)
     with pytest.raises(ft.FracterraError, match="size"):
         ft.Synthesizer(0, 10)
+
+
+def test_hillshade_takes_nonfinite_cells_as_nodata():
+    """hillshade passes NaN/Inf cells to the engine, which takes them as nodata: the same shades and mask
+    as the same DEM given with an explicit mask; the output mask is a live bool view."""
+    dem = ft.synth(96, 80, 2.3, seed=5, cell=10.0, sigma=40.0)
+    z = dem.z.copy()
+    z[10, 10:14] = np.nan
+    z[40, 50] = np.inf
+    z[0, 0] = -np.inf
+    valid = np.isfinite(z)
+    a = ft.hillshade(ft.Grid(z, geotransform=dem.geotransform))
+    b = ft.hillshade(ft.Grid(np.where(valid, z, 0.0).astype(np.float32), mask=valid, geotransform=dem.geotransform))
+    assert a.mask is not None and a.mask.dtype == np.bool_
+    assert np.array_equal(a.mask, b.mask)
+    assert not a.mask[10, 11] and not a.mask[40, 50] and not a.mask[0, 0] and a.mask[60, 60]
+    assert np.array_equal(a.z[a.mask], b.z[b.mask])
+    m = a.mask
+    del a
+    gc.collect()
+    assert m.sum() == b.mask.sum()  # the view keeps the library's grid alive
