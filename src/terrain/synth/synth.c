@@ -56,6 +56,15 @@ static int validate(size_t nx, size_t ny, const ft_synth_opts *o)
     return FT_OK;
 }
 
+/* The caller's options (or the defaults) in *o, checked for an nx x ny synthesis. */
+static int take_opts(const ft_synth_opts *opts, size_t nx, size_t ny, ft_synth_opts *o)
+{
+    *o = (ft_synth_opts)FT_SYNTH_OPTS_DEFAULT;
+    if (FT_OPTS_TAKE(*o, opts, ft_synth_opts) != FT_OK)
+        return FT_E_INVALID;
+    return validate(nx, ny, o);
+}
+
 /* Mean 0 and standard deviation sigma; per-row sums in double reduced in row order (deterministic). */
 static int rescale(float *z, size_t nx, size_t ny, double sigma)
 {
@@ -103,15 +112,41 @@ static ft_grid *grid_adopt(size_t nx, size_t ny, float *z)
     return g;
 }
 
+/* The cells of the methods that fill a given array (all but fft, whose cells come from its spectrum). */
+static int fill_cells(const ft_synth_opts *o, size_t nx, size_t ny, double H, float *z)
+{
+    switch (o->method) {
+    case FT_SYNTH_FFT: return FT_OK;
+    case FT_SYNTH_SRA:
+    case FT_SYNTH_SRA_RAW: return ft_synth_sra_fill(nx, ny, H, o, z);
+    case FT_SYNTH_MIDPOINT:
+    case FT_SYNTH_MIDPOINT_RAW: return ft_synth_midpoint_fill(nx, ny, H, o, z);
+    case FT_SYNTH_EXACT: return ft_synth_exact_fill(nx, ny, H, o, z);
+    }
+    return ft_error(FT_E_INVALID, "synth: unknown method %d", (int)o->method);
+}
+
+/* Every method's last steps: the cells to sigma, the final progress, and the north-up geotransform. */
+static int finish(const ft_synth_opts *o, size_t nx, size_t ny, float *z, double gt[6])
+{
+    int rc = o->sigma > 0.0 ? rescale(z, nx, ny, o->sigma) : FT_OK;
+    if (rc == FT_OK)
+        rc = ft_progress(o->progress, o->progress_arg, 1.0, "synth: done");
+    if (rc != FT_OK)
+        return rc;
+    const double north_up[6] = {o->origin_x, o->cell, 0.0, o->origin_y, 0.0, -o->cell};
+    for (int i = 0; i < 6; i++)
+        gt[i] = north_up[i];
+    return FT_OK;
+}
+
 int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **out)
 {
     if (out == NULL)
         return ft_error(FT_E_INVALID, "synth: output pointer is NULL");
     *out = NULL;
-    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
-    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
-        return FT_E_INVALID;
-    int rc = validate(nx, ny, &o);
+    ft_synth_opts o;
+    int rc = take_opts(opts, nx, ny, &o);
     if (rc != FT_OK)
         return rc;
     double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
@@ -122,25 +157,13 @@ int ft_terrain_synth(size_t nx, size_t ny, const ft_synth_opts *opts, ft_grid **
     ft_grid *g = cells != NULL ? grid_adopt(nx, ny, cells) : ft_grid_create(nx, ny);
     if (g == NULL)
         return FT_E_NOMEM;
-    switch (o.method) {
-    case FT_SYNTH_FFT: break;
-    case FT_SYNTH_SRA:
-    case FT_SYNTH_SRA_RAW: rc = ft_synth_sra_fill(nx, ny, H, &o, g->z); break;
-    case FT_SYNTH_MIDPOINT:
-    case FT_SYNTH_MIDPOINT_RAW: rc = ft_synth_midpoint_fill(nx, ny, H, &o, g->z); break;
-    case FT_SYNTH_EXACT: rc = ft_synth_exact_fill(nx, ny, H, &o, g->z); break;
-    }
-    if (rc == FT_OK && o.sigma > 0.0)
-        rc = rescale(g->z, nx, ny, o.sigma);
+    rc = fill_cells(&o, nx, ny, H, g->z);
     if (rc == FT_OK)
-        rc = ft_progress(o.progress, o.progress_arg, 1.0, "synth: done");
+        rc = finish(&o, nx, ny, g->z, g->gt);
     if (rc != FT_OK) {
         ft_grid_free(g);
         return rc;
     }
-    double gt[6] = {o.origin_x, o.cell, 0.0, o.origin_y, 0.0, -o.cell};
-    for (int i = 0; i < 6; i++)
-        g->gt[i] = gt[i];
     *out = g;
     return FT_OK;
 }
@@ -160,10 +183,8 @@ int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, f
     if (ws == NULL)
         return ft_error(FT_E_INVALID, "synth: workspace pointer is NULL");
     *ws = NULL;
-    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
-    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
-        return FT_E_INVALID;
-    int rc = validate(nx, ny, &o);
+    ft_synth_opts o;
+    int rc = take_opts(opts, nx, ny, &o);
     if (rc != FT_OK)
         return rc;
     ft_synth_workspace *w = ft_calloc(1, sizeof *w);
@@ -208,34 +229,19 @@ int ft_terrain_synth_into(const ft_synth_opts *opts, ft_synth_workspace *ws, ft_
 {
     if (ws == NULL || out == NULL || out->z == NULL)
         return ft_error(FT_E_INVALID, "synth: %s is NULL", ws == NULL ? "the workspace" : "the output grid");
-    ft_synth_opts o = FT_SYNTH_OPTS_DEFAULT;
-    if (FT_OPTS_TAKE(o, opts, ft_synth_opts) != FT_OK)
-        return FT_E_INVALID;
-    int rc = validate(out->nx, out->ny, &o);
+    ft_synth_opts o;
+    int rc = take_opts(opts, out->nx, out->ny, &o);
     if (rc == FT_OK)
         rc = check_workspace(ws, &o, out);
     if (rc != FT_OK)
         return rc;
     size_t nx = out->nx, ny = out->ny;
     double H = 3.0 - ft_synth_raw_dim(o.method, o.dim, nx, ny);
-    switch (o.method) {
-    case FT_SYNTH_FFT: rc = ft_synth_fft_into(nx, ny, H, &o, ws->spec, out->z); break;
-    case FT_SYNTH_SRA:
-    case FT_SYNTH_SRA_RAW: rc = ft_synth_sra_fill(nx, ny, H, &o, out->z); break;
-    case FT_SYNTH_MIDPOINT:
-    case FT_SYNTH_MIDPOINT_RAW: rc = ft_synth_midpoint_fill(nx, ny, H, &o, out->z); break;
-    case FT_SYNTH_EXACT: rc = ft_synth_exact_fill(nx, ny, H, &o, out->z); break;
-    }
-    if (rc == FT_OK && o.sigma > 0.0)
-        rc = rescale(out->z, nx, ny, o.sigma);
+    rc = o.method == FT_SYNTH_FFT ? ft_synth_fft_into(nx, ny, H, &o, ws->spec, out->z)
+                                  : fill_cells(&o, nx, ny, H, out->z);
     if (rc == FT_OK)
-        rc = ft_progress(o.progress, o.progress_arg, 1.0, "synth: done");
-    if (rc != FT_OK)
-        return rc;
-    if (out->mask != NULL) /* every cell is valid; the mask stays the caller's memory */
+        rc = finish(&o, nx, ny, out->z, out->gt);
+    if (rc == FT_OK && out->mask != NULL) /* every cell is valid; the mask stays the caller's memory */
         memset(out->mask, 1, nx * ny);
-    double gt[6] = {o.origin_x, o.cell, 0.0, o.origin_y, 0.0, -o.cell};
-    for (int i = 0; i < 6; i++)
-        out->gt[i] = gt[i];
-    return FT_OK;
+    return rc;
 }
