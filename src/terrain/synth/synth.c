@@ -175,7 +175,6 @@ struct ft_synth_workspace {
     ft_synth_method method;
     int periodic;
     fftwf_complex *spec; /* fft: the padded half-spectrum, every page touched at creation */
-    size_t bins;
 };
 
 int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, ft_synth_workspace **ws)
@@ -194,7 +193,7 @@ int ft_synth_workspace_create(size_t nx, size_t ny, const ft_synth_opts *opts, f
     w->ny = ny;
     w->method = o.method;
     w->periodic = o.periodic;
-    if (o.method == FT_SYNTH_FFT && (rc = ft_synth_fft_workspace(nx, ny, o.periodic, &w->spec, &w->bins)) != FT_OK) {
+    if (o.method == FT_SYNTH_FFT && (rc = ft_synth_fft_workspace(nx, ny, o.periodic, &w->spec)) != FT_OK) {
         free(w);
         return rc;
     }

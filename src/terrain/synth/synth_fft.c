@@ -396,10 +396,9 @@ int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, fl
     return FT_OK;
 }
 
-int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **spec, size_t *bins)
+int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **spec)
 {
     *spec = NULL;
-    *bins = 0;
     size_t px, py;
     int rc = grid_size(nx, ny, periodic, &px, &py);
     if (rc != FT_OK)
@@ -410,7 +409,6 @@ int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **s
         return FT_E_NOMEM;
     memset(p, 0, n * sizeof *p); /* every page faulted in now, not in the syntheses that reuse it */
     *spec = p;
-    *bins = n;
     return FT_OK;
 }
 

@@ -26,9 +26,9 @@
 
 /** The fft surface's nx x ny cells in *z (malloc'd: the spectrum's own memory, cropped in place). */
 int ft_synth_fft_make(size_t nx, size_t ny, double H, const ft_synth_opts *o, float **z);
-/** The working memory of an nx x ny fft synthesis (the padded half-spectrum, *bins bins, malloc'd,
+/** The working memory of an nx x ny fft synthesis (the padded half-spectrum, malloc'd,
  *  every page touched) for ft_synth_fft_into. */
-int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **spec, size_t *bins);
+int ft_synth_fft_workspace(size_t nx, size_t ny, int periodic, fftwf_complex **spec);
 /** ft_synth_fft_make's cells written to z (nx * ny floats) with spec (from ft_synth_fft_workspace for
  *  the same nx, ny and periodic) as the working memory: the same bits, no allocation of the grid's
  *  size. */
