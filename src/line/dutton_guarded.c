@@ -35,6 +35,12 @@
  * hull test (ft_leaves_hull: the segment leaves the hull of the move at the shared point), which decides
  * nearly every case; what it cannot clear is tested with the other segments.
  *
+ * The scan of the near blocks is a screen: per walked block its near list's boxes are copied side by side
+ * (near_cache), a move's box is compared with eight block boxes, then with the boxes of a hit block's (at most
+ * eight) output segments, at a time (AVX-512 where the processor has it, the same comparisons in plain C
+ * elsewhere), and only the segments left get the exact test: the same candidates as a segment-by-segment scan,
+ * so the same bits (test_screens_same_bits).
+ *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
