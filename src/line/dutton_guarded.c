@@ -35,6 +35,12 @@
  * hull test (ft_leaves_hull: the segment leaves the hull of the move at the shared point), which decides
  * nearly every case; what it cannot clear is tested with the other segments.
  *
+ * The scan of the near blocks is a screen: per walked block its near list's boxes are copied side by side
+ * (near_cache), a move's box is compared with eight block boxes, then with the boxes of a hit block's (at most
+ * eight) output segments, at a time (AVX-512 where the processor has it, the same comparisons in plain C
+ * elsewhere), and only the segments left get the exact test: the same candidates as a segment-by-segment scan,
+ * so the same bits (test_screens_same_bits).
+ *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
@@ -46,6 +52,13 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define SCREEN_AVX512 1
+#else
+#define SCREEN_AVX512 0
+#endif
 
 #define FUSED_BLOCK (FT_SEGMENT_BLOCK / 2) /* input segments per block: the output's FT_SEGMENT_BLOCK, as move_guard.c */
 
@@ -144,26 +157,156 @@ static void emit_base(const fused *F, size_t b)
     }
 }
 
+/* The box test of ft_move_sweeps for the cnt (1..8) segments from s0 of x, y (segment s: vertex s to s + 1,
+ * none wrapping round a ring), eight at a time: bit i is set when segment s0 + i's box meets box (the same
+ * comparisons, so the same segments as the scalar test). */
+static inline unsigned screen_c(const double *x, const double *y, size_t s0, size_t cnt, const double box[4])
+{
+    unsigned hit = 0;
+    for (size_t i = 0; i < cnt; i++) {
+        double p0 = x[s0 + i], p1 = y[s0 + i], p2 = x[s0 + i + 1], p3 = y[s0 + i + 1];
+        int out = (ft_cmax(p0, p2) < box[0]) | (ft_cmin(p0, p2) > box[2]) | (ft_cmax(p1, p3) < box[1]) |
+                  (ft_cmin(p1, p3) > box[3]);
+        hit |= (unsigned)!out << i;
+    }
+    return hit;
+}
+
+#if SCREEN_AVX512
+__attribute__((target("avx512f"))) static inline unsigned screen_avx512(const double *x, const double *y, size_t s0,
+                                                                       size_t cnt, const double box[4])
+{
+    __mmask8 k = (__mmask8)((1u << cnt) - 1u); /* masked loads: nothing read past the block's last vertex */
+    __m512d x0 = _mm512_maskz_loadu_pd(k, x + s0), x1 = _mm512_maskz_loadu_pd(k, x + s0 + 1);
+    __m512d y0 = _mm512_maskz_loadu_pd(k, y + s0), y1 = _mm512_maskz_loadu_pd(k, y + s0 + 1);
+    /* max_pd / min_pd return their second operand when unordered, as ft_cmax / ft_cmin do */
+    __mmask8 out = _mm512_cmp_pd_mask(_mm512_max_pd(x0, x1), _mm512_set1_pd(box[0]), _CMP_LT_OQ);
+    out |= _mm512_cmp_pd_mask(_mm512_min_pd(x0, x1), _mm512_set1_pd(box[2]), _CMP_GT_OQ);
+    out |= _mm512_cmp_pd_mask(_mm512_max_pd(y0, y1), _mm512_set1_pd(box[1]), _CMP_LT_OQ);
+    out |= _mm512_cmp_pd_mask(_mm512_min_pd(y0, y1), _mm512_set1_pd(box[3]), _CMP_GT_OQ);
+    return (unsigned)(k & (__mmask8)~out);
+}
+#endif
+
+typedef unsigned (*screen_fn)(const double *, const double *, size_t, size_t, const double *);
+
+/* The near list of the block whose moves are walked, its blocks' boxes copied side by side (x0, y0, x1, y1 of
+ * entry j at box[0..3][j], padded to a multiple of 8 with boxes that meet nothing), so that a move screens
+ * eight blocks at a time. A list longer than NEAR_MAX is not copied (n = SIZE_MAX): read from the index. */
+#define NEAR_MAX 64
+typedef struct {
+    size_t n;
+    uint32_t m[NEAR_MAX];
+    double box[4][NEAR_MAX] __attribute__((aligned(64)));
+} near_cache;
+
+static inline __attribute__((always_inline)) void near_fill(const ft_segment_blocks *g, size_t nb, near_cache *nc)
+{
+    uint32_t e0 = g->near_start[nb], n = g->near_start[nb + 1] - e0;
+    if (n > NEAR_MAX) {
+        nc->n = SIZE_MAX;
+        return;
+    }
+    nc->n = n;
+    for (uint32_t j = 0; j < n; j++) {
+        uint32_t m = g->near[e0 + j];
+        const double *q = g->box + 4 * (size_t)m;
+        nc->m[j] = m;
+        for (int k = 0; k < 4; k++)
+            nc->box[k][j] = q[k];
+    }
+    for (uint32_t j = n; j % 8 != 0; j++) { /* padding: a box no box meets */
+        nc->box[0][j] = nc->box[1][j] = INFINITY;
+        nc->box[2][j] = nc->box[3][j] = -INFINITY;
+    }
+}
+
+/* Bit j set when near entry j's block box meets box (the block test of the scalar scan: q[2] < box[0] ... ). */
+static inline uint64_t near_screen_c(const near_cache *nc, const double box[4])
+{
+    uint64_t hit = 0;
+    for (size_t j = 0; j < nc->n; j++) {
+        int out = (nc->box[2][j] < box[0]) | (nc->box[0][j] > box[2]) | (nc->box[3][j] < box[1]) |
+                  (nc->box[1][j] > box[3]);
+        hit |= (uint64_t)!out << j;
+    }
+    return hit;
+}
+
+#if SCREEN_AVX512
+__attribute__((target("avx512f"))) static inline uint64_t near_screen_avx512(const near_cache *nc,
+                                                                            const double box[4])
+{
+    uint64_t hit = 0;
+    __m512d b0 = _mm512_set1_pd(box[0]), b1 = _mm512_set1_pd(box[1]), b2 = _mm512_set1_pd(box[2]),
+            b3 = _mm512_set1_pd(box[3]);
+    for (size_t j = 0; j < nc->n; j += 8) {
+        __mmask8 out = _mm512_cmp_pd_mask(_mm512_load_pd(&nc->box[2][j]), b0, _CMP_LT_OQ);
+        out |= _mm512_cmp_pd_mask(_mm512_load_pd(&nc->box[0][j]), b2, _CMP_GT_OQ);
+        out |= _mm512_cmp_pd_mask(_mm512_load_pd(&nc->box[3][j]), b1, _CMP_LT_OQ);
+        out |= _mm512_cmp_pd_mask(_mm512_load_pd(&nc->box[1][j]), b3, _CMP_GT_OQ);
+        hit |= (uint64_t)(uint8_t)~out << j;
+    }
+    return nc->n == NEAR_MAX ? hit : hit & (((uint64_t)1 << nc->n) - 1);
+}
+#endif
+
+typedef uint64_t (*near_screen_fn)(const near_cache *, const double *);
+
+/* 1 if the move (box its bounding box) sweeps a segment of block m other than the skip_n segments from skip
+ * (only where m is in chain c). A block's output segments run from its first vertex's output index to its
+ * last's (the next block's first, or the chain's end); they are screened by their boxes eight at a time
+ * (screen), then tested exactly in order; a block of more than eight, or a ring's last, segment by segment. */
+static inline __attribute__((always_inline)) int block_sweeps(const fused *F, size_t c, uint32_t m, size_t skip,
+                                                              size_t skip_n, const double box[4], const double *a,
+                                                              const double *b0, const double *b, const double *cc,
+                                                              screen_fn screen)
+{
+    const ft_segment_blocks *g = &F->g;
+    uint32_t mc = g->chain[m];
+    const ft_chain *ch = F->pc[mc].out;
+    size_t s0 = F->ofirst[m], s1 = m + 1 < g->chain_block[mc + 1] ? F->ofirst[m + 1] : ft_chain_segments(ch);
+    size_t sk = mc == c ? skip : SIZE_MAX, sk_n = mc == c ? skip_n : 0;
+    if (s1 - s0 > 8 || s1 >= ch->n) /* a ring's last segment ends at vertex 0 */
+        return ft_move_sweeps(ch->x, ch->y, ch->n, s0, s1, sk, sk_n, box, a, b0, b, cc);
+    unsigned hit = screen(ch->x, ch->y, s0, s1 - s0, box);
+    for (size_t i = 0; i < sk_n; i++) { /* the skipped run, cyclically from sk */
+        size_t s = sk + i < ch->n ? sk + i : sk + i - ch->n;
+        if (s - s0 < s1 - s0)
+            hit &= ~(1u << (s - s0));
+    }
+    for (; hit != 0; hit &= hit - 1) {
+        size_t s = s0 + (size_t)__builtin_ctz(hit);
+        if (ft_move_sweeps_segment(ch->x[s], ch->y[s], ch->x[s + 1], ch->y[s + 1], a, b0, b, cc))
+            return 1;
+    }
+    return 0;
+}
+
 /* 1 if moving the vertex at output index k of chain c from b0 to b (neighbours a and cc, fixed) sweeps a
- * segment of a block in nb's near list, other than the skip_n segments from skip (its own two, and the
- * neighbouring ones already cleared). A block's output segments run from its first vertex's output index to
- * its last's (the next block's first, or the chain's end). */
-static int blocked(const fused *F, size_t c, size_t nb, size_t skip, size_t skip_n, const double *a, const double *b0,
-                   const double *b, const double *cc)
+ * segment of a block in nb's near list (nc, or the index when it did not fit), other than the skip_n segments
+ * from skip (its own two, and the neighbouring ones already cleared). */
+static inline __attribute__((always_inline)) int blocked(const fused *F, size_t c, size_t nb, const near_cache *nc,
+                                                         size_t skip, size_t skip_n, const double *a,
+                                                         const double *b0, const double *b, const double *cc,
+                                                         screen_fn screen, near_screen_fn near_screen)
 {
     double box[4] = {dmin(b[0], b0[0]), dmin(b[1], b0[1]), dmax(b[0], b0[0]), dmax(b[1], b0[1])};
     box_add(box, a[0], a[1]);
     box_add(box, cc[0], cc[1]);
     const ft_segment_blocks *g = &F->g;
+    if (nc->n != SIZE_MAX) {
+        for (uint64_t hit = near_screen(nc, box); hit != 0; hit &= hit - 1)
+            if (block_sweeps(F, c, nc->m[__builtin_ctzll(hit)], skip, skip_n, box, a, b0, b, cc, screen))
+                return 1;
+        return 0;
+    }
     for (uint32_t e = g->near_start[nb]; e < g->near_start[nb + 1]; e++) {
-        uint32_t m = g->near[e], mc = g->chain[m];
+        uint32_t m = g->near[e];
         const double *q = g->box + 4 * (size_t)m;
         if (q[2] < box[0] || q[0] > box[2] || q[3] < box[1] || q[1] > box[3])
             continue;
-        const ft_chain *ch = F->pc[mc].out;
-        size_t s0 = F->ofirst[m], s1 = m + 1 < g->chain_block[mc + 1] ? F->ofirst[m + 1] : ft_chain_segments(ch);
-        if (ft_move_sweeps(ch->x, ch->y, ch->n, s0, s1, mc == c ? skip : SIZE_MAX, mc == c ? skip_n : 0, box, a, b0,
-                           b, cc))
+        if (block_sweeps(F, c, m, skip, skip_n, box, a, b0, b, cc, screen))
             return 1;
     }
     return 0;
@@ -172,8 +315,10 @@ static int blocked(const fused *F, size_t c, size_t nb, size_t skip, size_t skip
 /* Whether moving the vertex at output index k (neighbours at ka and kc) from b0 to b leaves the chain's
  * neighbouring segments (ka - 1 to ka, kc to kc + 1) clear, by the hull shortcut (ft_leaves_hull); the
  * segments it cannot clear are tested with the others. Then the scan of the near blocks. */
-static int move_blocked(const fused *F, size_t c, size_t nb, size_t k, const double *a, const double *b0,
-                        const double *b, const double *cc)
+static inline __attribute__((always_inline)) int move_blocked(const fused *F, size_t c, size_t nb,
+                                                              const near_cache *nc, size_t k, const double *a,
+                                                              const double *b0, const double *b, const double *cc,
+                                                              screen_fn screen, near_screen_fn near_screen)
 {
     const ft_chain *o = F->pc[c].out;
     size_t n = o->n, ka = k > 0 ? k - 1 : n - 1, kc = k + 1 < n ? k + 1 : 0;
@@ -186,7 +331,7 @@ static int move_blocked(const fused *F, size_t c, size_t nb, size_t k, const dou
         if (ft_leaves_hull(cc, q, a, b0, b))
             skip_n++;
     }
-    return blocked(F, c, nb, skip, skip_n, a, b0, b, cc);
+    return blocked(F, c, nb, nc, skip, skip_n, a, b0, b, cc, screen, near_screen);
 }
 
 static void count_move(ft_line_guard_stats *s, double t)
@@ -198,14 +343,18 @@ static void count_move(ft_line_guard_stats *s, double t)
 
 /* Walks the moved vertices owned by blocks [lo, hi) whose local flag is `want`, in chain and vertex order
  * (block b owns the end points of its segments but the first; an open chain's first block its first too). */
-static void walk_blocks(const fused *F, const unsigned char *local, unsigned char want, size_t lo, size_t hi,
-                        ft_line_guard_stats *s)
+static inline __attribute__((always_inline)) void walk(const fused *F, const unsigned char *local,
+                                                       unsigned char want, size_t lo, size_t hi,
+                                                       ft_line_guard_stats *s, screen_fn screen,
+                                                       near_screen_fn near_screen)
 {
     static const double ts[] = {1.0, 0.5, 0.25};
     const ft_segment_blocks *g = &F->g;
+    near_cache nc;
     for (size_t b = lo; b < hi; b++) {
         if (local[b] != want)
             continue;
+        near_fill(g, b, &nc);
         size_t c = g->chain[b];
         const pass_chain *p = &F->pc[c];
         size_t n = p->in->n, nout = p->out->n, v = g->first[b], v1 = v + g->count[b], k = F->ofirst[b];
@@ -223,7 +372,7 @@ static void walk_blocks(const fused *F, const unsigned char *local, unsigned cha
             double a[2] = {ox[ka], oy[ka]}, cc[2] = {ox[kc], oy[kc]}, b0[2] = {bx, by}, t = 0.0;
             for (int q = 0; q < 3; q++) {
                 double nbx[2] = {bx + ts[q] * dx, by + ts[q] * dy};
-                if (!move_blocked(F, c, b, ki, a, b0, nbx, cc)) {
+                if (!move_blocked(F, c, b, &nc, ki, a, b0, nbx, cc, screen, near_screen)) {
                     ox[ki] = nbx[0];
                     oy[ki] = nbx[1];
                     t = ts[q];
@@ -233,6 +382,42 @@ static void walk_blocks(const fused *F, const unsigned char *local, unsigned cha
             count_move(s, t);
         }
     }
+}
+
+static void walk_blocks_c(const fused *F, const unsigned char *local, unsigned char want, size_t lo, size_t hi,
+                          ft_line_guard_stats *s)
+{
+    walk(F, local, want, lo, hi, s, screen_c, near_screen_c);
+}
+
+#if SCREEN_AVX512
+__attribute__((target("avx512f"))) static void walk_blocks_avx512(const fused *F, const unsigned char *local,
+                                                                 unsigned char want, size_t lo, size_t hi,
+                                                                 ft_line_guard_stats *s)
+{
+    walk(F, local, want, lo, hi, s, screen_avx512, near_screen_avx512);
+}
+#endif
+
+/* The screens this run may use: tests only (ft_dutton_guard_generic), to compare the two. */
+static int generic_only;
+
+void ft_dutton_guard_generic(int on)
+{
+    generic_only = on;
+}
+
+typedef void (*walk_fn)(const fused *, const unsigned char *, unsigned char, size_t, size_t, ft_line_guard_stats *);
+
+/* The walk for this processor: AVX-512 where it runs (and is not switched off), else plain C; the same
+ * segments reach the exact tests either way, so the same bits. */
+static walk_fn pick_walk(void)
+{
+#if SCREEN_AVX512
+    if (!generic_only && __builtin_cpu_supports("avx512f"))
+        return walk_blocks_avx512;
+#endif
+    return walk_blocks_c;
 }
 
 static void free_chains(pass_chain *pc, size_t n, int keep_out)
@@ -444,6 +629,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
+        walk_fn walk_blocks = pick_walk();
         long long nk = (long long)nchunk;
 #pragma omp parallel for schedule(dynamic, 1)
         for (long long k = 0; k < nk; k++) {

@@ -98,4 +98,8 @@ void ft_dutton_carry_free(ft_dutton_carry *k);
 int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_plan *p, ft_chain **out,
                            ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left);
 
+/** Tests only: 1 makes the fused pass's walk screen segment boxes in plain C even where AVX-512 runs (it
+ *  must give the same bits); 0 (the default) lets it pick. */
+void ft_dutton_guard_generic(int on);
+
 #endif /* FRACTERRA_LINE_DUTTON_INTERNAL_H */

@@ -78,6 +78,20 @@ static inline int ft_strictly_inside(const double *a, const double *b, const dou
     return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
 }
 
+/** The exact part of ft_move_sweeps for one segment p0 p1 to p2 p3 (its box already known to meet the move's):
+ *  contact with a b, b cc or the path b0 b, or its first end point strictly inside a b0 b or b0 b cc. */
+static inline int ft_move_sweeps_segment(double p0, double p1, double p2, double p3, const double *a,
+                                         const double *b0, const double *b, const double *cc)
+{
+    if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p0, p1, p2, p3))
+        return 1;
+    if (cc && ft_segment_contact(b[0], b[1], cc[0], cc[1], p0, p1, p2, p3))
+        return 1;
+    if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p0, p1, p2, p3))
+        return 1;
+    return (a && ft_strictly_inside(a, b0, b, p0, p1)) || (cc && ft_strictly_inside(b0, b, cc, p0, p1));
+}
+
 /** 1 if moving a vertex from b0 to b, its neighbours a and cc (NULL when absent) staying, sweeps one of the
  *  segments s0 .. s1 - 1 (segment s: vertex s to s + 1, a ring's last back to 0) of the chain x, y of n
  *  vertices other than the skip_n segments from skip (cyclically; the moved vertex's own, and those already
@@ -96,13 +110,7 @@ static inline int ft_move_sweeps(const double *x, const double *y, size_t n, siz
         if (ft_cmax(p0, p2) < box[0] || ft_cmin(p0, p2) > box[2] || ft_cmax(p1, p3) < box[1] ||
             ft_cmin(p1, p3) > box[3])
             continue;
-        if (a && ft_segment_contact(a[0], a[1], b[0], b[1], p0, p1, p2, p3))
-            return 1;
-        if (cc && ft_segment_contact(b[0], b[1], cc[0], cc[1], p0, p1, p2, p3))
-            return 1;
-        if (ft_segment_contact(b0[0], b0[1], b[0], b[1], p0, p1, p2, p3))
-            return 1;
-        if ((a && ft_strictly_inside(a, b0, b, p0, p1)) || (cc && ft_strictly_inside(b0, b, cc, p0, p1)))
+        if (ft_move_sweeps_segment(p0, p1, p2, p3, a, b0, b, cc))
             return 1;
     }
     return 0;
@@ -113,7 +121,7 @@ static inline int ft_move_sweeps(const double *x, const double *y, size_t n, siz
  *  1e-9) and p strictly on the other. 0 when not sure (the hull's angle at x near pi or above, p near its
  *  edge, a zero-length direction). Exact reasoning: the half-plane holds the hull, and the segment leaves it
  *  at x. */
-static inline int ft_leaves_hull(const double *x, const double *p, const double *q0, const double *q1,
+static inline __attribute__((always_inline)) int ft_leaves_hull(const double *x, const double *p, const double *q0, const double *q1,
                                  const double *q2)
 {
     const double eps2 = 1e-18; /* the margin, squared: the tests compare squares, no square root */

@@ -20,6 +20,7 @@
 #include <omp.h>
 #include "fracterra/io.h"
 #include "fracterra/line.h"
+#include "line/dutton_internal.h"
 #include "line/segment_index.h"
 
 #define NEWFOUNDLAND FT_TEST_DATA "/gshhg_newfoundland_utm21n.geojson"
@@ -440,6 +441,58 @@ static void test_fused_matches_unfused(void **state)
     ft_layer_free(l);
 }
 
+/* Guarded passes over copies of c[0..n) with the walk's plain-C screen or the one the processor picks; the
+ * copies are returned in out, the counts added to st. */
+static void run_screen(ft_chain *const *c, size_t n, const ft_dutton_opts *o, int passes, int generic,
+                       ft_chain **out, ft_line_guard_stats *st)
+{
+    ft_dutton_plan plan;
+    assert_int_equal(ft_dutton_plan_make((const ft_chain *const *)c, n, o, &plan), FT_OK);
+    for (size_t k = 0; k < n; k++)
+        assert_non_null(out[k] = ft_chain_copy(c[k]));
+    ft_dutton_guard_generic(generic);
+    int rc = ft_line_run_passes(out, n, ft_line_pass_enhance, &plan, passes, FT_GUARD_REDUCE, st);
+    ft_dutton_guard_generic(0);
+    assert_int_equal(rc, FT_OK);
+}
+
+/* The fused walk screens segment boxes eight at a time, with AVX-512 where the processor has it, else in
+ * plain C; both must hand the exact tests the same segments, so give the same bits. The plain screen against
+ * the unfused guard (the sharp walk and the ring, whose last block wraps round: the segment-by-segment path),
+ * then the two screens against each other where SM leaves segments unsplit in the second pass (blocks of
+ * fewer than eight output segments), a case the unfused guard cannot be compared with. On a processor without
+ * AVX-512 the second comparison is plain C twice. */
+static void test_screens_same_bits(void **state)
+{
+    (void)state;
+    ft_chain *c[2];
+    spiral_and_ring(c, 1);
+    ft_dutton_opts o = FT_DUTTON_OPTS_DEFAULT;
+    o.sd = 1.5;
+    ft_dutton_guard_generic(1);
+    fused_matches_unfused(c, 2, &o, 2);
+    ft_dutton_guard_generic(0);
+    o.sm = 0.55; /* the first pass splits every 1 m step; the second only the halves not shorter than 0.55 m */
+    ft_chain *g[2], *v[2];
+    ft_line_guard_stats sg = {0, 0, 0, 0}, sv = {0, 0, 0, 0};
+    run_screen(c, 2, &o, 2, 1, g, &sg);
+    run_screen(c, 2, &o, 2, 0, v, &sv);
+    assert_true(sg.reduced + sg.dropped > 100);
+    assert_int_equal(sg.moves, sv.moves);
+    assert_int_equal(sg.reduced, sv.reduced);
+    assert_int_equal(sg.dropped, sv.dropped);
+    for (size_t k = 0; k < 2; k++) {
+        size_t all = c[k]->closed ? 4 * c[k]->n : 4 * (c[k]->n - 1) + 1; /* every segment split twice */
+        assert_true(g[k]->n > 2 * c[k]->n && g[k]->n < all); /* spiral: 89,367 of 159,997 */
+        assert_int_equal(g[k]->n, v[k]->n);
+        assert_memory_equal(g[k]->x, v[k]->x, g[k]->n * sizeof(double));
+        assert_memory_equal(g[k]->y, v[k]->y, g[k]->n * sizeof(double));
+        ft_chain_free(g[k]);
+        ft_chain_free(v[k]);
+        ft_chain_free(c[k]);
+    }
+}
+
 /* A made-up displacement of vertex i of chain c, each coordinate in [-m, m]. */
 static double wobble(size_t c, size_t i, int axis, double m)
 {
@@ -574,6 +627,7 @@ int main(void)
         cmocka_unit_test(test_thread_count),
         cmocka_unit_test(test_fused_matches_unfused),
         cmocka_unit_test(test_carried_index),
+        cmocka_unit_test(test_screens_same_bits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
