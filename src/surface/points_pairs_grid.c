@@ -127,26 +127,31 @@ static void padded_free(padded_cells *p)
     free(p->fm);
 }
 
+/* The offset (ox, oy) with the annuli its range of separations meets. */
+static lane_offset lane_offset_of(const pts_grid *g, long ox, long oy, const pts_lags *L)
+{
+    double dmin2, dmax2;
+    pts_grid_offset_range(g, ox, oy, &dmin2, &dmax2);
+    dmin2 *= 1.0 - RANGE_SLACK;
+    dmax2 *= 1.0 + RANGE_SLACK;
+    size_t first = 0;
+    while (first < L->n && L->hi2[first] < dmin2)
+        first++;
+    size_t end = first;
+    while (end < L->n && L->lo2[end] <= dmax2)
+        end++;
+    return (lane_offset){ox, oy, (uint32_t)first, (uint32_t)(end - first), (float)((double)ox * g->cell),
+                         (float)((double)oy * g->cell)};
+}
+
 /* The offsets of o with the annuli each meets. */
 static lane_offset *lane_offsets(const pts_grid *g, const pts_offsets *o, const pts_lags *L)
 {
     lane_offset *lo = ft_malloc((o->n ? o->n : 1) * sizeof *lo);
     if (lo == NULL)
         return NULL;
-    for (size_t k = 0; k < o->n; k++) {
-        double dmin2, dmax2;
-        pts_grid_offset_range(g, o->ox[k], o->oy[k], &dmin2, &dmax2);
-        dmin2 *= 1.0 - RANGE_SLACK;
-        dmax2 *= 1.0 + RANGE_SLACK;
-        size_t first = 0;
-        while (first < L->n && L->hi2[first] < dmin2)
-            first++;
-        size_t end = first;
-        while (end < L->n && L->lo2[end] <= dmax2)
-            end++;
-        lo[k] = (lane_offset){o->ox[k], o->oy[k], (uint32_t)first, (uint32_t)(end - first),
-                              (float)((double)o->ox[k] * g->cell), (float)((double)o->oy[k] * g->cell)};
-    }
+    for (size_t k = 0; k < o->n; k++)
+        lo[k] = lane_offset_of(g, o->ox[k], o->oy[k], L);
     return lo;
 }
 
@@ -295,6 +300,9 @@ struct pair_job {
     uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
     lane_fn lane[FEW_MAX + 1];
     lane_fn many;             /* the others, or NULL: the lookup-table screen (cell_pair) */
+    /* the pairs inside a cell through a screen, or NULL: cell_self */
+    void (*self)(const pair_job *, size_t, const lane_offset *, scratch *);
+    lane_offset self_off; /* the offset (0, 0) with its annuli */
 };
 
 /* The real points of cell c in the padded arrays. */
@@ -607,11 +615,19 @@ static const uint16_t lane_w[32] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13
 static const uint16_t half_w[32] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
                                     1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
 
+/* The lanes l of sixteen from point v whose point v + l comes after point t of the same cell. */
+static inline uint32_t lanes_after(size_t t, size_t v)
+{
+    size_t e = t + 1 > v ? t + 1 - v : 0;
+    return e >= 16 ? 0u : (0xffffu << e) & 0xffffu;
+}
+
 /* The same screen two rows at a time with 16-bit candidates (i << 8 | j: cells of at most 256 points):
  * the two rows' masks joined, one 32-word compress and one store per two rows instead of one each per row
- * (AVX-512 BW and VBMI2). */
+ * (AVX-512 BW and VBMI2). With self, a = b and off is (0, 0): only the pairs i < j of the cell. */
 __attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static inline __attribute__((always_inline)) void
-lane_body_avx512w(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
+lane_body_avx512w_pairs(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w,
+                        const uint32_t nk, const int self)
 {
     screen_setup s;
     screen_begin(jb, a, b, off, nk, &s);
@@ -628,21 +644,40 @@ lane_body_avx512w(const pair_job *jb, size_t a, size_t b, const lane_offset *off
         __m512 yv = _mm512_add_ps(_mm512_loadu_ps(s.vy + v), s.oy);
         __m512 q2 = _mm512_sub_ps(_mm512_fmadd_ps(xv, xv, _mm512_mul_ps(yv, yv)), _mm512_set1_ps(s.flo[0]));
         __m512i ij = base;
-        size_t t = 0;
-        for (; t + 1 < s.ns; t += 2, ij = _mm512_add_epi16(ij, next_2s)) {
+        size_t t = 0, ns = self && v + 15 < s.ns ? v + 15 : s.ns; /* self: rows past v + 14 have no j > i */
+        for (; t + 1 < ns; t += 2, ij = _mm512_add_epi16(ij, next_2s)) {
             __mmask16 in0 = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t, s.step, s.span, s.flo, s.fspan, nk);
             __mmask16 in1 = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t + 1, s.step, s.span, s.flo, s.fspan, nk);
+            if (self) {
+                in0 &= (__mmask16)lanes_after(t, v);
+                in1 &= (__mmask16)lanes_after(t + 1, v);
+            }
             __mmask32 in = _mm512_kunpackw((__mmask32)in1, (__mmask32)in0);
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi16(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
-        if (t < s.ns) {
+        if (t < ns) {
             __mmask32 in = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t, s.step, s.span, s.flo, s.fspan, nk);
+            if (self)
+                in &= lanes_after(t, v);
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi16(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
     }
     add_candidates_avx512(jb->L, w, jb->p, s.i0, s.vi, s.j0, s.vj, cand, n, off->k0, nk, 1);
+}
+
+__attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static inline __attribute__((always_inline)) void
+lane_body_avx512w(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
+{
+    lane_body_avx512w_pairs(jb, a, b, off, w, nk, 0);
+}
+
+/* The pairs i < j inside cell c through the two-row screen (off: the offset (0, 0) with its annuli). */
+__attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static void
+cell_self_avx512w(const pair_job *jb, size_t c, const lane_offset *off, scratch *w)
+{
+    lane_body_avx512w_pairs(jb, c, c, off, w, off->nk, 1);
 }
 
 #define LANE_FN(isa, tgt, n)                                                                                   \
@@ -687,6 +722,7 @@ static size_t pick_lanes(pair_job *jb, size_t most)
         jb->lane[k] = lane_pair_generic;
     jb->few = 4;
     jb->many = NULL;
+    jb->self = NULL;
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
@@ -698,6 +734,7 @@ static size_t pick_lanes(pair_job *jb, size_t most)
         __builtin_cpu_supports("avx512vbmi2")) {
         t = lanes_avx512w;
         jb->many = lane_pair_avx512w_many;
+        jb->self = cell_self_avx512w;
         pad = 16;
     } else if (avx512) {
         t = lanes_avx512f;
@@ -723,8 +760,12 @@ static void one_cell(const pair_job *jb, size_t c, scratch *w)
     if (g->start[c] == g->start[c + 1])
         return;
     long cx = (long)(c % g->nx), cy = (long)(c / g->nx);
-    if (pts_lags_meet(jb->L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6)))
-        cell_self(g, c, jb->L, w->acc);
+    if (pts_lags_meet(jb->L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6))) {
+        if (jb->self != NULL && jb->self_off.nk > 0)
+            jb->self(jb, c, &jb->self_off, w);
+        else
+            cell_self(g, c, jb->L, w->acc);
+    }
     for (size_t k = 0; k < jb->noff; k++) {
         const lane_offset *off = &jb->off[k];
         long bx = cx + off->ox, by = cy + off->oy;
@@ -818,6 +859,7 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     if (rc == FT_OK && (off = lane_offsets(&g, &o, L)) == NULL)
         rc = FT_E_NOMEM;
     jb.g = &g;
+    jb.self_off = lane_offset_of(&g, 0, 0, L);
     jb.p = &pad;
     jb.off = off;
     jb.noff = o.n;
