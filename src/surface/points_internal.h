@@ -111,8 +111,9 @@ void pts_offsets_free(pts_offsets *o);
 int pts_pairs_exact(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progress_fn fn, void *arg);
 /* Every pair within the largest annulus through the grid (points_pairs_grid.c). */
 int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progress_fn fn, void *arg);
-/* Tests only: the screens pts_pairs_grid may use: 0 any (AVX-512 float where the processor has it),
- * 1 at most AVX2 (double), 2 none (plain C). */
+/* Tests only: the screens pts_pairs_grid may use: 0 any (AVX-512 float where the processor has it, two rows
+ * at a time with 16-bit candidates where it has VBMI2 and cells hold at most 256 points), 1 at most AVX2
+ * (double), 2 none (plain C), 3 any but the two-row screen (AVX-512 float with 32-bit candidates). */
 void pts_pairs_grid_isa(int limit);
 
 /* Weighted sums of sample mode, per lag (points_pairs_sample.c): with w = the candidate count of the

@@ -14,9 +14,11 @@
  * spaced by a fixed ratio, the cells are small). Such an offset's pairs are screened against just those
  * annuli: with AVX-512, sixteen pairs per instruction in float (d² - lo from |q|² - lo, |p|² and two fused
  * multiply-adds, against annuli widened beyond the float roundings: float_annuli), the pairs kept listed
- * and then tested exactly eight at a time (lane_body_avx512f, candidates_body); with AVX2, four pairs per instruction in double; else plain C. The exact test is
- * always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused multiply-add),
- * the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
+ * and then tested exactly eight at a time (lane_body_avx512f, candidates_body); where the processor has
+ * VBMI2 and cells hold at most 256 points, two rows at a time with 16-bit indices (lane_body_avx512w: one
+ * compress and one store per two rows); with AVX2, four pairs per instruction in double; else plain C.
+ * The exact test is always the scalar one's arithmetic: d² = dx² + dy² with each product rounded (no fused
+ * multiply-add), the same bounds, the same rounded integer terms. Cells are copied with their point counts padded to the
  * lane width with NaN coordinates (a NaN d² lies in no annulus). Without AVX-512, offsets near the
  * origin, meeting more annuli, keep the lookup-table screen. A pair meets the same annuli whichever screen
  * runs, so the counters do not depend on it (tests/unit/test_surface_points.c compares each with the
@@ -59,7 +61,7 @@ typedef struct {
 } lane_offset;
 
 /* The screens this run may use (tests only: pts_pairs_grid_isa). */
-enum { ISA_BEST = 0, ISA_AVX2 = 1, ISA_GENERIC = 2 };
+enum { ISA_BEST = 0, ISA_AVX2 = 1, ISA_GENERIC = 2, ISA_AVX512_IDS32 = 3 };
 static int isa_limit;
 
 void pts_pairs_grid_isa(int limit)
@@ -125,26 +127,31 @@ static void padded_free(padded_cells *p)
     free(p->fm);
 }
 
+/* The offset (ox, oy) with the annuli its range of separations meets. */
+static lane_offset lane_offset_of(const pts_grid *g, long ox, long oy, const pts_lags *L)
+{
+    double dmin2, dmax2;
+    pts_grid_offset_range(g, ox, oy, &dmin2, &dmax2);
+    dmin2 *= 1.0 - RANGE_SLACK;
+    dmax2 *= 1.0 + RANGE_SLACK;
+    size_t first = 0;
+    while (first < L->n && L->hi2[first] < dmin2)
+        first++;
+    size_t end = first;
+    while (end < L->n && L->lo2[end] <= dmax2)
+        end++;
+    return (lane_offset){ox, oy, (uint32_t)first, (uint32_t)(end - first), (float)((double)ox * g->cell),
+                         (float)((double)oy * g->cell)};
+}
+
 /* The offsets of o with the annuli each meets. */
 static lane_offset *lane_offsets(const pts_grid *g, const pts_offsets *o, const pts_lags *L)
 {
     lane_offset *lo = ft_malloc((o->n ? o->n : 1) * sizeof *lo);
     if (lo == NULL)
         return NULL;
-    for (size_t k = 0; k < o->n; k++) {
-        double dmin2, dmax2;
-        pts_grid_offset_range(g, o->ox[k], o->oy[k], &dmin2, &dmax2);
-        dmin2 *= 1.0 - RANGE_SLACK;
-        dmax2 *= 1.0 + RANGE_SLACK;
-        size_t first = 0;
-        while (first < L->n && L->hi2[first] < dmin2)
-            first++;
-        size_t end = first;
-        while (end < L->n && L->lo2[end] <= dmax2)
-            end++;
-        lo[k] = (lane_offset){o->ox[k], o->oy[k], (uint32_t)first, (uint32_t)(end - first),
-                              (float)((double)o->ox[k] * g->cell), (float)((double)o->oy[k] * g->cell)};
-    }
+    for (size_t k = 0; k < o->n; k++)
+        lo[k] = lane_offset_of(g, o->ox[k], o->oy[k], L);
     return lo;
 }
 
@@ -293,6 +300,9 @@ struct pair_job {
     uint32_t few;             /* offsets meeting at most this many annuli take the lane screen */
     lane_fn lane[FEW_MAX + 1];
     lane_fn many;             /* the others, or NULL: the lookup-table screen (cell_pair) */
+    /* the pairs inside a cell through a screen, or NULL: cell_self */
+    void (*self)(const pair_job *, size_t, const lane_offset *, scratch *);
+    lane_offset self_off; /* the offset (0, 0) with its annuli */
 };
 
 /* The real points of cell c in the padded arrays. */
@@ -398,13 +408,13 @@ table_get(const cell_table *c, const double *v, __m512i idx, __mmask8 m, const i
     return r;
 }
 
-/* The exact test of add_lane_pair on eight of the float screen's candidates cand[0..n) at once (i << 16 | j,
- * within cells starting at i0 and j0, padded to at most 8 x rows points, rows = 0: any size): the same
- * d² = dx² + dy², the same annulus bounds, the same terms, added into the thread's 64-bit lanes
- * (wide_flush). */
+/* The exact test of add_lane_pair on eight of the float screen's candidates cand[0..n) at once (i << 16 | j
+ * as 32 bits, or with id16 i << 8 | j as 16 bits, within cells starting at i0 and j0, padded to at most
+ * 8 x rows points, rows = 0: any size): the same d² = dx² + dy², the same annulus bounds, the same terms,
+ * added into the thread's 64-bit lanes (wide_flush). */
 __attribute__((target("avx512f,avx512dq"))) static inline __attribute__((always_inline)) void
 candidates_body(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0, size_t ni, size_t j0, size_t nj,
-                const uint32_t *cand, size_t n, uint32_t k0, uint32_t nk, const int rows)
+                const void *cand, size_t n, uint32_t k0, uint32_t nk, const int rows, const int id16)
 {
     const __m512d qa = _mm512_set1_pd(L->qa), qb = _mm512_set1_pd(L->qb), qs = _mm512_set1_pd(L->qs);
     const __m512d half = _mm512_set1_pd(0.5);
@@ -421,8 +431,16 @@ candidates_body(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0,
     for (size_t t = 0; t < n; t += 8) {
         /* lanes past n read stale entries of the buffer (it has sixteen to spare) and are masked off */
         __mmask8 m = n - t >= 8 ? (__mmask8)0xff : (__mmask8)((1u << (n - t)) - 1u);
-        __m512i c = _mm512_cvtepu32_epi64(_mm256_loadu_si256((const __m256i *)(cand + t)));
-        __m512i ii = _mm512_srli_epi64(c, 16), jj = _mm512_and_si512(c, _mm512_set1_epi64(0xffff));
+        __m512i ii, jj;
+        if (id16) {
+            __m512i c = _mm512_cvtepu16_epi64(_mm_loadu_si128((const __m128i *)((const uint16_t *)cand + t)));
+            ii = _mm512_srli_epi64(c, 8);
+            jj = _mm512_and_si512(c, _mm512_set1_epi64(0xff));
+        } else {
+            __m512i c = _mm512_cvtepu32_epi64(_mm256_loadu_si256((const __m256i *)((const uint32_t *)cand + t)));
+            ii = _mm512_srli_epi64(c, 16);
+            jj = _mm512_and_si512(c, _mm512_set1_epi64(0xffff));
+        }
         __m512d dx = _mm512_sub_pd(table_get(&xb, p->x + j0, jj, m, rows), table_get(&xa, p->x + i0, ii, m, rows));
         __m512d dy = _mm512_sub_pd(table_get(&yb, p->y + j0, jj, m, rows), table_get(&ya, p->y + i0, ii, m, rows));
         __m512d dz = _mm512_sub_pd(table_get(&zb, p->z + j0, jj, m, rows), table_get(&za, p->z + i0, ii, m, rows));
@@ -463,111 +481,237 @@ candidates_body(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0,
 
 /* candidates_body for cells of `ni` and `nj` padded points: from permute tables when both hold at most 64,
  * else gathered. */
+__attribute__((target("avx512f,avx512dq"))) static inline __attribute__((always_inline)) void
+candidates_sized(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0, size_t ni, size_t j0, size_t nj,
+                 const void *cand, size_t n, uint32_t k0, uint32_t nk, const int id16)
+{
+    size_t most = ni > nj ? ni : nj;
+    if (most <= 16)
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 2, id16);
+    else if (most <= 32)
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 4, id16);
+    else if (most <= 64)
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 8, id16);
+    else
+        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 0, id16);
+}
+
+/* The exact test of the candidates of one pair of cells, held as 32-bit or (id16) 16-bit indices. */
 __attribute__((target("avx512f,avx512dq"))) static void
 add_candidates_avx512(const pts_lags *L, scratch *w, const padded_cells *p, size_t i0, size_t ni, size_t j0,
-                      size_t nj, const uint32_t *cand, size_t n, uint32_t k0, uint32_t nk)
+                      size_t nj, const void *cand, size_t n, uint32_t k0, uint32_t nk, int id16)
 {
     if (n == 0)
         return;
-    size_t most = ni > nj ? ni : nj;
-    if (most <= 16)
-        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 2);
-    else if (most <= 32)
-        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 4);
-    else if (most <= 64)
-        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 8);
+    if (id16)
+        candidates_sized(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 1);
     else
-        candidates_body(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 0);
+        candidates_sized(L, w, p, i0, ni, j0, nj, cand, n, k0, nk, 0);
+}
+
+/* The float screen's test of row t: the lanes (points q, moved by the offset) whose d² less the first
+ * annulus' lower bound, (|q|² - lo) + |p|² - 2 qx px - 2 qy py with p the row's point, falls in one of the nk
+ * widened annuli (float_annuli), each compared as unsigned bits against its span (step: from the first
+ * annulus' lower bound to the k-th's). */
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) __mmask16
+row_keep(__m512 q2, __m512 xv, __m512 yv, const float *sm, const float *sa, const float *sb, size_t t,
+         const __m512 *step, const __m512i *span, const float *flo, const float *fspan, const uint32_t nk)
+{
+    __m512 r = _mm512_add_ps(q2, _mm512_set1_ps(sm[t]));
+    r = _mm512_fmadd_ps(xv, _mm512_set1_ps(sa[t]), r);
+    r = _mm512_fmadd_ps(yv, _mm512_set1_ps(sb[t]), r);
+    __mmask16 in = _mm512_cmple_epu32_mask(_mm512_castps_si512(r), nk <= FEW_MAX ? span[0] :
+                                           _mm512_set1_epi32((int)float_bits(fspan[0])));
+    if (nk <= FEW_MAX)
+        for (uint32_t k = 1; k < nk; k++)
+            in |= _mm512_cmple_epu32_mask(_mm512_castps_si512(_mm512_sub_ps(r, step[k])), span[k]);
+    else
+        for (uint32_t k = 1; k < nk; k++)
+            in |= _mm512_cmple_epu32_mask(_mm512_castps_si512(_mm512_sub_ps(r, _mm512_set1_ps(flo[k] - flo[0]))),
+                                          _mm512_set1_epi32((int)float_bits(fspan[k])));
+    return in;
+}
+
+/* What both AVX-512 screens of a pair of cells share: sixteen points of one cell in the lanes, the other's
+ * points in turn as rows, the cheaper way round (cells are padded to sixteen). The lanes hold b's points
+ * moved by the offset, or (swap) a's moved back by it. */
+typedef struct {
+    const float *flo, *fspan;
+    const float *vx, *vy;     /* the lanes' points */
+    const float *sa, *sb, *sm; /* the rows': -2 x, -2 y, x² + y² */
+    size_t i0, ni, vi, j0, nj, vj; /* first point, real and padded counts of a and b */
+    size_t nv, ns;            /* padded lane points, real rows */
+    int swap;
+    __m512 ox, oy;
+    __m512 step[FEW_MAX];  /* from the first annulus' lower bound to the k-th's */
+    __m512i span[FEW_MAX]; /* as unsigned bits */
+} screen_setup;
+
+__attribute__((target("avx512f"))) static inline __attribute__((always_inline)) void
+screen_begin(const pair_job *jb, size_t a, size_t b, const lane_offset *off, const uint32_t nk, screen_setup *s)
+{
+    const padded_cells *p = jb->p;
+    s->flo = jb->flo + off->k0;
+    s->fspan = jb->fspan + off->k0;
+    for (uint32_t k = 0; k < nk && k < FEW_MAX; k++) {
+        s->step[k] = _mm512_set1_ps(s->flo[k] - s->flo[0]);
+        s->span[k] = _mm512_set1_epi32((int)float_bits(s->fspan[k]));
+    }
+    s->i0 = p->start[a];
+    s->ni = padded_end(jb, a) - s->i0;
+    s->j0 = p->start[b];
+    s->nj = padded_end(jb, b) - s->j0;
+    s->vi = p->start[a + 1] - s->i0; /* padded counts */
+    s->vj = p->start[b + 1] - s->j0;
+    int swap = s->nj * (s->vi / 16) < s->ni * (s->vj / 16);
+    size_t lane0 = swap ? s->i0 : s->j0, row0 = swap ? s->j0 : s->i0;
+    s->swap = swap;
+    s->vx = p->fx + lane0;
+    s->vy = p->fy + lane0;
+    s->sa = p->fa + row0;
+    s->sb = p->fb + row0;
+    s->sm = p->fm + row0;
+    s->nv = swap ? s->vi : s->vj;
+    s->ns = swap ? s->nj : s->ni;
+    s->ox = _mm512_set1_ps(swap ? -off->fx : off->fx);
+    s->oy = _mm512_set1_ps(swap ? -off->fy : off->fy);
 }
 
 /* The float screen, sixteen pairs per AVX-512 instruction, against the widened annuli (float_annuli):
- * each sixteen points of cell b (moved by the offset) against every point of cell a in turn, the indices
- * of the pairs it keeps packed into the thread's candidate list, which then goes through the exact test
- * (no branch per pair in the screen). */
+ * each sixteen points of one cell (moved by the offset) against every point of the other in turn, the
+ * indices of the pairs it keeps packed into the thread's candidate list (i << 16 | j, 32 bits), which then
+ * goes through the exact test (no branch per pair in the screen). */
 __attribute__((target("avx512f"))) static inline __attribute__((always_inline)) void
 lane_body_avx512f(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
 {
-    const padded_cells *p = jb->p;
-    const float *flo = jb->flo + off->k0, *fspan = jb->fspan + off->k0;
-    __m512 step[FEW_MAX];  /* from the first annulus' lower bound to the k-th's */
-    __m512i span[FEW_MAX]; /* as unsigned bits */
-    for (uint32_t k = 0; k < nk && k < FEW_MAX; k++) {
-        step[k] = _mm512_set1_ps(flo[k] - flo[0]);
-        span[k] = _mm512_set1_epi32((int)float_bits(fspan[k]));
-    }
+    screen_setup s;
+    screen_begin(jb, a, b, off, nk, &s);
     const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     uint32_t *cand = w->cand;
-    size_t n = 0, i0 = p->start[a], ni = padded_end(jb, a) - i0, j0 = p->start[b], nj = padded_end(jb, b) - j0;
-    size_t vi = p->start[a + 1] - i0, vj = p->start[b + 1] - j0; /* padded counts */
-    /* Sixteen points of one cell in the lanes, the other's points in turn: the cheaper way round (cells
-     * are padded to sixteen). The lanes hold b's points moved by the offset, or a's moved back by it. */
-    int swap = nj * (vi / 16) < ni * (vj / 16);
-    const float *vx = swap ? p->fx + i0 : p->fx + j0, *vy = swap ? p->fy + i0 : p->fy + j0;
-    const float *sa = swap ? p->fa + j0 : p->fa + i0, *sb = swap ? p->fb + j0 : p->fb + i0;
-    const float *sm = swap ? p->fm + j0 : p->fm + i0;
-    size_t nv = swap ? vi : vj, ns = swap ? nj : ni;
-    const __m512 ox = _mm512_set1_ps(swap ? -off->fx : off->fx), oy = _mm512_set1_ps(swap ? -off->fy : off->fy);
+    size_t n = 0;
     /* candidate = i << 16 | j, both within their cell (cells hold < 2^15 points here) */
-    const __m512i lane_id = swap ? _mm512_slli_epi32(iota, 16) : iota;
-    const __m512i next_s = _mm512_set1_epi32(swap ? 1 : 1 << 16), next_v = _mm512_set1_epi32(swap ? 16 << 16 : 16);
+    const __m512i lane_id = s.swap ? _mm512_slli_epi32(iota, 16) : iota;
+    const __m512i next_s = _mm512_set1_epi32(s.swap ? 1 : 1 << 16);
+    const __m512i next_v = _mm512_set1_epi32(s.swap ? 16 << 16 : 16);
     __m512i base = lane_id;
-    for (size_t v = 0; v < nv; v += 16, base = _mm512_add_epi32(base, next_v)) {
-        __m512 xv = _mm512_add_ps(_mm512_loadu_ps(vx + v), ox);
-        __m512 yv = _mm512_add_ps(_mm512_loadu_ps(vy + v), oy);
+    for (size_t v = 0; v < s.nv; v += 16, base = _mm512_add_epi32(base, next_v)) {
+        __m512 xv = _mm512_add_ps(_mm512_loadu_ps(s.vx + v), s.ox);
+        __m512 yv = _mm512_add_ps(_mm512_loadu_ps(s.vy + v), s.oy);
         /* |q|² less the first annulus' lower bound, once per sixteen */
-        __m512 q2 = _mm512_sub_ps(_mm512_fmadd_ps(xv, xv, _mm512_mul_ps(yv, yv)), _mm512_set1_ps(flo[0]));
+        __m512 q2 = _mm512_sub_ps(_mm512_fmadd_ps(xv, xv, _mm512_mul_ps(yv, yv)), _mm512_set1_ps(s.flo[0]));
         __m512i ij = base;
-        for (size_t t = 0; t < ns; t++, ij = _mm512_add_epi32(ij, next_s)) {
-            /* d² - lo = (|q|² - lo) + |p|² - 2 qx px - 2 qy py */
-            __m512 r = _mm512_add_ps(q2, _mm512_set1_ps(sm[t]));
-            r = _mm512_fmadd_ps(xv, _mm512_set1_ps(sa[t]), r);
-            r = _mm512_fmadd_ps(yv, _mm512_set1_ps(sb[t]), r);
-            __mmask16 in = _mm512_cmple_epu32_mask(_mm512_castps_si512(r), nk <= FEW_MAX ? span[0] :
-                                                   _mm512_set1_epi32((int)float_bits(fspan[0])));
-            if (nk <= FEW_MAX)
-                for (uint32_t k = 1; k < nk; k++)
-                    in |= _mm512_cmple_epu32_mask(_mm512_castps_si512(_mm512_sub_ps(r, step[k])), span[k]);
-            else
-                for (uint32_t k = 1; k < nk; k++)
-                    in |= _mm512_cmple_epu32_mask(
-                        _mm512_castps_si512(_mm512_sub_ps(r, _mm512_set1_ps(flo[k] - flo[0]))),
-                        _mm512_set1_epi32((int)float_bits(fspan[k])));
+        for (size_t t = 0; t < s.ns; t++, ij = _mm512_add_epi32(ij, next_s)) {
+            __mmask16 in = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t, s.step, s.span, s.flo, s.fspan, nk);
             _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi32(in, ij));
             n += (size_t)__builtin_popcount(in);
         }
     }
-    add_candidates_avx512(jb->L, w, p, i0, vi, j0, vj, cand, n, off->k0, nk);
+    add_candidates_avx512(jb->L, w, jb->p, s.i0, s.vi, s.j0, s.vj, cand, n, off->k0, nk, 0);
 }
 
-#define LANE_FN(isa, n)                                                                                        \
-    __attribute__((target(#isa))) static void lane_pair_##isa##_##n(const pair_job *jb, size_t a, size_t b,   \
-                                                                    const lane_offset *off, scratch *w)         \
+/* Lane l of a 32-word vector: l mod 16 (the point) and l / 16 (which of two rows). */
+static const uint16_t lane_w[32] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+                                    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+static const uint16_t half_w[32] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                    1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+
+/* The lanes l of sixteen from point v whose point v + l comes after point t of the same cell. */
+static inline uint32_t lanes_after(size_t t, size_t v)
+{
+    size_t e = t + 1 > v ? t + 1 - v : 0;
+    return e >= 16 ? 0u : (0xffffu << e) & 0xffffu;
+}
+
+/* The same screen two rows at a time with 16-bit candidates (i << 8 | j: cells of at most 256 points):
+ * the two rows' masks joined, one 32-word compress and one store per two rows instead of one each per row
+ * (AVX-512 BW and VBMI2). With self, a = b and off is (0, 0): only the pairs i < j of the cell. */
+__attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static inline __attribute__((always_inline)) void
+lane_body_avx512w_pairs(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w,
+                        const uint32_t nk, const int self)
+{
+    screen_setup s;
+    screen_begin(jb, a, b, off, nk, &s);
+    uint16_t *cand = (uint16_t *)(void *)w->cand;
+    size_t n = 0;
+    const __m512i lw = _mm512_loadu_si512(lane_w), hw = _mm512_loadu_si512(half_w);
+    /* lanes 0-15: row t, lanes 16-31: row t + 1 */
+    __m512i base = s.swap ? _mm512_add_epi16(_mm512_slli_epi16(lw, 8), hw)
+                          : _mm512_add_epi16(lw, _mm512_slli_epi16(hw, 8));
+    const __m512i next_2s = _mm512_set1_epi16(s.swap ? 2 : 2 << 8);
+    const __m512i next_v = _mm512_set1_epi16(s.swap ? 16 << 8 : 16);
+    for (size_t v = 0; v < s.nv; v += 16, base = _mm512_add_epi16(base, next_v)) {
+        __m512 xv = _mm512_add_ps(_mm512_loadu_ps(s.vx + v), s.ox);
+        __m512 yv = _mm512_add_ps(_mm512_loadu_ps(s.vy + v), s.oy);
+        __m512 q2 = _mm512_sub_ps(_mm512_fmadd_ps(xv, xv, _mm512_mul_ps(yv, yv)), _mm512_set1_ps(s.flo[0]));
+        __m512i ij = base;
+        size_t t = 0, ns = self && v + 15 < s.ns ? v + 15 : s.ns; /* self: rows past v + 14 have no j > i */
+        for (; t + 1 < ns; t += 2, ij = _mm512_add_epi16(ij, next_2s)) {
+            __mmask16 in0 = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t, s.step, s.span, s.flo, s.fspan, nk);
+            __mmask16 in1 = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t + 1, s.step, s.span, s.flo, s.fspan, nk);
+            if (self) {
+                in0 &= (__mmask16)lanes_after(t, v);
+                in1 &= (__mmask16)lanes_after(t + 1, v);
+            }
+            __mmask32 in = _mm512_kunpackw((__mmask32)in1, (__mmask32)in0);
+            _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi16(in, ij));
+            n += (size_t)__builtin_popcount(in);
+        }
+        if (t < ns) {
+            __mmask32 in = row_keep(q2, xv, yv, s.sm, s.sa, s.sb, t, s.step, s.span, s.flo, s.fspan, nk);
+            if (self)
+                in &= lanes_after(t, v);
+            _mm512_storeu_si512(cand + n, _mm512_maskz_compress_epi16(in, ij));
+            n += (size_t)__builtin_popcount(in);
+        }
+    }
+    add_candidates_avx512(jb->L, w, jb->p, s.i0, s.vi, s.j0, s.vj, cand, n, off->k0, nk, 1);
+}
+
+__attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static inline __attribute__((always_inline)) void
+lane_body_avx512w(const pair_job *jb, size_t a, size_t b, const lane_offset *off, scratch *w, const uint32_t nk)
+{
+    lane_body_avx512w_pairs(jb, a, b, off, w, nk, 0);
+}
+
+/* The pairs i < j inside cell c through the two-row screen (off: the offset (0, 0) with its annuli). */
+__attribute__((target("avx512f,avx512bw,avx512vbmi2"))) static void
+cell_self_avx512w(const pair_job *jb, size_t c, const lane_offset *off, scratch *w)
+{
+    lane_body_avx512w_pairs(jb, c, c, off, w, off->nk, 1);
+}
+
+#define LANE_FN(isa, tgt, n)                                                                                   \
+    __attribute__((target(tgt))) static void lane_pair_##isa##_##n(const pair_job *jb, size_t a, size_t b,     \
+                                                                   const lane_offset *off, scratch *w)          \
     {                                                                                                          \
         lane_body_##isa(jb, a, b, off, w, n);                                                                \
     }
-#define LANE_TABLE(isa)                                                                                        \
-    LANE_FN(isa, 1)                                                                                            \
-    LANE_FN(isa, 2)                                                                                            \
-    LANE_FN(isa, 3)                                                                                            \
-    LANE_FN(isa, 4)                                                                                            \
-    LANE_FN(isa, 5)                                                                                            \
-    LANE_FN(isa, 6)                                                                                            \
-    LANE_FN(isa, 7)                                                                                            \
-    LANE_FN(isa, 8)                                                                                            \
+#define LANE_TABLE(isa, tgt)                                                                                   \
+    LANE_FN(isa, tgt, 1)                                                                                       \
+    LANE_FN(isa, tgt, 2)                                                                                       \
+    LANE_FN(isa, tgt, 3)                                                                                       \
+    LANE_FN(isa, tgt, 4)                                                                                       \
+    LANE_FN(isa, tgt, 5)                                                                                       \
+    LANE_FN(isa, tgt, 6)                                                                                       \
+    LANE_FN(isa, tgt, 7)                                                                                       \
+    LANE_FN(isa, tgt, 8)                                                                                       \
     static const lane_fn lanes_##isa[FEW_MAX + 1] = {NULL,                 lane_pair_##isa##_1,                \
                                                      lane_pair_##isa##_2,  lane_pair_##isa##_3,                \
                                                      lane_pair_##isa##_4,  lane_pair_##isa##_5,                \
                                                      lane_pair_##isa##_6,  lane_pair_##isa##_7,                \
                                                      lane_pair_##isa##_8};
-LANE_TABLE(avx2)
-LANE_TABLE(avx512f)
-
 /* The float screen for offsets meeting more than FEW_MAX annuli (near the origin). */
-__attribute__((target("avx512f"))) static void lane_pair_avx512f_many(const pair_job *jb, size_t a, size_t b,
-                                                                    const lane_offset *off, scratch *w)
-{
-    lane_body_avx512f(jb, a, b, off, w, off->nk);
-}
+#define LANE_MANY(isa, tgt)                                                                                    \
+    __attribute__((target(tgt))) static void lane_pair_##isa##_many(const pair_job *jb, size_t a, size_t b,    \
+                                                                    const lane_offset *off, scratch *w)         \
+    {                                                                                                          \
+        lane_body_##isa(jb, a, b, off, w, off->nk);                                                          \
+    }
+LANE_TABLE(avx2, "avx2")
+LANE_TABLE(avx512f, "avx512f")
+LANE_TABLE(avx512w, "avx512f,avx512bw,avx512vbmi2")
+LANE_MANY(avx512f, "avx512f")
+LANE_MANY(avx512w, "avx512f,avx512bw,avx512vbmi2")
 #endif
 
 /* The lane screen for this processor (and isa_limit) and cells of at most `most` points: its functions
@@ -578,16 +722,25 @@ static size_t pick_lanes(pair_job *jb, size_t most)
         jb->lane[k] = lane_pair_generic;
     jb->few = 4;
     jb->many = NULL;
+    jb->self = NULL;
 #ifdef HAVE_X86_COPIES
     const lane_fn *t = NULL;
     size_t pad = 1;
-    /* the float screen's candidates hold indices within cells of at most `most` points as 15 bits */
-    if (isa_limit == ISA_BEST && most + 16 < ((size_t)1 << 15) && __builtin_cpu_supports("avx512f") &&
-        __builtin_cpu_supports("avx512dq")) {
+    /* the float screen's candidates hold indices within cells of at most `most` points as 15 bits, or as
+     * 8 bits in the two-row screen */
+    int avx512 = (isa_limit == ISA_BEST || isa_limit == ISA_AVX512_IDS32) && most + 16 < ((size_t)1 << 15) &&
+                 __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    if (avx512 && isa_limit == ISA_BEST && most <= 256 && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vbmi2")) {
+        t = lanes_avx512w;
+        jb->many = lane_pair_avx512w_many;
+        jb->self = cell_self_avx512w;
+        pad = 16;
+    } else if (avx512) {
         t = lanes_avx512f;
         jb->many = lane_pair_avx512f_many;
         pad = 16;
-    } else if (isa_limit <= ISA_AVX2 && __builtin_cpu_supports("avx2")) {
+    } else if ((isa_limit <= ISA_AVX2 || isa_limit == ISA_AVX512_IDS32) && __builtin_cpu_supports("avx2")) {
         t = lanes_avx2;
         pad = 4;
     }
@@ -607,8 +760,12 @@ static void one_cell(const pair_job *jb, size_t c, scratch *w)
     if (g->start[c] == g->start[c + 1])
         return;
     long cx = (long)(c % g->nx), cy = (long)(c / g->nx);
-    if (pts_lags_meet(jb->L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6)))
-        cell_self(g, c, jb->L, w->acc);
+    if (pts_lags_meet(jb->L, 0.0, 2.0 * g->cell * g->cell * (1.0 + 1e-6))) {
+        if (jb->self != NULL && jb->self_off.nk > 0)
+            jb->self(jb, c, &jb->self_off, w);
+        else
+            cell_self(g, c, jb->L, w->acc);
+    }
     for (size_t k = 0; k < jb->noff; k++) {
         const lane_offset *off = &jb->off[k];
         long bx = cx + off->ox, by = cy + off->oy;
@@ -702,6 +859,7 @@ int pts_pairs_grid(const ft_points *p, const pts_lags *L, pts_acc *acc, ft_progr
     if (rc == FT_OK && (off = lane_offsets(&g, &o, L)) == NULL)
         rc = FT_E_NOMEM;
     jb.g = &g;
+    jb.self_off = lane_offset_of(&g, 0, 0, L);
     jb.p = &pad;
     jb.off = off;
     jb.noff = o.n;
