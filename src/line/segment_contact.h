@@ -121,8 +121,8 @@ static inline int ft_move_sweeps(const double *x, const double *y, size_t n, siz
  *  1e-9) and p strictly on the other. 0 when not sure (the hull's angle at x near pi or above, p near its
  *  edge, a zero-length direction). Exact reasoning: the half-plane holds the hull, and the segment leaves it
  *  at x. */
-static inline __attribute__((always_inline)) int ft_leaves_hull(const double *x, const double *p, const double *q0, const double *q1,
-                                 const double *q2)
+static inline __attribute__((always_inline)) int ft_leaves_hull(const double *x, const double *p, const double *q0,
+                                                                const double *q1, const double *q2)
 {
     const double eps2 = 1e-18; /* the margin, squared: the tests compare squares, no square root */
     double ux = p[0] - x[0], uy = p[1] - x[1];
