@@ -248,6 +248,7 @@ static const bad_case cases[] = {
     {"runaway", 1, "--max-work", {"dim", "map", VOLCANO, "@/out.tif", "--window", "16", "--max-work", "1000"}},
     {"runaway", 1, "--max-work", {"dim", "area", VOLCANO, "--max-work", "1000"}},
     {"runaway", 1, "--max-memory", {"--max-memory", "1K", "hillshade", VOLCANO, "@/out.png"}},
+    {"runaway", 1, "--max-memory", {"--max-memory", "1K", "hillshade", VOLCANO, "@/out.tif"}}, /* 2-row chunk */
     {"runaway", 1, "--max-work", {"--max-work", "1000", "reconstruct", VOLCANO, "@/out.tif"}},
     {"runaway", 1, "--max-work", {"--max-work", "1000", "render", VOLCANO, "@/out.png"}},
     {"runaway", 2, "--max-memory needs a size", {"--max-memory", "lots", "info", VOLCANO}},
