@@ -491,8 +491,12 @@ static int shade_streamed(GDALDatasetH src, ft_grid_reader *r, const char *dem_p
                           size_t chunk, GDALDriverH drv, const char *out_path)
 {
     const ft_grid *h = ft_io_grid_reader_header(r);
+    /* The output staged in /vsimem (1 byte a cell) counts against the memory bound: beside the chunk beyond
+     * it, a GeoTIFF is written straight to its temporary file (ft_io_stage_begin's rule for large ones). */
+    double out_bytes = (double)h->nx * (double)h->ny;
+    int direct = out_bytes + chunk_bytes(h->nx, chunk) > (double)ft_memory_limit();
     ft_io_stage st;
-    int rc = ft_io_stage_begin(out_path, drv, (double)h->nx * (double)h->ny, &st);
+    int rc = ft_io_stage_begin(out_path, drv, direct ? INFINITY : out_bytes, &st);
     if (rc != FT_OK)
         return rc;
     ft_io_gdal_reset();
