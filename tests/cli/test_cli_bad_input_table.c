@@ -257,6 +257,7 @@ static const bad_case cases[] = {
     {"nonsense", 1, "trunc.tif", {"hillshade", "@/trunc.tif", "@/out.tif"}}, /* streamed: fails mid-file */
     {"nonsense", 1, "1 x 20 cells", {"hillshade", "@/onexn.tif", "@/out.png"}},
     {"nonsense", 1, "no valid cell", {"hillshade", "@/nodata.tif", "@/out.tif"}},
+    {"nonsense", 1, "no valid cell", {"hillshade", "@/nodata.tif", "@/out.tif", "--tile-rows", "1"}}, /* stripes */
     {"nonsense", 1, "no polygon", {"urban", "table", "@/lines.geojson", "--class", "c", "-o", "@/out.csv"}},
     {"nonsense", 1, "decimal commas", {"dim", "points", "@/comma.csv"}},
     {"nonsense", 1, "z field are for OGR", {"dim", "points", "@/pts.csv", "--zfield", "elev"}},
