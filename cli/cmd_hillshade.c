@@ -72,10 +72,8 @@ static int run_hillshade(const cli_command *cmd, int argc, char **argv)
         rc = cli_refuse_overwrite(cmd, "OUT", argv[first + 1], argv[first], (const char *)NULL);
     if (rc != CLI_CONTINUE)
         return rc;
-    size_t nx = 0, ny = 0;
-    if ((rc = tile_band_size(cmd, argv[first], a.ho.band, &nx, &ny)) != CLI_CONTINUE)
-        return rc;
-    if (tile_wanted(a.tile_rows, nx, ny, 14.0)) { /* stripe by stripe, or on MPI ranks */
+    /* Stripes only when asked for or on MPI ranks: one process streams any DEM within --max-memory. */
+    if (a.tile_rows > 0 || cli_ranks_joined()) {
         rc = tile_hillshade(cmd, argv[first], argv[first + 1], &a.ho, a.tile_rows);
         return rc == CLI_OK && cli_rank() == 0 ? report(cmd, &a, argv[first], argv[first + 1]) : rc;
     }
@@ -96,11 +94,13 @@ const cli_command cli_cmd_hillshade = {
     "transparent) is multiplied by the shade. The output format\n"
     "follows the extension (PNG, GeoTIFF with the DEM's georeferencing, ...); it is written under a\n"
     "temporary name and renamed when complete. Without --color, a format GDAL can create (GeoTIFF, ...)\n"
-    "is written chunk by chunk as it is shaded (memory: a few chunks of about 1 M cells, not the DEM);\n"
-    "PNG and --color hold the whole image.\n"
-    "A DEM larger than half of --max-memory, or any DEM with --tile-rows, is shaded in stripes of rows\n"
-    "(each with one row above and below) into a Byte GeoTIFF (.tif), cell for cell the whole-DEM run's;\n"
-    "under mpiexec the ranks share the stripes and rank 0 writes (docs/tiling.md). Not with --color.\n\n"
+    "is written chunk by chunk as it is shaded (memory: a few chunks of about 1 M cells, fewer rows under\n"
+    "a small --max-memory, not the DEM), so a DEM of any size within the work bound is shaded in one\n"
+    "process; a DEM whose 2-row chunk exceeds --max-memory is refused. PNG and --color hold the whole\n"
+    "image (2 and 10 bytes per cell) and are refused beyond --max-memory.\n"
+    "With --tile-rows, or under mpiexec, the DEM is shaded in stripes of rows (each with one row above\n"
+    "and below) into a Byte GeoTIFF (.tif), cell for cell the whole-DEM run's; the ranks share the\n"
+    "stripes and rank 0 writes (docs/tiling.md). Not with --color.\n\n"
     "Options:\n"
     "  --azimuth A    light direction, degrees clockwise from north, in [0,360] (default 315)\n"
     "  --altitude H   light elevation, degrees, in (0,90] (default 45)\n"
@@ -109,7 +109,9 @@ const cli_command cli_cmd_hillshade = {
     "                 as gdaldem -s (default: metres per degree of latitude on the ellipsoid\n"
     "                 at the centre for a DEM in degrees, else 1)\n"
     "  --color        multiply a hypsometric colour relief by the shade (RGBA output)\n"
-    "  --band N       band of the DEM (default 1)\n"    "  --tile-rows N  shade N rows per stripe (default: whole DEM when it fits half of --max-memory)\n"
+    "  --band N       band of the DEM (default 1)\n"
+    "  --tile-rows N  shade N rows per stripe into a GeoTIFF (default: no stripes; under mpiexec,\n"
+    "                 stripes of a quarter of --max-memory)\n"
     "  -j, --json     print {\"input\", \"output\", \"azimuth\", \"altitude\", \"z_factor\", \"scale\" (the one\n"
     "                 used), \"scale_from\", \"band\", \"color\"}\n"
     "  -h, --help     print this help\n\n"

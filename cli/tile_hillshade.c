@@ -15,9 +15,9 @@
 #include <string.h>
 
 #define OUT_TYPE_BYTE 1 /* GDALDataType GDT_Byte */
-/* Bytes per cell while a stripe is shaded: the cells read for the valid count (5), GDAL's window and shade
- * (4 + 1) and the shade as floats (4). */
-#define SHADE_BYTES_PER_CELL 14.0
+/* Bytes per cell while a stripe is shaded (ft_io_hillshade_rows): the window read (z and mask: 5) and the
+ * engine's shade of it (5); the stripe's copy (5) is made once the window is freed. */
+#define SHADE_BYTES_PER_CELL 10.0
 
 typedef struct {
     const cli_command *cmd;
@@ -29,16 +29,16 @@ typedef struct {
     size_t share_row0;
 } shade_run;
 
-/* Rows [a, b): *any set if the DEM has a valid cell there; the shade written (rank 0) or kept. */
-static int shade_stripe(shade_run *s, ft_grid_reader *r, size_t a, size_t b, int *any)
+/* Rows [a, b): the shade written (rank 0) or kept; *any set if the DEM has a valid cell there, read off the
+ * shade itself (the DEM is read once): a valid cell shades 1..255 (its window takes the centre's value for
+ * nodata neighbours, so it is never nodata), a nodata cell 0. */
+static int shade_stripe(shade_run *s, size_t a, size_t b, int *any)
 {
-    ft_grid *dem = NULL, *sh = NULL;
-    if (ft_io_grid_reader_read(r, 0, a, s->nx, b - a, &dem) != FT_OK)
-        return cli_fail(s->cmd);
-    *any |= ft_grid_count_valid(dem) > 0;
-    ft_grid_free(dem);
+    ft_grid *sh = NULL;
     if (ft_io_hillshade_rows(s->in, s->o, a, b - a, &sh) != FT_OK)
         return cli_fail(s->cmd);
+    for (size_t i = 0; i < s->nx * (b - a) && !*any; i++)
+        *any = sh->z[i] > 0.0f;
     int rc = CLI_OK;
     if (cli_rank() == 0)
         rc = ft_io_grid_writer_write(s->w, 1, sh, 0, a) == FT_OK ? CLI_OK : cli_fail(s->cmd);
@@ -107,7 +107,7 @@ static int shade_rank(shade_run *s, ft_grid_reader *r, const char *out, long til
     size_t k = tile_rows > 0 ? (size_t)tile_rows : fit >= 1e9 ? (size_t)1e9 : fit >= 1.0 ? (size_t)fit : 1;
     int rc = CLI_OK;
     for (size_t y = a; y < b && rc == CLI_OK; y += k)
-        rc = shade_stripe(s, r, y, y + k < b ? y + k : b, any);
+        rc = shade_stripe(s, y, y + k < b ? y + k : b, any);
     return rc;
 }
 
@@ -121,7 +121,7 @@ int tile_hillshade(const cli_command *cmd, const char *in, const char *out, cons
     int any = 0, rc = CLI_FAIL;
     if (o->color) {
         cli_error(cmd, "--color: the colour relief spans the whole DEM's range and is not made stripe by stripe "
-                  "(--tile-rows, a DEM beyond half of --max-memory, MPI)");
+                  "(--tile-rows, MPI)");
     } else if (ft_io_grid_reader_open(in, &ro, &r) != FT_OK) {
         rc = cli_fail(cmd);
     } else {

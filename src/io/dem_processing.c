@@ -130,14 +130,37 @@ static int shade_engine(const ft_grid *dem, const ft_io_hillshade_opts *o, doubl
 /* Receives rows [row0, row0 + nrows) of the shade as gdaldem's bytes. */
 typedef int (*shade_sink)(void *ctx, size_t row0, size_t nrows, const unsigned char *px);
 
-/* Rows per read: whole blocks of the band, about 1 M cells, at least 2 rows (the engine's smallest grid). */
-static size_t chunk_rows(ft_grid_reader *r, size_t nx, size_t ny)
+/* Bytes per cell of a streamed row: the window being shaded (z and mask: 5), the engine's shade of it (5), the
+ * next chunk as read (z, mask and the reader's mask buffer: 6; GDAL's decoded cells: 4), the byte row (1) and
+ * the output's cache (1). A window holds its chunk's rows and the two above them. */
+#define STREAM_BYTES_PER_CELL 22.0
+
+static double chunk_bytes(size_t nx, size_t rows)
 {
-    size_t by = 1, want = ((size_t)1 << 20) / nx;
+    return STREAM_BYTES_PER_CELL * (double)nx * (double)(rows + 2);
+}
+
+/* Rows per read (*rows): whole blocks of the band, about 1 M cells, as many as the memory bound leaves beside
+ * `held` bytes (the whole image, when one is kept); fewer rows than a block when no block fits, never fewer
+ * than 2 (the engine's smallest grid). A DEM whose 2-row chunk does not fit is refused, naming --max-memory. */
+static int chunk_rows(ft_grid_reader *r, const char *path, double held, size_t *rows)
+{
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    size_t nx = h->nx, ny = h->ny, by = 1, want = ((size_t)1 << 20) / nx;
+    char what[PATH_MAX + 96];
+    snprintf(what, sizeof what, "shading '%s' (%zu x %zu cells) in chunks of 2 rows", path, nx, ny);
+    if (ft_check_memory(held + chunk_bytes(nx, 2), what) != FT_OK)
+        return FT_E_NOMEM;
     ft_io_grid_reader_block(r, NULL, &by);
-    size_t rows = (want / by > 0 ? want / by : 1) * by;
-    rows = rows < 2 ? 2 : rows;
-    return rows < ny ? rows : ny;
+    by = by > 0 ? by : 1;
+    double fit = ((double)ft_memory_limit() - held) / (STREAM_BYTES_PER_CELL * (double)nx) - 2.0;
+    size_t cap = fit >= (double)ny ? ny : (size_t)fit; /* >= 2: checked above */
+    size_t n = (want / by > 0 ? want / by : 1) * by;
+    if (n > cap)
+        n = cap >= by ? cap / by * by : cap;
+    n = n < 2 ? 2 : n;
+    *rows = n < ny ? n : ny;
+    return FT_OK;
 }
 
 /* Appends the chunk c (rows of the band, nx wide) to the window win, which holds `held` rows and has room
@@ -233,12 +256,13 @@ static void *shade_step_run(void *arg)
  * row waits for the next chunk) go to the sink; the window's first and last rows are the band's edges only
  * where they are, so every cell is the whole-DEM engine's. With more than one OpenMP thread allowed the
  * steps overlap: this thread reads and decodes the next chunk while a second one (joined, not spinning)
- * shades the window and hands it to the sink. *valid: the band's valid cells. */
-static int stream_shade(ft_grid_reader *r, const ft_io_hillshade_opts *o, double scale, shade_sink sink, void *ctx,
-                        size_t *valid)
+ * shades the window and hands it to the sink. chunk: rows per read (chunk_rows); *valid: the band's valid
+ * cells. */
+static int stream_shade(ft_grid_reader *r, const ft_io_hillshade_opts *o, double scale, size_t chunk, shade_sink sink,
+                        void *ctx, size_t *valid)
 {
     const ft_grid *h = ft_io_grid_reader_header(r);
-    size_t nx = h->nx, ny = h->ny, chunk = chunk_rows(r, nx, ny), cap = chunk + 2;
+    size_t nx = h->nx, ny = h->ny, cap = chunk + 2;
     ft_grid *win = ft_grid_create(nx, cap), *next = NULL;
     unsigned char *px = ft_malloc(nx * (chunk + 1));
     int rc = win != NULL && px != NULL ? FT_OK : FT_E_NOMEM, overlap = omp_get_max_threads() > 1;
@@ -464,11 +488,15 @@ static int no_valid_cell(const char *path, const ft_grid *h)
 /* The shade streamed into a Byte dataset created by drv (which can Create) at out_path: no more than a chunk
  * of the DEM and of the shade in memory, as gdaldem, which works row by row. */
 static int shade_streamed(GDALDatasetH src, ft_grid_reader *r, const char *dem_path, const ft_io_hillshade_opts *o,
-                          GDALDriverH drv, const char *out_path)
+                          size_t chunk, GDALDriverH drv, const char *out_path)
 {
     const ft_grid *h = ft_io_grid_reader_header(r);
+    /* The output staged in /vsimem (1 byte a cell) counts against the memory bound: beside the chunk beyond
+     * it, a GeoTIFF is written straight to its temporary file (ft_io_stage_begin's rule for large ones). */
+    double out_bytes = (double)h->nx * (double)h->ny;
+    int direct = out_bytes + chunk_bytes(h->nx, chunk) > (double)ft_memory_limit();
     ft_io_stage st;
-    int rc = ft_io_stage_begin(out_path, drv, (double)h->nx * (double)h->ny, &st);
+    int rc = ft_io_stage_begin(out_path, drv, direct ? INFINITY : out_bytes, &st);
     if (rc != FT_OK)
         return rc;
     ft_io_gdal_reset();
@@ -480,7 +508,7 @@ static int shade_streamed(GDALDatasetH src, ft_grid_reader *r, const char *dem_p
         set_georef(ds, src);
         GDALSetRasterNoDataValue(GDALGetRasterBand(ds, 1), 0.0);
         dataset_sink sink = {GDALGetRasterBand(ds, 1), out_path, h->nx};
-        rc = stream_shade(r, o, effective_scale(h, o->scale), sink_dataset, &sink, &valid);
+        rc = stream_shade(r, o, effective_scale(h, o->scale), chunk, sink_dataset, &sink, &valid);
         ft_io_gdal_reset();
         GDALClose(ds);
         if (rc == FT_OK && ft_io_gdal_failed())
@@ -495,14 +523,14 @@ static int shade_streamed(GDALDatasetH src, ft_grid_reader *r, const char *dem_p
 /* The shade as one image (for a driver that can only CreateCopy, and for the colour relief, which needs
  * the whole DEM's range), times the colour relief with o->color, written to out_path. */
 static int shade_whole(GDALDatasetH src, ft_grid_reader *r, const char *dem_path, const ft_io_hillshade_opts *o,
-                       const char *out_path, const vsimem_names *n)
+                       size_t chunk, const char *out_path, const vsimem_names *n)
 {
     const ft_grid *h = ft_io_grid_reader_header(r);
     size_t nx = h->nx, ny = h->ny, valid = 0;
     image_sink sink = {ft_malloc(nx * ny), nx};
     if (sink.px == NULL)
         return ft_last_error_code();
-    int rc = stream_shade(r, o, effective_scale(h, o->scale), sink_image, &sink, &valid);
+    int rc = stream_shade(r, o, effective_scale(h, o->scale), chunk, sink_image, &sink, &valid);
     if (rc == FT_OK && valid == 0)
         rc = no_valid_cell(dem_path, h);
     GDALDatasetH cr = NULL, img = NULL;
@@ -530,13 +558,17 @@ static int shade_file(GDALDatasetH src, ft_grid_reader *r, const char *dem_path,
     if (rc != FT_OK)
         return rc;
     int stream = !o->color && GDALGetMetadataItem(drv, GDAL_DCAP_CREATE, NULL) != NULL;
-    if ((rc = check_shadeable(r, dem_path, stream ? 0.0 : o->color ? 10.0 : 2.0)) != FT_OK)
+    double per_cell = stream ? 0.0 : o->color ? 10.0 : 2.0; /* the image held whole */
+    const ft_grid *h = ft_io_grid_reader_header(r);
+    size_t chunk = 0;
+    if ((rc = check_shadeable(r, dem_path, per_cell)) != FT_OK ||
+        (rc = chunk_rows(r, dem_path, per_cell * (double)h->nx * (double)h->ny, &chunk)) != FT_OK)
         return rc;
     if (stream)
-        return shade_streamed(src, r, dem_path, o, drv, out_path);
+        return shade_streamed(src, r, dem_path, o, chunk, drv, out_path);
     vsimem_names n;
     names_init(&n);
-    rc = shade_whole(src, r, dem_path, o, out_path, &n);
+    rc = shade_whole(src, r, dem_path, o, chunk, out_path, &n);
     names_release(&n);
     return rc;
 }

@@ -248,6 +248,7 @@ static const bad_case cases[] = {
     {"runaway", 1, "--max-work", {"dim", "map", VOLCANO, "@/out.tif", "--window", "16", "--max-work", "1000"}},
     {"runaway", 1, "--max-work", {"dim", "area", VOLCANO, "--max-work", "1000"}},
     {"runaway", 1, "--max-memory", {"--max-memory", "1K", "hillshade", VOLCANO, "@/out.png"}},
+    {"runaway", 1, "--max-memory", {"--max-memory", "1K", "hillshade", VOLCANO, "@/out.tif"}}, /* 2-row chunk */
     {"runaway", 1, "--max-work", {"--max-work", "1000", "reconstruct", VOLCANO, "@/out.tif"}},
     {"runaway", 1, "--max-work", {"--max-work", "1000", "render", VOLCANO, "@/out.png"}},
     {"runaway", 2, "--max-memory needs a size", {"--max-memory", "lots", "info", VOLCANO}},
@@ -256,6 +257,7 @@ static const bad_case cases[] = {
     {"nonsense", 1, "trunc.tif", {"hillshade", "@/trunc.tif", "@/out.tif"}}, /* streamed: fails mid-file */
     {"nonsense", 1, "1 x 20 cells", {"hillshade", "@/onexn.tif", "@/out.png"}},
     {"nonsense", 1, "no valid cell", {"hillshade", "@/nodata.tif", "@/out.tif"}},
+    {"nonsense", 1, "no valid cell", {"hillshade", "@/nodata.tif", "@/out.tif", "--tile-rows", "1"}}, /* stripes */
     {"nonsense", 1, "no polygon", {"urban", "table", "@/lines.geojson", "--class", "c", "-o", "@/out.csv"}},
     {"nonsense", 1, "decimal commas", {"dim", "points", "@/comma.csv"}},
     {"nonsense", 1, "z field are for OGR", {"dim", "points", "@/pts.csv", "--zfield", "elev"}},

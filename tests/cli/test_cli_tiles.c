@@ -267,6 +267,49 @@ static void test_hillshade_tiled_equals_whole(void **state)
     assert_int_equal(ft_test_dir_count(), 3); /* the DEM and the two shades */
 }
 
+/* The same bytes in two files. */
+static void assert_same_file(const char *a, const char *b)
+{
+    size_t na = 0, nb = 0;
+    char *x = ft_test_read_file(a, &na), *y = ft_test_read_file(b, &nb);
+    assert_non_null(x);
+    assert_non_null(y);
+    if (na != nb || memcmp(x, y, na) != 0)
+        fail_msg("%s (%zu bytes) differs from %s (%zu bytes)", a, na, b, nb);
+    free(x);
+    free(y);
+}
+
+/* One process shades a DEM beyond half of --max-memory (14 bytes per cell used to send it to the stripes)
+ * through the streaming engine, in chunks cut to the bound: the very bytes of the unbounded run, as GeoTIFF
+ * (the stripes write another file) in chunks of 58 rows, PNG and --color (which the stripes refuse). Below
+ * one decoded block (256 x 256 Float32) the DEM is refused, naming --max-memory, and nothing is left (the
+ * 2-row chunk's refusal is in unit/test_io_hillshade). */
+static void test_hillshade_beyond_memory_streams(void **state)
+{
+    (void)state;
+    char *dem = strdup(synthetic_dem()); /* 230 x 190: 14 bytes per cell = 598 KiB */
+    const char *ext[] = {"tif", "png", "tif"}, *limit[] = {"300K", "300K", "1M"};
+    for (int k = 0; k < 3; k++) {
+        char w[32], b[32];
+        snprintf(w, sizeof w, "hw%d.%s", k, ext[k]);
+        snprintf(b, sizeof b, "hb%d.%s", k, ext[k]);
+        char *ww = strdup(ft_test_tmp(w)), *bb = strdup(ft_test_tmp(b));
+        const char *colour = k == 2 ? "--color" : "--band", *cv = k == 2 ? "--json" : "1"; /* --color k = 2 */
+        free(RUN_OUT("hillshade", dem, ww, "--z-factor", "3", colour, cv));
+        free(RUN_OUT("--max-memory", limit[k], "hillshade", dem, bb, "--z-factor", "3", colour, cv));
+        assert_same_file(ww, bb);
+        free(ww);
+        free(bb);
+    }
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "--max-memory", "--max-memory", "8K", "hillshade", dem,
+                           ft_test_tmp("refused.tif"));
+    FT_TEST_EXPECT_FAILURE(1, "hillshade", "--max-memory", "--max-memory", "100K", "hillshade", dem,
+                           ft_test_tmp("refused.png"));
+    free(dem);
+    assert_int_equal(ft_test_dir_count(), 7); /* the DEM and the six shades */
+}
+
 static void test_tiled_refusals(void **state)
 {
     (void)state;
@@ -641,6 +684,7 @@ int main(void)
         cmocka_unit_test(test_dim_map_noise_count),
         cmocka_unit_test(test_dim_surface_tiled_equals_whole),
         cmocka_unit_test(test_hillshade_tiled_equals_whole),
+        cmocka_unit_test(test_hillshade_beyond_memory_streams),
         cmocka_unit_test(test_tiled_refusals),
         cmocka_unit_test(test_fill_tiled_equals_whole),
         cmocka_unit_test(test_fill_rows_errors),

@@ -136,6 +136,35 @@ static void test_degrees(void **state)
  * without a mask and a last one without nodata after a masked one, a NaN cell, nodata on the edges. The
  * GeoTIFF (streamed into the dataset) and the PNG (one image, CreateCopy) hold, cell for cell, the
  * engine's shade of the whole grid in gdaldem's bytes (1 + 254 s / 255 rounded, 0 = nodata). */
+/* A DEM whose 2-row chunk (22 bytes x 20000 x 4 rows of window) exceeds the memory bound is refused, naming
+ * --max-memory, and no output is left; 1 MB still holds its decoded block (256 x 256 Float32). */
+static void test_stream_beyond_memory_refused(void **state)
+{
+    (void)state;
+    ft_grid *g = ft_grid_create(20000, 3);
+    assert_non_null(g);
+    g->gt[1] = 10.0;
+    g->gt[5] = -10.0;
+    for (size_t i = 0; i < g->nx * g->ny; i++)
+        g->z[i] = (float)(i % 97);
+    const char *dem = ft_test_tmp("wide_dem.tif"), *out = ft_test_tmp("wide_shade.tif");
+    assert_int_equal(ft_io_write_grid(dem, g, NULL), FT_OK);
+    ft_grid_free(g);
+    ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT;
+    ft_set_memory_limit((size_t)1 << 20);
+    int rc = ft_io_hillshade(dem, out, &o);
+    ft_set_memory_limit(0);
+    assert_int_equal(rc, FT_E_NOMEM);
+    assert_non_null(strstr(ft_last_error(), "chunks of 2 rows"));
+    assert_non_null(strstr(ft_last_error(), "--max-memory"));
+    assert_int_equal(access(out, F_OK), -1);
+    ft_set_memory_limit((size_t)2 << 20); /* 1.76 MB: shaded */
+    rc = ft_io_hillshade(dem, out, &o);
+    ft_set_memory_limit(0);
+    if (rc != FT_OK)
+        fail_msg("%s", ft_last_error());
+}
+
 static void test_streamed_equals_whole_engine(void **state)
 {
     (void)state;
@@ -168,11 +197,16 @@ static void test_streamed_equals_whole_engine(void **state)
     ft_grid *whole = read_whole(dem), *sh = NULL;
     ft_hillshade_opts ro = FT_HILLSHADE_OPTS_DEFAULT;
     assert_int_equal(ft_render_hillshade(whole, &ro, &sh), FT_OK);
-    const char *outs[] = {ft_test_tmp("stream_shade.tif"), ft_test_tmp("stream_shade.png")};
-    for (size_t k = 0; k < 2; k++) {
+    /* whole blocks of rows; one image; chunks of 37 rows under a memory bound of 22 bytes x 2048 x (37 + 2) */
+    const char *outs[] = {ft_test_tmp("stream_shade.tif"), ft_test_tmp("stream_shade.png"),
+                          ft_test_tmp("stream_bound.tif")};
+    for (size_t k = 0; k < 3; k++) {
         unlink(outs[k]);
         ft_io_hillshade_opts o = FT_IO_HILLSHADE_OPTS_DEFAULT;
-        if (ft_io_hillshade(dem, outs[k], &o) != FT_OK)
+        ft_set_memory_limit(k == 2 ? 22 * nx * (37 + 2) + 1000 : 0);
+        int rc = ft_io_hillshade(dem, outs[k], &o);
+        ft_set_memory_limit(0);
+        if (rc != FT_OK)
             fail_msg("%s: %s", outs[k], ft_last_error());
         ft_grid *b = read_whole(outs[k]);
         assert_int_equal(b->nx, nx);
@@ -204,6 +238,7 @@ int main(void)
         cmocka_unit_test(test_projected_and_volcano),
         cmocka_unit_test(test_degrees),
         cmocka_unit_test(test_streamed_equals_whole_engine),
+        cmocka_unit_test(test_stream_beyond_memory_refused),
     };
     return cmocka_run_group_tests(tests, ft_test_dir_setup, ft_test_dir_teardown);
 }
