@@ -98,4 +98,9 @@ static inline void ft_edit_ring_triangle(const ft_chain *c, size_t i[3])
     i[2] = f < g ? g : f;
 }
 
+/** ft_line_run_passes (guarded_passes.c) from chains the caller keeps: out[c] receives chain c's result (left
+ *  untouched on failure); the first pass reads in[c] itself, so nothing is copied. */
+int ft_line_run_passes_into(const ft_chain *const *in, size_t n, ft_line_pass_fn pass, const void *ctx, int passes,
+                            int guard, ft_line_guard_stats *stats, ft_chain **out);
+
 #endif /* FRACTERRA_LINE_EDIT_INTERNAL_H */

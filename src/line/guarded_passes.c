@@ -14,6 +14,7 @@
 #include "internal.h"
 #include "fracterra/line.h"
 #include "line/dutton_internal.h"
+#include "line/edit_internal.h"
 
 #include <stdlib.h>
 
@@ -55,9 +56,10 @@ static void free_set(ft_chain **c, size_t n)
     free(c);
 }
 
-/* One pass over the set: chains[c] replaced by the guarded (or raw) result. */
+/* One pass over the set: chains[c] replaced by the guarded (or raw) result; the chains it replaces are
+ * freed when owned (not on the first pass, which reads the caller's). */
 static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int guard,
-                    ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
+                    ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left, int owned)
 {
     ft_chain **base = ft_calloc(n ? n : 1, sizeof *base), **raw = ft_calloc(n ? n : 1, sizeof *raw);
     int rc = base == NULL || raw == NULL ? FT_E_NOMEM : FT_OK;
@@ -72,7 +74,8 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
         ft_chain **keep = guard ? base : raw;
         for (size_t c = 0; c < n; c++) {
             drop_repeats(keep[c]);
-            ft_chain_free(chains[c]);
+            if (owned)
+                ft_chain_free(chains[c]);
             chains[c] = keep[c];
             keep[c] = NULL;
         }
@@ -82,10 +85,10 @@ static int one_pass(ft_chain **chains, size_t n, ft_line_pass_fn pass, const voi
     return rc;
 }
 
-int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
-                       ft_line_guard_stats *stats)
+int ft_line_run_passes_into(const ft_chain *const *in, size_t n, ft_line_pass_fn pass, const void *ctx, int passes,
+                            int guard, ft_line_guard_stats *stats, ft_chain **out)
 {
-    if ((chains == NULL && n > 0) || pass == NULL)
+    if ((in == NULL && n > 0) || (out == NULL && n > 0) || pass == NULL)
         return ft_error(FT_E_INVALID, "passes: NULL chains or pass");
     if (passes < 0)
         return ft_error(FT_E_INVALID, "passes must be >= 0, got %d", passes);
@@ -93,22 +96,46 @@ int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const 
     if (work == NULL)
         return FT_E_NOMEM;
     int rc = FT_OK;
-    for (size_t c = 0; c < n && rc == FT_OK; c++)
-        if ((work[c] = ft_chain_copy(chains[c])) == NULL)
-            rc = FT_E_NOMEM;
+    for (size_t c = 0; c < n; c++) /* the first pass reads the caller's chains: no copy */
+        work[c] = (ft_chain *)in[c];
     ft_dutton_carry *carry = NULL; /* the fused enhancement's index, from pass to pass */
-    if (rc == FT_OK && passes > 1 && pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE &&
-        ft_dutton_plan_fusable(ctx) && (carry = ft_dutton_carry_create()) == NULL)
+    if (passes > 1 && pass == ft_line_pass_enhance && guard == FT_GUARD_REDUCE && ft_dutton_plan_fusable(ctx) &&
+        (carry = ft_dutton_carry_create()) == NULL)
         rc = FT_E_NOMEM;
     for (int k = 0; k < passes && rc == FT_OK; k++)
-        rc = one_pass(work, n, pass, ctx, guard, stats, carry, passes - k - 1);
+        rc = one_pass(work, n, pass, ctx, guard, stats, carry, passes - k - 1, k > 0);
     ft_dutton_carry_free(carry);
+    int owned = passes > 0 && rc == FT_OK;
+    for (size_t c = 0; c < n && rc == FT_OK && !owned; c++) /* no pass: copies */
+        if ((work[c] = ft_chain_copy(in[c])) == NULL)
+            rc = FT_E_NOMEM;
     if (rc == FT_OK)
         for (size_t c = 0; c < n; c++) {
-            ft_chain *t = chains[c];
-            chains[c] = work[c];
-            work[c] = t;
+            out[c] = work[c];
+            work[c] = NULL;
         }
-    free_set(work, n);
+    else
+        for (size_t c = 0; c < n; c++)
+            if (work[c] != in[c])
+                ft_chain_free(work[c]);
+    free(work);
+    return rc;
+}
+
+int ft_line_run_passes(ft_chain **chains, size_t n, ft_line_pass_fn pass, const void *ctx, int passes, int guard,
+                       ft_line_guard_stats *stats)
+{
+    if (chains == NULL && n > 0)
+        return ft_error(FT_E_INVALID, "passes: NULL chains or pass");
+    ft_chain **out = ft_calloc(n ? n : 1, sizeof *out);
+    if (out == NULL)
+        return FT_E_NOMEM;
+    int rc = ft_line_run_passes_into((const ft_chain *const *)chains, n, pass, ctx, passes, guard, stats, out);
+    if (rc == FT_OK)
+        for (size_t c = 0; c < n; c++) {
+            ft_chain_free(chains[c]);
+            chains[c] = out[c];
+        }
+    free(out);
     return rc;
 }

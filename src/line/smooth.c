@@ -111,15 +111,8 @@ int ft_line_smooth(const ft_chain *in, const ft_smooth_opts *opts, ft_chain **ou
     int rc = ft_edit_check_chain("smooth", in, out);
     if (rc == FT_OK)
         rc = check_opts(opts);
-    ft_chain *c = rc == FT_OK ? ft_chain_copy(in) : NULL;
-    if (rc == FT_OK && c == NULL)
-        rc = FT_E_NOMEM;
     if (rc == FT_OK)
-        rc = ft_line_run_passes(&c, 1, ft_line_pass_smooth, opts, opts->passes, !opts->allow_crossings, NULL);
-    if (rc != FT_OK) {
-        ft_chain_free(c);
-        return rc;
-    }
-    *out = c;
-    return FT_OK;
+        rc = ft_line_run_passes_into(&in, 1, ft_line_pass_smooth, opts, opts->passes, !opts->allow_crossings, NULL,
+                                     out);
+    return rc;
 }
