@@ -22,6 +22,9 @@
 
 #include <math.h>
 #include <stdlib.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define MAX_SPAN 1048576.0          /* cells along an axis: at most 2^20 */
 #define MAX_CELLS_PER_BLOCK 4.0     /* the grid has at most about 4 nblock cells */
@@ -135,8 +138,8 @@ static int grid_build(block_grid *G, const double *box, size_t nb)
 {
     grid_frame(G, box, nb);
     size_t ncell = G->nx * G->ny, total = 0;
-    G->start = ft_calloc(ncell + 1, sizeof *G->start);
-    G->range = ft_malloc(4 * nb * sizeof *G->range);
+    G->start = ft_calloc_huge(ncell + 1, sizeof *G->start);
+    G->range = ft_malloc_huge(4 * nb * sizeof *G->range);
     if (G->start == NULL || G->range == NULL)
         return FT_E_NOMEM;
     for (size_t b = 0; b < nb; b++) {
@@ -153,8 +156,8 @@ static int grid_build(block_grid *G, const double *box, size_t nb)
     }
     for (size_t k = 0; k < ncell; k++)
         G->start[k + 1] += G->start[k];
-    uint32_t *next = ft_malloc(ncell * sizeof *next);
-    G->ids = ft_malloc((total ? total : 1) * sizeof *G->ids);
+    uint32_t *next = ft_malloc_huge(ncell * sizeof *next);
+    G->ids = ft_malloc_huge((total ? total : 1) * sizeof *G->ids);
     if (next == NULL || G->ids == NULL) {
         free(next);
         return FT_E_NOMEM;
@@ -255,8 +258,8 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
     size_t nb = g->nblock;
     block_grid G = {0};
     int rc = grid_build(&G, box, nb);
-    uint32_t *slots = rc == FT_OK ? ft_malloc(NEAR_SLOTS * nb * sizeof *slots) : NULL;
-    uint32_t *start = slots != NULL ? ft_calloc(nb + 1, sizeof *start) : NULL;
+    uint32_t *slots = rc == FT_OK ? ft_malloc_huge(NEAR_SLOTS * nb * sizeof *slots) : NULL;
+    uint32_t *start = slots != NULL ? ft_calloc_huge(nb + 1, sizeof *start) : NULL;
     if (start == NULL) {
         free(slots);
         grid_free(&G);
@@ -274,7 +277,7 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
     }
     uint32_t *list = NULL;
     rc = pack_starts(start, nb);
-    if (rc == FT_OK && (list = ft_malloc((start[nb] ? start[nb] : 1) * sizeof *list)) == NULL)
+    if (rc == FT_OK && (list = ft_malloc_huge((start[nb] ? start[nb] : 1) * sizeof *list)) == NULL)
         rc = FT_E_NOMEM;
     if (rc != FT_OK) {
         free(start);
@@ -308,8 +311,8 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
     wide->start = start;
     wide->near = list;
     wide->sigma = sigma;
-    g->near_start = ft_calloc(nb + 1, sizeof *g->near_start);
-    g->near = ft_malloc((start[nb] ? start[nb] : 1) * sizeof *g->near);
+    g->near_start = ft_calloc_huge(nb + 1, sizeof *g->near_start);
+    g->near = ft_malloc_huge((start[nb] ? start[nb] : 1) * sizeof *g->near);
     if (g->near_start == NULL || g->near == NULL)
         return FT_E_NOMEM;
 #pragma omp parallel for schedule(static)
@@ -349,10 +352,10 @@ int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains
     g->nblock = nb;
     g->nchain = n;
     g->chain_block = ft_malloc((n + 1) * sizeof *g->chain_block);
-    g->chain = ft_malloc((nb ? nb : 1) * sizeof *g->chain);
-    g->first = ft_malloc((nb ? nb : 1) * sizeof *g->first);
-    g->count = ft_malloc((nb ? nb : 1) * sizeof *g->count);
-    g->box = ft_malloc((nb ? 4 * nb : 1) * sizeof *g->box);
+    g->chain = ft_malloc_huge((nb ? nb : 1) * sizeof *g->chain);
+    g->first = ft_malloc_huge((nb ? nb : 1) * sizeof *g->first);
+    g->count = ft_malloc_huge((nb ? nb : 1) * sizeof *g->count);
+    g->box = ft_malloc_huge((nb ? 4 * nb : 1) * sizeof *g->box);
     if (g->chain_block == NULL || g->chain == NULL || g->first == NULL || g->count == NULL || g->box == NULL) {
         ft_segment_blocks_free(g);
         return FT_E_NOMEM;
@@ -454,6 +457,71 @@ static void carried_lists(const ft_segment_blocks *g, const ft_chain *const *cha
     *nw = kw;
 }
 
+/* One thread's share of the carried lists: blocks b0 .. b1, their near and wide lists back to back. */
+typedef struct {
+    size_t b0, b1;
+    uint32_t *near, *wide;
+    size_t nn, nw;
+    int rc;
+} carried_part;
+
+/* The lists of blocks part->b0 .. b1, written compactly into buffers sized for every child of their parents'
+ * wide lists: only the pages the lists fill are touched. The counts go to near_start / wide_start[b + 1]. */
+static void carried_range(const ft_segment_blocks *g, const ft_chain *const *chains, const ft_segment_blocks *prev,
+                          const ft_segment_wide *pw, double sigma, uint32_t *near_start, uint32_t *wide_start,
+                          carried_part *part)
+{
+    size_t cap = 1;
+    for (size_t b = part->b0; b < part->b1; b++) {
+        size_t P = parent_of(g, prev, b);
+        cap += 2 * (size_t)(pw->start[P + 1] - pw->start[P]);
+    }
+    part->near = ft_malloc_huge(cap * sizeof *part->near);
+    part->wide = wide_start != NULL ? ft_malloc_huge(cap * sizeof *part->wide) : NULL;
+    if (part->near == NULL || (wide_start != NULL && part->wide == NULL)) {
+        part->rc = FT_E_NOMEM;
+        return;
+    }
+    size_t kn = 0, kw = 0;
+    for (size_t b = part->b0; b < part->b1; b++) {
+        size_t nn, nw;
+        carried_lists(g, chains, prev, pw, sigma, b, part->near + kn, part->wide ? part->wide + kw : NULL, &nn, &nw);
+        near_start[b + 1] = (uint32_t)nn;
+        kn += nn;
+        if (wide_start != NULL) {
+            wide_start[b + 1] = (uint32_t)nw;
+            kw += nw;
+        }
+    }
+    part->nn = kn;
+    part->nw = kw;
+}
+
+/* The parts' lists joined into one array, in block order: the first part's buffer grown (no copy where the
+ * allocator can remap it), the others copied after it. The parts' buffers are consumed. */
+static uint32_t *carried_concat(carried_part *part, int nt, int wide)
+{
+    size_t total = 0;
+    for (int t = 0; t < nt; t++)
+        total += wide ? part[t].nw : part[t].nn;
+    uint32_t **buf0 = wide ? &part[0].wide : &part[0].near;
+    uint32_t *all = ft_realloc_array(*buf0, total ? total : 1, sizeof *all);
+    if (all == NULL)
+        return NULL;
+    *buf0 = NULL;
+    size_t at = wide ? part[0].nw : part[0].nn;
+    for (int t = 1; t < nt; t++) {
+        uint32_t **buf = wide ? &part[t].wide : &part[t].near;
+        size_t k = wide ? part[t].nw : part[t].nn;
+        for (size_t j = 0; j < k; j++)
+            all[at + j] = (*buf)[j];
+        at += k;
+        free(*buf);
+        *buf = NULL;
+    }
+    return all;
+}
+
 int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *chains,
                                    const ft_segment_blocks *prev, const ft_segment_wide *pw, int want_wide,
                                    ft_segment_wide *wide)
@@ -471,53 +539,57 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
     if (!(slack >= 0.0))
         return 1; /* a block left its parent's box by more than the parents' lists allow for */
     double sigma = want_wide ? slack : -1.0;
-    /* One scan per block, into room for every child of its parent's wide list (its place: from the parent's
-     * offset, the second child after the first's room), then packed. */
-    size_t room = 4 * (size_t)pw->start[prev->nblock] + 2 * prev->nblock;
-    uint32_t *tn = ft_malloc((room ? room : 1) * sizeof *tn);
-    uint32_t *tw = want_wide ? ft_malloc((room ? room : 1) * sizeof *tw) : NULL;
-    g->near_start = ft_calloc(nb + 1, sizeof *g->near_start);
+    /* Each thread lists a contiguous range of blocks into its own buffers (only what the lists fill is
+     * touched: no scratch of the size of every candidate), then the buffers are joined in block order. The
+     * lists do not depend on the split. */
+    int nt = 1;
+#ifdef _OPENMP
+    nt = omp_get_max_threads();
+#endif
+    carried_part *part = ft_calloc((size_t)nt, sizeof *part);
+    g->near_start = ft_malloc_huge((nb + 1) * sizeof *g->near_start);
     if (want_wide) {
-        wide->start = ft_calloc(nb + 1, sizeof *wide->start);
+        wide->start = ft_malloc_huge((nb + 1) * sizeof *wide->start);
         wide->sigma = sigma;
     }
     int rc = FT_OK;
-    if (tn == NULL || g->near_start == NULL || (want_wide && (tw == NULL || wide->start == NULL)))
+    if (part == NULL || g->near_start == NULL || (want_wide && wide->start == NULL))
         rc = FT_E_NOMEM;
-    long long nbl = rc == FT_OK ? (long long)nb : 0;
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < nbl; b++) {
-        size_t P = parent_of(g, prev, (size_t)b), len = 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
-        size_t at = 4 * (size_t)pw->start[P] + 2 * P + ((b - g->chain_block[g->chain[b]]) % 2 ? len : 0), kn, kw;
-        carried_lists(g, chains, prev, pw, sigma, (size_t)b, tn + at, tw ? tw + at : NULL, &kn, &kw);
-        g->near_start[b + 1] = (uint32_t)kn;
+    if (rc == FT_OK) {
+        g->near_start[0] = 0;
         if (want_wide)
-            wide->start[b + 1] = (uint32_t)kw;
+            wide->start[0] = 0;
+#pragma omp parallel num_threads(nt)
+        {
+            int t = 0, used = 1;
+#ifdef _OPENMP
+            t = omp_get_thread_num();
+            used = omp_get_num_threads();
+#endif
+            if (t == 0)
+                nt = used; /* fewer threads than asked: the others' parts stay empty */
+            part[t].b0 = nb * (size_t)t / (size_t)used;
+            part[t].b1 = nb * (size_t)(t + 1) / (size_t)used;
+            carried_range(g, chains, prev, pw, sigma, g->near_start, want_wide ? wide->start : NULL, &part[t]);
+        }
+        for (int t = 0; t < nt && rc == FT_OK; t++)
+            rc = part[t].rc;
+        if (rc != FT_OK)
+            ft_error(FT_E_NOMEM, "segment index: out of memory for the near lists of %zu blocks", nb);
     }
     if (rc == FT_OK)
         rc = pack_starts(g->near_start, nb);
     if (rc == FT_OK && want_wide)
         rc = pack_starts(wide->start, nb);
-    if (rc == FT_OK) {
-        g->near = ft_malloc((g->near_start[nb] ? g->near_start[nb] : 1) * sizeof *g->near);
-        if (want_wide)
-            wide->near = ft_malloc((wide->start[nb] ? wide->start[nb] : 1) * sizeof *wide->near);
-        if (g->near == NULL || (want_wide && wide->near == NULL))
-            rc = FT_E_NOMEM;
+    if (rc == FT_OK && (g->near = carried_concat(part, nt, 0)) == NULL)
+        rc = FT_E_NOMEM;
+    if (rc == FT_OK && want_wide && (wide->near = carried_concat(part, nt, 1)) == NULL)
+        rc = FT_E_NOMEM;
+    for (int t = 0; part != NULL && t < nt; t++) {
+        free(part[t].near);
+        free(part[t].wide);
     }
-    if (rc == FT_OK) {
-#pragma omp parallel for schedule(static)
-        for (long long b = 0; b < nbl; b++) {
-            size_t P = parent_of(g, prev, (size_t)b), len = 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
-            size_t at = 4 * (size_t)pw->start[P] + 2 * P + ((b - g->chain_block[g->chain[b]]) % 2 ? len : 0);
-            for (uint32_t j = 0; j < g->near_start[b + 1] - g->near_start[b]; j++)
-                g->near[g->near_start[b] + j] = tn[at + j];
-            for (uint32_t j = 0; want_wide && j < wide->start[b + 1] - wide->start[b]; j++)
-                wide->near[wide->start[b] + j] = tw[at + j];
-        }
-    }
-    free(tn);
-    free(tw);
+    free(part);
     return rc;
 }
 
