@@ -22,6 +22,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -426,35 +427,96 @@ static double largest_excess(const ft_segment_blocks *g, const ft_segment_blocks
     return e;
 }
 
-/* Block b's near list (reach) and wide list (reach widened by sigma, if wide is not NULL) from the children of
- * its parent's wide list, in increasing order, written branch-free: near and wide have room for every child
- * of that list and one more. Returns the counts. */
-static void carried_lists(const ft_segment_blocks *g, const ft_chain *const *chains, const ft_segment_blocks *prev,
-                          const ft_segment_wide *pw, double sigma, size_t b, uint32_t *near, uint32_t *wide,
-                          size_t *nn, size_t *nw)
+/* A box against a reach, two lanes at a time: q meets r unless q0 > r2, q1 > r3, q2 < r0 or q3 < r1, the
+ * last two as -q2 > -r0, -q3 > -r1 (negation is exact; NaN compares false either way): box_meets' test. */
+#if defined(__GNUC__)
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+typedef struct {
+    v2d far, near; /* (r2, r3) and (-r0, -r1) */
+} reach2;
+
+static inline reach2 reach2_of(const double r[4])
 {
-    double reach[4], wr[4];
-    reach_of(g, chains, g->box, b, reach);
-    for (int i = 0; i < 4; i++)
-        wr[i] = reach[i];
-    widen_by(wr, sigma);
-    size_t P = parent_of(g, prev, b), kn = 0, kw = 0;
+    reach2 v = {{r[2], r[3]}, {-r[0], -r[1]}};
+    return v;
+}
+
+static inline size_t meets2(v2d lo, v2d neg_hi, reach2 r)
+{
+    v2l m = (lo > r.far) | (neg_hi > r.near);
+    return (size_t)((m[0] | m[1]) == 0);
+}
+#endif
+
+/* The near lists (reach) and wide lists (reach widened by sigma, if wide is not NULL) of the k (1 or 2)
+ * consecutive blocks b .. b + k - 1 of one parent, from the children of the parent's wide list, in increasing
+ * order, in one scan of those children written branch-free: near and wide have room for cap = every child of
+ * that list and one more per block; the second block's lists are written cap further on, then moved down to
+ * follow the first's. Returns the counts. */
+static void carried_lists(const ft_segment_blocks *g, const ft_chain *const *chains, const ft_segment_blocks *prev,
+                          const ft_segment_wide *pw, double sigma, size_t b, size_t k, uint32_t *near,
+                          uint32_t *wide, size_t nn[2], size_t nw[2])
+{
+    double reach[2][4], wr[2][4];
+    for (size_t i = 0; i < k; i++) {
+        reach_of(g, chains, g->box, b + i, reach[i]);
+        for (int j = 0; j < 4; j++)
+            wr[i][j] = reach[i][j];
+        widen_by(wr[i], sigma);
+    }
+    if (k == 1) { /* a block with no sibling: the second lists test an empty reach, never met */
+        for (int j = 0; j < 4; j++)
+            reach[1][j] = wr[1][j] = j < 2 ? INFINITY : -INFINITY;
+    }
+    size_t P = parent_of(g, prev, b), cap = 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
+    size_t kn0 = 0, kn1 = 0, kw0 = 0, kw1 = 0;
+    uint32_t *near1 = near + cap, *wide1 = wide != NULL ? wide + cap : NULL;
+#if defined(__GNUC__)
+    reach2 rn0 = reach2_of(reach[0]), rn1 = reach2_of(reach[1]), rw0 = reach2_of(wr[0]), rw1 = reach2_of(wr[1]);
+#endif
     for (uint32_t e = pw->start[P]; e < pw->start[P + 1]; e++) {
         uint32_t Q = pw->near[e], c = prev->chain[Q];
         size_t d0 = g->chain_block[c] + 2 * (size_t)(Q - prev->chain_block[c]);
         size_t d1 = d0 + 2 < g->chain_block[c + 1] ? d0 + 2 : g->chain_block[c + 1];
         for (size_t d = d0; d < d1; d++) {
             const double *q = g->box + 4 * d;
-            near[kn] = (uint32_t)d;
-            kn += (size_t)box_meets(q, reach);
+#if defined(__GNUC__)
+            v2d lo, hi;
+            memcpy(&lo, q, sizeof lo);
+            memcpy(&hi, q + 2, sizeof hi);
+            hi = -hi;
+            near[kn0] = (uint32_t)d;
+            kn0 += meets2(lo, hi, rn0);
+            near1[kn1] = (uint32_t)d;
+            kn1 += meets2(lo, hi, rn1);
             if (wide != NULL) {
-                wide[kw] = (uint32_t)d;
-                kw += (size_t)box_meets(q, wr);
+                wide[kw0] = (uint32_t)d;
+                kw0 += meets2(lo, hi, rw0);
+                wide1[kw1] = (uint32_t)d;
+                kw1 += meets2(lo, hi, rw1);
             }
+#else
+            near[kn0] = (uint32_t)d;
+            kn0 += (size_t)box_meets(q, reach[0]);
+            near1[kn1] = (uint32_t)d;
+            kn1 += (size_t)box_meets(q, reach[1]);
+            if (wide != NULL) {
+                wide[kw0] = (uint32_t)d;
+                kw0 += (size_t)box_meets(q, wr[0]);
+                wide1[kw1] = (uint32_t)d;
+                kw1 += (size_t)box_meets(q, wr[1]);
+            }
+#endif
         }
     }
-    *nn = kn;
-    *nw = kw;
+    memmove(near + kn0, near1, kn1 * sizeof *near);
+    if (wide != NULL)
+        memmove(wide + kw0, wide1, kw1 * sizeof *wide);
+    nn[0] = kn0;
+    nn[1] = kn1;
+    nw[0] = kw0;
+    nw[1] = kw1;
 }
 
 /* One thread's share of the carried lists: blocks b0 .. b1, their near and wide lists back to back. */
@@ -471,10 +533,10 @@ static void carried_range(const ft_segment_blocks *g, const ft_chain *const *cha
                           const ft_segment_wide *pw, double sigma, uint32_t *near_start, uint32_t *wide_start,
                           carried_part *part)
 {
-    size_t cap = 1;
+    size_t cap = 2;
     for (size_t b = part->b0; b < part->b1; b++) {
         size_t P = parent_of(g, prev, b);
-        cap += 2 * (size_t)(pw->start[P + 1] - pw->start[P]);
+        cap += 2 * (size_t)(pw->start[P + 1] - pw->start[P]) + 1;
     }
     part->near = ft_malloc_huge(cap * sizeof *part->near);
     part->wide = wide_start != NULL ? ft_malloc_huge(cap * sizeof *part->wide) : NULL;
@@ -483,14 +545,17 @@ static void carried_range(const ft_segment_blocks *g, const ft_chain *const *cha
         return;
     }
     size_t kn = 0, kw = 0;
-    for (size_t b = part->b0; b < part->b1; b++) {
-        size_t nn, nw;
-        carried_lists(g, chains, prev, pw, sigma, b, part->near + kn, part->wide ? part->wide + kw : NULL, &nn, &nw);
-        near_start[b + 1] = (uint32_t)nn;
-        kn += nn;
-        if (wide_start != NULL) {
-            wide_start[b + 1] = (uint32_t)nw;
-            kw += nw;
+    for (size_t b = part->b0, k; b < part->b1; b += k) {
+        size_t nn[2], nw[2];
+        k = b + 1 < part->b1 && parent_of(g, prev, b + 1) == parent_of(g, prev, b) ? 2 : 1;
+        carried_lists(g, chains, prev, pw, sigma, b, k, part->near + kn, part->wide ? part->wide + kw : NULL, nn, nw);
+        for (size_t i = 0; i < k; i++) {
+            near_start[b + i + 1] = (uint32_t)nn[i];
+            kn += nn[i];
+            if (wide_start != NULL) {
+                wide_start[b + i + 1] = (uint32_t)nw[i];
+                kw += nw[i];
+            }
         }
     }
     part->nn = kn;
