@@ -29,7 +29,6 @@
 
 #define MAX_SPAN 1048576.0          /* cells along an axis: at most 2^20 */
 #define MAX_CELLS_PER_BLOCK 4.0     /* the grid has at most about 4 nblock cells */
-#define NEAR_SLOTS 8               /* near blocks kept per block in the first join pass */
 #define WIDEN 1e-9                  /* swept boxes widened by this fraction of their largest coordinate */
 
 static inline double dmin(double a, double b)
@@ -93,7 +92,7 @@ static size_t next_block(const ft_segment_blocks *g, const ft_chain *const *base
 typedef struct {
     double x0, y0, inv;
     size_t nx, ny;
-    uint32_t *start, *ids, *range; /* range: the cell range of every block, 4 per block */
+    uint32_t *start, *ids; /* the entries of cell k: ids[start[k] .. start[k + 1]) */
 } block_grid;
 
 static inline size_t clamp_cell(double v, size_t n)
@@ -134,44 +133,37 @@ static void grid_frame(block_grid *G, const double *box, size_t nb)
     G->ny = (size_t)(h / side) + 1;
 }
 
-/* Files every block in the cells its box meets; entries of a cell in increasing block order. */
+/* Files every block in the cells its box meets; entries of a cell in increasing block order (counted into
+ * start[cell], summed to each cell's end, then filled from the last block down). */
 static int grid_build(block_grid *G, const double *box, size_t nb)
 {
     grid_frame(G, box, nb);
     size_t ncell = G->nx * G->ny, total = 0;
     G->start = ft_calloc_huge(ncell + 1, sizeof *G->start);
-    G->range = ft_malloc_huge(4 * nb * sizeof *G->range);
-    if (G->start == NULL || G->range == NULL)
+    if (G->start == NULL)
         return FT_E_NOMEM;
     for (size_t b = 0; b < nb; b++) {
         size_t r[4];
         cells_of(G, box + 4 * b, r);
-        for (int q = 0; q < 4; q++)
-            G->range[4 * b + q] = (uint32_t)r[q];
         total += (r[2] - r[0] + 1) * (r[3] - r[1] + 1);
         if (total >= UINT32_MAX)
             return ft_error(FT_E_NOMEM, "segment index: more than 2^32 - 2 cell entries (%zu blocks)", nb);
         for (size_t cy = r[1]; cy <= r[3]; cy++)
             for (size_t cx = r[0]; cx <= r[2]; cx++)
-                G->start[cy * G->nx + cx + 1]++;
+                G->start[cy * G->nx + cx]++;
     }
     for (size_t k = 0; k < ncell; k++)
         G->start[k + 1] += G->start[k];
-    uint32_t *next = ft_malloc_huge(ncell * sizeof *next);
     G->ids = ft_malloc_huge((total ? total : 1) * sizeof *G->ids);
-    if (next == NULL || G->ids == NULL) {
-        free(next);
+    if (G->ids == NULL)
         return FT_E_NOMEM;
-    }
-    for (size_t k = 0; k < ncell; k++)
-        next[k] = G->start[k];
-    for (size_t b = 0; b < nb; b++) {
-        const uint32_t *r = G->range + 4 * b;
+    for (size_t b = nb; b-- > 0;) {
+        size_t r[4];
+        cells_of(G, box + 4 * b, r);
         for (size_t cy = r[1]; cy <= r[3]; cy++)
             for (size_t cx = r[0]; cx <= r[2]; cx++)
-                G->ids[next[cy * G->nx + cx]++] = (uint32_t)b;
+                G->ids[--G->start[cy * G->nx + cx]] = (uint32_t)b;
     }
-    free(next);
     return FT_OK;
 }
 
@@ -179,13 +171,22 @@ static void grid_free(block_grid *G)
 {
     free(G->start);
     free(G->ids);
-    free(G->range);
 }
 
-/* The blocks whose boxes meet reach (cell range rr), each once: in the lowest cell it shares with the reach.
- * The first cap of them are written to out, in increasing order; returns how many there are. */
+/* How many entries the cells rr hold: room for any query over them. */
+static size_t cell_entries(const block_grid *G, const size_t rr[4])
+{
+    size_t k = 0;
+    for (size_t cy = rr[1]; cy <= rr[3]; cy++)
+        k += G->start[cy * G->nx + rr[2] + 1] - G->start[cy * G->nx + rr[0]];
+    return k;
+}
+
+/* The blocks whose boxes meet reach (cell range rr), each once: in the lowest cell it shares with the reach
+ * (its own lowest cell, from its box as the grid filed it). Written to out, in increasing order (out has room
+ * for cell_entries); returns how many there are. */
 static size_t near_blocks(const block_grid *G, const double *box, const double *reach, const size_t rr[4],
-                          uint32_t *out, size_t cap)
+                          uint32_t *out)
 {
     size_t k = 0;
     for (size_t cy = rr[1]; cy <= rr[3]; cy++)
@@ -193,21 +194,18 @@ static size_t near_blocks(const block_grid *G, const double *box, const double *
             size_t cell = cy * G->nx + cx;
             for (uint32_t e = G->start[cell]; e < G->start[cell + 1]; e++) {
                 uint32_t m = G->ids[e];
-                const uint32_t *mr = G->range + 4 * (size_t)m;
-                if (cx != (mr[0] > rr[0] ? mr[0] : rr[0]) || cy != (mr[1] > rr[1] ? mr[1] : rr[1]))
-                    continue;
                 const double *q = box + 4 * (size_t)m;
                 if (q[2] < reach[0] || q[0] > reach[2] || q[3] < reach[1] || q[1] > reach[3])
                     continue;
-                if (k < cap) {
-                    size_t j = k;
-                    while (j > 0 && out[j - 1] > m) {
-                        out[j] = out[j - 1];
-                        j--;
-                    }
-                    out[j] = m;
+                size_t mx = clamp_cell((q[0] - G->x0) * G->inv, G->nx), my = clamp_cell((q[1] - G->y0) * G->inv, G->ny);
+                if (cx != (mx > rr[0] ? mx : rr[0]) || cy != (my > rr[1] ? my : rr[1]))
+                    continue;
+                size_t j = k++;
+                while (j > 0 && out[j - 1] > m) {
+                    out[j] = out[j - 1];
+                    j--;
                 }
-                k++;
+                out[j] = m;
             }
         }
     return k;
@@ -249,94 +247,164 @@ static int pack_starts(uint32_t *start, size_t nb)
     return FT_OK;
 }
 
-/* The near lists of every block, each block independently (any thread count gives the same lists): into
- * NEAR_SLOTS slots per block, then packed; the few blocks with more are listed again in their packed place.
- * With wide, the query is the reach widened by sigma (wide's lists) and the near lists are those filtered by
- * the reach itself: the very lists of the query with sigma = 0. */
+/* One thread's share of a join: blocks b0 .. b1, their near and wide lists back to back. */
+typedef struct {
+    size_t b0, b1;
+    uint32_t *near, *wide;
+    size_t nn, nw;
+    int rc;
+} list_part;
+
+/* The parts' lists joined into one array, in block order: the first part's buffer grown (no copy where the
+ * allocator can remap it), the others copied after it. The parts' buffers are consumed. */
+static uint32_t *lists_concat(list_part *part, int nt, int wide)
+{
+    size_t total = 0;
+    for (int t = 0; t < nt; t++)
+        total += wide ? part[t].nw : part[t].nn;
+    uint32_t **buf0 = wide ? &part[0].wide : &part[0].near;
+    uint32_t *all = ft_realloc_array(*buf0, total ? total : 1, sizeof *all);
+    if (all == NULL)
+        return NULL;
+    *buf0 = NULL;
+    size_t at = wide ? part[0].nw : part[0].nn;
+    for (int t = 1; t < nt; t++) {
+        uint32_t **buf = wide ? &part[t].wide : &part[t].near;
+        size_t k = wide ? part[t].nw : part[t].nn;
+        for (size_t j = 0; j < k; j++)
+            all[at + j] = (*buf)[j];
+        at += k;
+        free(*buf);
+        *buf = NULL;
+    }
+    return all;
+}
+
+/* Room for k more entries after at in *buf (capacity *cap), growing it by half again at least. */
+static int list_room(uint32_t **buf, size_t *cap, size_t at, size_t k)
+{
+    if (at + k <= *cap)
+        return FT_OK;
+    size_t want = *cap + *cap / 2 > at + k ? *cap + *cap / 2 : at + k;
+    uint32_t *p = ft_realloc_array(*buf, want, sizeof *p);
+    if (p == NULL)
+        return FT_E_NOMEM;
+    *buf = p;
+    *cap = want;
+    return FT_OK;
+}
+
+/* The grid lists of blocks part->b0 .. b1 (reach widened by sigma), compactly into growing buffers: into
+ * part->wide with want_wide (then part->near gets them filtered by the reach itself: the very lists of the
+ * query with sigma = 0), else into part->near. The counts go to near_start / wide_start[b + 1]. */
+static void join_range(const block_grid *G, const ft_segment_blocks *g, const ft_chain *const *base,
+                       const double *box, double sigma, uint32_t *near_start, uint32_t *wide_start, list_part *part)
+{
+    size_t capn = 8 * (part->b1 - part->b0) + 64, capw = wide_start != NULL ? capn : 0, kn = 0, kw = 0;
+    part->near = ft_malloc_huge(capn * sizeof *part->near);
+    part->wide = wide_start != NULL ? ft_malloc_huge(capw * sizeof *part->wide) : NULL;
+    if (part->near == NULL || (wide_start != NULL && part->wide == NULL)) {
+        part->rc = FT_E_NOMEM;
+        return;
+    }
+    for (size_t b = part->b0; b < part->b1; b++) {
+        double reach[4], wr[4];
+        size_t rr[4];
+        reach_of(g, base, box, b, reach);
+        for (int i = 0; i < 4; i++)
+            wr[i] = reach[i];
+        widen_by(wr, sigma);
+        cells_of(G, wr, rr);
+        size_t room = cell_entries(G, rr);
+        uint32_t **qbuf = wide_start != NULL ? &part->wide : &part->near;
+        size_t *qcap = wide_start != NULL ? &capw : &capn, *qk = wide_start != NULL ? &kw : &kn;
+        if ((part->rc = list_room(qbuf, qcap, *qk, room)) != FT_OK)
+            return;
+        uint32_t *out = *qbuf + *qk;
+        size_t k = near_blocks(G, box, wr, rr, out);
+        *qk += k;
+        if (wide_start == NULL) {
+            near_start[b + 1] = (uint32_t)k;
+            continue;
+        }
+        wide_start[b + 1] = (uint32_t)k;
+        if ((part->rc = list_room(&part->near, &capn, kn, k + 1)) != FT_OK)
+            return;
+        out = part->wide + kw - k;
+        size_t f = 0;
+        for (size_t j = 0; j < k; j++) {
+            part->near[kn + f] = out[j];
+            f += (size_t)box_meets(box + 4 * (size_t)out[j], reach);
+        }
+        near_start[b + 1] = (uint32_t)f;
+        kn += f;
+    }
+    part->nn = kn;
+    part->nw = kw;
+}
+
+/* The near lists of every block, each block independently (any thread count gives the same lists), each
+ * thread a contiguous range of blocks into its own buffers, joined in block order. With wide, the query is
+ * the reach widened by sigma (wide's lists) and the near lists are those filtered by the reach itself. */
 static int join(ft_segment_blocks *g, const ft_chain *const *base, const double *box, double sigma,
                 ft_segment_wide *wide)
 {
     size_t nb = g->nblock;
     block_grid G = {0};
-    int rc = grid_build(&G, box, nb);
-    uint32_t *slots = rc == FT_OK ? ft_malloc_huge(NEAR_SLOTS * nb * sizeof *slots) : NULL;
-    uint32_t *start = slots != NULL ? ft_calloc_huge(nb + 1, sizeof *start) : NULL;
-    if (start == NULL) {
-        free(slots);
-        grid_free(&G);
-        return rc == FT_OK ? FT_E_NOMEM : rc;
-    }
-    long long nbl = (long long)nb;
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (long long b = 0; b < nbl; b++) {
-        double reach[4];
-        size_t rr[4];
-        reach_of(g, base, box, (size_t)b, reach);
-        widen_by(reach, sigma);
-        cells_of(&G, reach, rr);
-        start[b + 1] = (uint32_t)near_blocks(&G, box, reach, rr, slots + NEAR_SLOTS * b, NEAR_SLOTS);
-    }
-    uint32_t *list = NULL;
-    rc = pack_starts(start, nb);
-    if (rc == FT_OK && (list = ft_malloc_huge((start[nb] ? start[nb] : 1) * sizeof *list)) == NULL)
+    int rc = grid_build(&G, box, nb), nt = 1;
+#ifdef _OPENMP
+    nt = omp_get_max_threads();
+#endif
+    list_part *part = rc == FT_OK ? ft_calloc((size_t)nt, sizeof *part) : NULL;
+    uint32_t *near_start = part != NULL ? ft_malloc_huge((nb + 1) * sizeof *near_start) : NULL;
+    uint32_t *wide_start = near_start != NULL && wide != NULL ? ft_malloc_huge((nb + 1) * sizeof *wide_start) : NULL;
+    if (rc == FT_OK && (near_start == NULL || (wide != NULL && wide_start == NULL)))
         rc = FT_E_NOMEM;
-    if (rc != FT_OK) {
-        free(start);
-        free(slots);
-        grid_free(&G);
-        return rc;
-    }
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < nbl; b++) {
-        size_t k = start[b + 1] - start[b];
-        uint32_t *out = list + start[b];
-        if (k <= NEAR_SLOTS) {
-            for (size_t j = 0; j < k; j++)
-                out[j] = slots[NEAR_SLOTS * b + j];
-        } else {
-            double reach[4];
-            size_t rr[4];
-            reach_of(g, base, box, (size_t)b, reach);
-            widen_by(reach, sigma);
-            cells_of(&G, reach, rr);
-            near_blocks(&G, box, reach, rr, out, k);
+    if (rc == FT_OK) {
+        near_start[0] = 0;
+        if (wide_start != NULL)
+            wide_start[0] = 0;
+#pragma omp parallel num_threads(nt)
+        {
+            int t = 0, used = 1;
+#ifdef _OPENMP
+            t = omp_get_thread_num();
+            used = omp_get_num_threads();
+#endif
+            if (t == 0)
+                nt = used; /* fewer threads than asked: the others' parts stay empty */
+            part[t].b0 = nb * (size_t)t / (size_t)used;
+            part[t].b1 = nb * (size_t)(t + 1) / (size_t)used;
+            join_range(&G, g, base, box, sigma, near_start, wide_start, &part[t]);
         }
+        for (int t = 0; t < nt && rc == FT_OK; t++)
+            rc = part[t].rc;
+        if (rc != FT_OK)
+            ft_error(FT_E_NOMEM, "segment index: out of memory for the near lists of %zu blocks", nb);
     }
-    free(slots);
     grid_free(&G);
-    if (wide == NULL) {
-        g->near_start = start;
-        g->near = list;
-        return FT_OK;
+    if (rc == FT_OK)
+        rc = pack_starts(near_start, nb);
+    if (rc == FT_OK && wide_start != NULL)
+        rc = pack_starts(wide_start, nb);
+    uint32_t *near = NULL, *wnear = NULL;
+    if (rc == FT_OK && (near = lists_concat(part, nt, 0)) == NULL)
+        rc = FT_E_NOMEM;
+    if (rc == FT_OK && wide_start != NULL && (wnear = lists_concat(part, nt, 1)) == NULL)
+        rc = FT_E_NOMEM;
+    for (int t = 0; part != NULL && t < nt; t++) {
+        free(part[t].near);
+        free(part[t].wide);
     }
-    wide->start = start;
-    wide->near = list;
-    wide->sigma = sigma;
-    g->near_start = ft_calloc_huge(nb + 1, sizeof *g->near_start);
-    g->near = ft_malloc_huge((start[nb] ? start[nb] : 1) * sizeof *g->near);
-    if (g->near_start == NULL || g->near == NULL)
-        return FT_E_NOMEM;
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < nbl; b++) {
-        double reach[4];
-        uint32_t k = 0;
-        reach_of(g, base, box, (size_t)b, reach);
-        for (uint32_t e = start[b]; e < start[b + 1]; e++)
-            k += box_meets(box + 4 * (size_t)list[e], reach);
-        g->near_start[b + 1] = k;
+    free(part);
+    g->near_start = near_start;
+    g->near = near;
+    if (wide != NULL) {
+        wide->start = wide_start;
+        wide->near = wnear;
+        wide->sigma = sigma;
     }
-    if ((rc = pack_starts(g->near_start, nb)) != FT_OK)
-        return rc;
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < nbl; b++) {
-        double reach[4];
-        uint32_t *out = g->near + g->near_start[b];
-        reach_of(g, base, box, (size_t)b, reach);
-        for (uint32_t e = start[b]; e < start[b + 1]; e++)
-            if (box_meets(box + 4 * (size_t)list[e], reach))
-                *out++ = list[e];
-    }
-    return FT_OK;
+    return rc;
 }
 
 int ft_segment_blocks_layout(ft_segment_blocks *g, const ft_chain *const *chains, size_t n, size_t per_block)
@@ -519,19 +587,11 @@ static void carried_lists(const ft_segment_blocks *g, const ft_chain *const *cha
     nw[1] = kw1;
 }
 
-/* One thread's share of the carried lists: blocks b0 .. b1, their near and wide lists back to back. */
-typedef struct {
-    size_t b0, b1;
-    uint32_t *near, *wide;
-    size_t nn, nw;
-    int rc;
-} carried_part;
-
 /* The lists of blocks part->b0 .. b1, written compactly into buffers sized for every child of their parents'
  * wide lists: only the pages the lists fill are touched. The counts go to near_start / wide_start[b + 1]. */
 static void carried_range(const ft_segment_blocks *g, const ft_chain *const *chains, const ft_segment_blocks *prev,
                           const ft_segment_wide *pw, double sigma, uint32_t *near_start, uint32_t *wide_start,
-                          carried_part *part)
+                          list_part *part)
 {
     size_t cap = 2;
     for (size_t b = part->b0; b < part->b1; b++) {
@@ -562,31 +622,6 @@ static void carried_range(const ft_segment_blocks *g, const ft_chain *const *cha
     part->nw = kw;
 }
 
-/* The parts' lists joined into one array, in block order: the first part's buffer grown (no copy where the
- * allocator can remap it), the others copied after it. The parts' buffers are consumed. */
-static uint32_t *carried_concat(carried_part *part, int nt, int wide)
-{
-    size_t total = 0;
-    for (int t = 0; t < nt; t++)
-        total += wide ? part[t].nw : part[t].nn;
-    uint32_t **buf0 = wide ? &part[0].wide : &part[0].near;
-    uint32_t *all = ft_realloc_array(*buf0, total ? total : 1, sizeof *all);
-    if (all == NULL)
-        return NULL;
-    *buf0 = NULL;
-    size_t at = wide ? part[0].nw : part[0].nn;
-    for (int t = 1; t < nt; t++) {
-        uint32_t **buf = wide ? &part[t].wide : &part[t].near;
-        size_t k = wide ? part[t].nw : part[t].nn;
-        for (size_t j = 0; j < k; j++)
-            all[at + j] = (*buf)[j];
-        at += k;
-        free(*buf);
-        *buf = NULL;
-    }
-    return all;
-}
-
 int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *chains,
                                    const ft_segment_blocks *prev, const ft_segment_wide *pw, int want_wide,
                                    ft_segment_wide *wide)
@@ -611,7 +646,7 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
 #ifdef _OPENMP
     nt = omp_get_max_threads();
 #endif
-    carried_part *part = ft_calloc((size_t)nt, sizeof *part);
+    list_part *part = ft_calloc((size_t)nt, sizeof *part);
     g->near_start = ft_malloc_huge((nb + 1) * sizeof *g->near_start);
     if (want_wide) {
         wide->start = ft_malloc_huge((nb + 1) * sizeof *wide->start);
@@ -646,9 +681,9 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
         rc = pack_starts(g->near_start, nb);
     if (rc == FT_OK && want_wide)
         rc = pack_starts(wide->start, nb);
-    if (rc == FT_OK && (g->near = carried_concat(part, nt, 0)) == NULL)
+    if (rc == FT_OK && (g->near = lists_concat(part, nt, 0)) == NULL)
         rc = FT_E_NOMEM;
-    if (rc == FT_OK && want_wide && (wide->near = carried_concat(part, nt, 1)) == NULL)
+    if (rc == FT_OK && want_wide && (wide->near = lists_concat(part, nt, 1)) == NULL)
         rc = FT_E_NOMEM;
     for (int t = 0; part != NULL && t < nt; t++) {
         free(part[t].near);
