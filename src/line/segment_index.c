@@ -29,7 +29,6 @@
 
 #define MAX_SPAN 1048576.0          /* cells along an axis: at most 2^20 */
 #define MAX_CELLS_PER_BLOCK 4.0     /* the grid has at most about 4 nblock cells */
-#define WIDEN 1e-9                  /* swept boxes widened by this fraction of their largest coordinate */
 
 static inline double dmin(double a, double b)
 {
@@ -49,16 +48,6 @@ static void box_add(double box[4], double x, double y)
     box[1] = dmin(box[1], y);
     box[2] = dmax(box[2], x);
     box[3] = dmax(box[3], y);
-}
-
-void ft_segment_box_widen(double box[4])
-{
-    double m = dmax(dmax(fabs(box[0]), fabs(box[1])), dmax(fabs(box[2]), fabs(box[3])));
-    double w = WIDEN * m + 1e-300;
-    box[0] -= w;
-    box[1] -= w;
-    box[2] += w;
-    box[3] += w;
 }
 
 /* The widened swept box of block b. */
@@ -635,7 +624,7 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
             g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) - 1)
             return 1;
     double m, e = largest_excess(g, prev, &m);
-    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * WIDEN * m; /* rounding of e and of the widening */
+    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * FT_SEGMENT_WIDEN * m; /* rounding of e and of the widening */
     if (!(slack >= 0.0))
         return 1; /* a block left its parent's box by more than the parents' lists allow for */
     double sigma = want_wide ? slack : -1.0;
@@ -721,11 +710,16 @@ void ft_segment_blocks_mark_local(const ft_segment_blocks *g, const ft_chain *co
     long long nb = (long long)g->nblock;
 #pragma omp parallel for schedule(static)
     for (long long b = 0; b < nb; b++) {
-        size_t k = (size_t)b / FT_GUARD_CHUNK;
-        unsigned char ok = 1;
-        for (uint32_t e = g->near_start[b]; e < g->near_start[b + 1] && ok; e++) {
-            size_t m = g->near[e];
-            ok = m / FT_GUARD_CHUNK == k && first_vertex_owner(g, chains, m) / FT_GUARD_CHUNK == k;
+        size_t k = (size_t)b / FT_GUARD_CHUNK, lo = k * FT_GUARD_CHUNK, hi = lo + FT_GUARD_CHUNK;
+        uint32_t s = g->near_start[b], e = g->near_start[b + 1];
+        /* The list is increasing: its ends tell whether it lies in the chunk. Then only a chunk's first block
+         * and a chain's first block can have their first vertex owned outside it (the others: the block just
+         * before, in the chunk). */
+        unsigned char ok = e == s || (g->near[s] >= lo && g->near[e - 1] < hi);
+        for (uint32_t j = s; j < e && ok; j++) {
+            size_t m = g->near[j];
+            if (m == lo || g->first[m] == 0)
+                ok = first_vertex_owner(g, chains, m) / FT_GUARD_CHUNK == k;
         }
         local[b] = ok;
     }
