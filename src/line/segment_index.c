@@ -171,33 +171,36 @@ static size_t cell_entries(const block_grid *G, const size_t rr[4])
     return k;
 }
 
-/* The blocks whose boxes meet reach (cell range rr), each once: in the lowest cell it shares with the reach
- * (its own lowest cell, from its box as the grid filed it). Written to out, in increasing order (out has room
- * for cell_entries); returns how many there are. */
+static inline int box_meets(const double *q, const double *r);
+
+/* The blocks whose boxes meet reach (cell range rr), each once, in increasing order, written to out (room for
+ * cell_entries); returns how many there are. Every entry of the cells is tested and appended branch-free (a
+ * block filed in several of the cells comes once per cell), then the few found are sorted and the repeats
+ * dropped. */
 static size_t near_blocks(const block_grid *G, const double *box, const double *reach, const size_t rr[4],
                           uint32_t *out)
 {
     size_t k = 0;
-    for (size_t cy = rr[1]; cy <= rr[3]; cy++)
-        for (size_t cx = rr[0]; cx <= rr[2]; cx++) {
-            size_t cell = cy * G->nx + cx;
-            for (uint32_t e = G->start[cell]; e < G->start[cell + 1]; e++) {
-                uint32_t m = G->ids[e];
-                const double *q = box + 4 * (size_t)m;
-                if (q[2] < reach[0] || q[0] > reach[2] || q[3] < reach[1] || q[1] > reach[3])
-                    continue;
-                size_t mx = clamp_cell((q[0] - G->x0) * G->inv, G->nx), my = clamp_cell((q[1] - G->y0) * G->inv, G->ny);
-                if (cx != (mx > rr[0] ? mx : rr[0]) || cy != (my > rr[1] ? my : rr[1]))
-                    continue;
-                size_t j = k++;
-                while (j > 0 && out[j - 1] > m) {
-                    out[j] = out[j - 1];
-                    j--;
-                }
-                out[j] = m;
-            }
+    for (size_t cy = rr[1]; cy <= rr[3]; cy++) {
+        size_t row = cy * G->nx;
+        for (uint32_t e = G->start[row + rr[0]], end = G->start[row + rr[2] + 1]; e < end; e++) {
+            uint32_t m = G->ids[e];
+            out[k] = m;
+            k += (size_t)box_meets(box + 4 * (size_t)m, reach);
         }
-    return k;
+    }
+    for (size_t i = 1; i < k; i++) {
+        uint32_t m = out[i];
+        size_t j = i;
+        for (; j > 0 && out[j - 1] > m; j--)
+            out[j] = out[j - 1];
+        out[j] = m;
+    }
+    size_t u = 0;
+    for (size_t i = 0; i < k; i++)
+        if (u == 0 || out[u - 1] != out[i])
+            out[u++] = out[i];
+    return u;
 }
 
 static void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, const double *box, size_t b,
