@@ -70,7 +70,7 @@ static void block_box(const ft_segment_blocks *g, const ft_chain *const *base, c
 }
 
 /* The block after b along its chain (a ring's last: its first), or b itself at an open chain's end. */
-static size_t next_block(const ft_segment_blocks *g, const ft_chain *const *base, size_t b)
+static inline size_t next_block(const ft_segment_blocks *g, const ft_chain *const *base, size_t b)
 {
     uint32_t c = g->chain[b];
     if (b + 1 < g->chain_block[c + 1])
@@ -203,8 +203,8 @@ static size_t near_blocks(const block_grid *G, const double *box, const double *
     return u;
 }
 
-static void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, const double *box, size_t b,
-                     double reach[4])
+static inline void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, const double *box, size_t b,
+                            double reach[4])
 {
     const double *p = box + 4 * b, *q = box + 4 * next_block(g, base, b);
     reach[0] = dmin(p[0], q[0]);
