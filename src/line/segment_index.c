@@ -7,13 +7,20 @@
  * positions, its swept box, widened by 1e-9 of its largest coordinate against rounding. The segments are cut
  * into blocks of FT_SEGMENT_BLOCK consecutive segments of a chain (a chain is spatially coherent, so a
  * block's box is small) and every block b lists the blocks whose boxes meet its reach, the union of its box
- * and the next block's: a uniform grid over the block boxes (counting pass, prefix sums, filling pass), each
- * pair found once, in the lowest cell the two share. A vertex whose segments lie in b and the next block
+ * and the next block's: a uniform grid over the block boxes (counting pass, prefix sums, filling pass from the
+ * last block down); a query tests every entry of the cells its reach covers, branch-free, then sorts the few
+ * found and drops the repeats of blocks filed in several of them. A vertex whose segments lie in b and the next block
  * sweeps only points of that reach, so every segment it may touch is in b's list: where a chain runs clear of
  * others, three or four blocks. Indexing blocks instead of segments makes the grid FT_SEGMENT_BLOCK times
  * smaller, and the guard then scans short runs of consecutive segments, in memory order. The fused
  * enhancement (dutton_guarded.c) makes the lists of its later passes from the pass before's instead
  * (ft_segment_blocks_join_carried: children of the parent's wide list, filtered; the same lists, no grid).
+ *
+ * Memory: the index is rebuilt every pass, and on a virtual machine fresh memory costs as much in the kernel
+ * (page faults, clearing) as the joins in user time. So each thread writes the lists of a contiguous range of
+ * blocks compactly into its own buffer, sized for the worst case but touched only as far as the lists go, and
+ * the buffers are joined in block order (one thread: the buffer itself, shrunk): no per-block slots, no scratch
+ * of every candidate, no second pass. The large arrays ask for transparent huge pages (ft_malloc_huge).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -627,7 +634,8 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
             g->chain_block[c + 1] - g->chain_block[c] != 2 * (prev->chain_block[c + 1] - prev->chain_block[c]) - 1)
             return 1;
     double m, e = largest_excess(g, prev, &m);
-    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * FT_SEGMENT_WIDEN * m; /* rounding of e and of the widening */
+    /* less the rounding of e and of the widening */
+    double slack = pw->sigma - 2.0 * e * (1.0 + 1e-9) - 4.0 * FT_SEGMENT_WIDEN * m;
     if (!(slack >= 0.0))
         return 1; /* a block left its parent's box by more than the parents' lists allow for */
     double sigma = want_wide ? slack : -1.0;
