@@ -47,7 +47,9 @@ void *ft_realloc_array(void *p, size_t n, size_t size)
 /* Large arrays filled once and read a few times (an index rebuilt every pass) cost more in the kernel than in
  * the code: every fresh 4 kB page is a fault and a clear. From FT_HUGE_MIN bytes on, the block is aligned
  * on 2 MB and asks for transparent huge pages (madvise mode): one fault per 2 MB. Only a hint: where the
- * kernel has none to give, the pages are small and nothing else changes. Freed with free(). */
+ * kernel has none to give, the pages are small and nothing else changes. Freed with free(). Not for every
+ * array: on a virtual machine whose host provisions a fresh huge page on its first write, an array written
+ * once and dropped can get slower (measured on the chains: docs/line-enhance.md, Speed, session 10). */
 #define FT_HUGE_MIN ((size_t)2 << 20)
 
 void *ft_malloc_huge(size_t size)
