@@ -13,6 +13,10 @@ void *ft_malloc(size_t size);
 void *ft_calloc(size_t n, size_t size);
 void *ft_realloc_array(void *p, size_t n, size_t size); /* checks n*size overflow */
 char *ft_strdup(const char *s);                         /* NULL stays NULL */
+/* The same for large arrays written once per use (indexes rebuilt every pass): from 2 MB on, aligned on
+ * 2 MB with a transparent-huge-page hint (one page fault per 2 MB instead of per 4 kB). Freed with free(). */
+void *ft_malloc_huge(size_t size);
+void *ft_calloc_huge(size_t n, size_t size);
 
 /* The library's copy of a caller's options struct (FT_OPTS in core.h): *lib holds the defaults of the
  * lib_size-byte struct on entry; the first user->struct_size bytes of *user are copied over them and

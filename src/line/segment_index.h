@@ -6,6 +6,7 @@
 #ifndef FRACTERRA_LINE_SEGMENT_INDEX_H
 #define FRACTERRA_LINE_SEGMENT_INDEX_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -65,9 +66,22 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
                                    const ft_segment_blocks *prev, const ft_segment_wide *pw, int want_wide,
                                    ft_segment_wide *wide);
 
+/** Swept boxes are widened by this fraction of their largest coordinate. */
+#define FT_SEGMENT_WIDEN 1e-9
+
 /** Widens a swept box {xmin, ymin, xmax, ymax} by 1e-9 of its largest coordinate, so that no rounding of the
- *  positions it was built from falls outside it: the one rule of both guards' blocks. */
-void ft_segment_box_widen(double box[4]);
+ *  positions it was built from falls outside it: the one rule of both guards' blocks (inline: it is called
+ *  once per block of every pass). */
+static inline void ft_segment_box_widen(double box[4])
+{
+    double a = fabs(box[0]) > fabs(box[1]) ? fabs(box[0]) : fabs(box[1]);
+    double c = fabs(box[2]) > fabs(box[3]) ? fabs(box[2]) : fabs(box[3]);
+    double w = FT_SEGMENT_WIDEN * (a > c ? a : c) + 1e-300;
+    box[0] -= w;
+    box[1] -= w;
+    box[2] += w;
+    box[3] += w;
+}
 
 /** Blocks per chunk of a guard's parallel walk: a fixed number, so the result does not depend on threads. */
 #define FT_GUARD_CHUNK 16384
