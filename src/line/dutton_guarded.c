@@ -11,7 +11,8 @@
  * V_s+1 and their raw positions. So the index is built on the input's segments (half as many blocks as the
  * output's), from positions computed on the fly; the output chain is written once with the base geometry
  * and the walk moves its vertices in place: no base chain, no raw chain. The raw positions are computed once
- * per pass (block_raw) and read by the boxes and the walk.
+ * per pass (block_raw) and read by the boxes and the walk; their buffer goes from pass to pass with the carry
+ * (raw_buffer), so the later passes write into pages already touched.
  *
  * From the second pass on, the near lists come from the pass before's index (ft_dutton_carry,
  * ft_segment_blocks_join_carried) instead of a grid: where every segment was split and nothing was dropped,
@@ -490,6 +491,8 @@ struct ft_dutton_carry {
     ft_segment_wide wide; /* its wide lists; start NULL when there is nothing to carry */
     size_t *nout;         /* per chain: the vertices of its output */
     int halved;           /* every segment was split: the next pass's blocks are these halved */
+    double *raw;          /* the raw positions' buffer, kept from pass to pass (its pages are not fresh) */
+    size_t raw_cap;       /* its doubles */
 };
 
 ft_dutton_carry *ft_dutton_carry_create(void)
@@ -508,9 +511,29 @@ static void carry_clear(ft_dutton_carry *k)
 
 void ft_dutton_carry_free(ft_dutton_carry *k)
 {
-    if (k != NULL)
+    if (k != NULL) {
         carry_clear(k);
+        free(k->raw);
+    }
     free(k);
+}
+
+/* A buffer of 2 nv doubles for the raw positions: the carry's, grown as needed (realloc keeps the pages the
+ * passes before touched), or a new one (*owned set) without a carry. */
+static double *raw_buffer(ft_dutton_carry *k, size_t nv, int *owned)
+{
+    size_t need = 2 * (nv ? nv : 1);
+    *owned = k == NULL;
+    if (k == NULL)
+        return ft_realloc_array(NULL, need, sizeof(double));
+    if (k->raw_cap < need) {
+        double *r = ft_realloc_array(k->raw, need, sizeof(double));
+        if (r == NULL)
+            return NULL;
+        k->raw = r;
+        k->raw_cap = need;
+    }
+    return k->raw;
 }
 
 /* Whether this pass's blocks are the carried pass's halved: the same chains, each the carried output itself
@@ -571,7 +594,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
                            ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
 {
     ft_segment_wide wide = {0};
-    int keep = carry != NULL && passes_left > 0;
+    int keep = carry != NULL && passes_left > 0, raw_owned = 1;
     for (size_t c = 0; c < n; c++)
         out[c] = NULL;
     fused F = {0};
@@ -599,7 +622,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         size_t nv = 0;
         for (size_t c = 0; c < n; c++)
             nv += F.pc[c].in->n;
-        F.raw = ft_malloc(2 * (nv ? nv : 1) * sizeof *F.raw);
+        F.raw = raw_buffer(carry, nv, &raw_owned);
         for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
             F.pc[c].raw = F.raw + 2 * off;
         if (F.ofirst == NULL || local == NULL || part == NULL || F.raw == NULL)
@@ -663,7 +686,8 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     free(local);
     free(part);
     free(F.ofirst);
-    free(F.raw);
+    if (raw_owned)
+        free(F.raw);
     ft_segment_blocks_free(&F.g);
     free_chains(F.pc, n, rc == FT_OK);
     return rc;
