@@ -254,6 +254,22 @@ typedef struct {
     int rc;
 } list_part;
 
+/* Inside a parallel region: this thread's part of blocks [0, nb), contiguous and in thread order; thread 0 sets
+ * *nt to the threads running (fewer than asked: the others' parts stay empty). Returns the thread's number. */
+static inline int thread_range(list_part *part, size_t nb, int *nt)
+{
+    int t = 0, used = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    used = omp_get_num_threads();
+#endif
+    if (t == 0)
+        *nt = used;
+    part[t].b0 = nb * (size_t)t / (size_t)used;
+    part[t].b1 = nb * (size_t)(t + 1) / (size_t)used;
+    return t;
+}
+
 /* The parts' lists joined into one array, in block order: the first part's buffer grown (no copy where the
  * allocator can remap it), the others copied after it. The parts' buffers are consumed. */
 static uint32_t *lists_concat(list_part *part, int nt, int wide)
@@ -365,15 +381,7 @@ static int join(ft_segment_blocks *g, const ft_chain *const *base, const double 
             wide_start[0] = 0;
 #pragma omp parallel num_threads(nt)
         {
-            int t = 0, used = 1;
-#ifdef _OPENMP
-            t = omp_get_thread_num();
-            used = omp_get_num_threads();
-#endif
-            if (t == 0)
-                nt = used; /* fewer threads than asked: the others' parts stay empty */
-            part[t].b0 = nb * (size_t)t / (size_t)used;
-            part[t].b1 = nb * (size_t)(t + 1) / (size_t)used;
+            int t = thread_range(part, nb, &nt);
             join_range(&G, g, base, box, sigma, near_start, wide_start, &part[t]);
         }
         for (int t = 0; t < nt && rc == FT_OK; t++)
@@ -661,15 +669,7 @@ int ft_segment_blocks_join_carried(ft_segment_blocks *g, const ft_chain *const *
             wide->start[0] = 0;
 #pragma omp parallel num_threads(nt)
         {
-            int t = 0, used = 1;
-#ifdef _OPENMP
-            t = omp_get_thread_num();
-            used = omp_get_num_threads();
-#endif
-            if (t == 0)
-                nt = used; /* fewer threads than asked: the others' parts stay empty */
-            part[t].b0 = nb * (size_t)t / (size_t)used;
-            part[t].b1 = nb * (size_t)(t + 1) / (size_t)used;
+            int t = thread_range(part, nb, &nt);
             carried_range(g, chains, prev, pw, sigma, g->near_start, want_wide ? wide->start : NULL, &part[t]);
         }
         for (int t = 0; t < nt && rc == FT_OK; t++)
