@@ -508,21 +508,8 @@ static void lists_equal(const uint32_t *s1, const uint32_t *l1, const uint32_t *
 static void test_carried_index(void **state)
 {
     (void)state;
-    ft_chain *c[3] = {ft_chain_create(3000, 0), ft_chain_create(400, 1), ft_chain_create(300, 0)};
-    for (size_t i = 0; i < 3000; i++) {
-        double t = 0.05 * (double)i, r = 5.0 + 0.8 * t / (2.0 * M_PI);
-        c[0]->x[i] = r * cos(t);
-        c[0]->y[i] = r * sin(t);
-    }
-    for (size_t i = 0; i < 400; i++) {
-        c[1]->x[i] = 3.0 * cos(2.0 * M_PI * (double)i / 400.0);
-        c[1]->y[i] = 3.0 * sin(2.0 * M_PI * (double)i / 400.0);
-    }
-    for (size_t i = 0; i < 300; i++) {
-        c[2]->x[i] = -20.0 + 40.0 * (double)i / 299.0;
-        c[2]->y[i] = 0.3;
-    }
-    c[0]->n = 3000, c[1]->n = 400, c[2]->n = 300;
+    ft_chain *c[3];
+    spiral_ring_line(c, 400);
     ft_segment_blocks prev, g, ref;
     ft_segment_wide pw, w, wref;
     assert_int_equal(ft_segment_blocks_layout(&prev, (const ft_chain *const *)c, 3, 4), FT_OK);

@@ -55,25 +55,11 @@ static void list_is_brute(const ft_segment_blocks *g, ft_chain *const *ch, const
  * one-segment chain on the line. */
 static void spiral_set(ft_chain *c[4])
 {
-    c[0] = ft_chain_create(3000, 0);
-    c[1] = ft_chain_create(401, 1);
-    c[2] = ft_chain_create(300, 0);
+    spiral_ring_line(c, 401);
     c[3] = ft_chain_create(2, 0);
-    for (size_t i = 0; i < 3000; i++) {
-        double t = 0.05 * (double)i, r = 5.0 + 0.8 * t / (2.0 * M_PI);
-        c[0]->x[i] = r * cos(t);
-        c[0]->y[i] = r * sin(t);
-    }
-    for (size_t i = 0; i < 401; i++) {
-        c[1]->x[i] = 3.0 * cos(2.0 * M_PI * (double)i / 401.0);
-        c[1]->y[i] = 3.0 * sin(2.0 * M_PI * (double)i / 401.0);
-    }
-    for (size_t i = 0; i < 300; i++) {
-        c[2]->x[i] = -20.0 + 40.0 * (double)i / 299.0;
-        c[2]->y[i] = 0.3;
-    }
+    assert_non_null(c[3]);
     c[3]->x[0] = 1.0, c[3]->y[0] = 0.2, c[3]->x[1] = 1.5, c[3]->y[1] = 0.4;
-    c[0]->n = 3000, c[1]->n = 401, c[2]->n = 300, c[3]->n = 2;
+    c[3]->n = 2;
 }
 
 /* The grid join's near lists and wide lists are the pairwise definition's, on 1, 2 and 3 threads (each

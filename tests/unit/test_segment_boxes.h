@@ -58,4 +58,30 @@ static inline ft_chain *halved(const ft_chain *c, size_t k, double m)
     return h;
 }
 
+/* A tight spiral of 3000 vertices (arms 0.8 apart: lists reach across arms), a ring of `ring` vertices inside
+ * it and a line of 300 across both, in c[0..2]. */
+static inline void spiral_ring_line(ft_chain *c[3], size_t ring)
+{
+    c[0] = ft_chain_create(3000, 0);
+    c[1] = ft_chain_create(ring, 1);
+    c[2] = ft_chain_create(300, 0);
+    assert_non_null(c[0]);
+    assert_non_null(c[1]);
+    assert_non_null(c[2]);
+    for (size_t i = 0; i < 3000; i++) {
+        double t = 0.05 * (double)i, r = 5.0 + 0.8 * t / (2.0 * M_PI);
+        c[0]->x[i] = r * cos(t);
+        c[0]->y[i] = r * sin(t);
+    }
+    for (size_t i = 0; i < ring; i++) {
+        c[1]->x[i] = 3.0 * cos(2.0 * M_PI * (double)i / (double)ring);
+        c[1]->y[i] = 3.0 * sin(2.0 * M_PI * (double)i / (double)ring);
+    }
+    for (size_t i = 0; i < 300; i++) {
+        c[2]->x[i] = -20.0 + 40.0 * (double)i / 299.0;
+        c[2]->y[i] = 0.3;
+    }
+    c[0]->n = 3000, c[1]->n = ring, c[2]->n = 300;
+}
+
 #endif /* FT_TEST_SEGMENT_BOXES_H */
