@@ -27,7 +27,8 @@
  * dimension; literal_sd takes theta from SD by the relation above, which measures well below SD (1.12 for
  * 1.3). A pass proposes base positions (the input's vertices and midpoints) and raw ones (the moved
  * vertices); unless allow_crossings, the crossing guard (move_guard.c) keeps the moves that cross nothing
- * (run fused into the pass by dutton_guarded.c, which computes the raw positions with ft_dutton_raw_vertex).
+ * (run fused into the pass by dutton_guarded.c). Both passes compute the raw positions of ft_dutton_raw_vertex
+ * a run of vertices at a time (ft_dutton_raw_run, dutton_raw.c: in vector registers, with the same bits).
  *
  * Where V* is (Dutton: "solving trigonometric identities involving the law of sines, law of cosines").
  * Let a = |PV|, c = |VN|, b = |M1 M2| = |PN| / 2 and p = |M1 V*|, q = |V* M2| with p / q = a / c.
@@ -63,6 +64,7 @@
 #define PI 3.14159265358979323846
 #define PARALLEL_MIN 32768     /* vertices below which a pass runs on one thread */
 #define MAX_ITERATIONS 64
+#define RAW_RUN 256          /* vertices whose raw positions are computed together (ft_dutton_raw_run) */
 #define DENSIFY_RATIO 3.0 /* calibrated mode: segments this many times the input's mean segment are cut first */
 
 double ft_dutton_apex_angle(double sd)
@@ -186,16 +188,14 @@ void ft_dutton_mark_splits(const ft_chain *in, size_t nseg, ft_edit_window w, un
         split[i] = (unsigned char)ft_edit_in_window(w, ft_edit_dist2(in, i, i + 1 < n ? i + 1 : 0));
 }
 
-/* Writes vertex i (moved or not) at out[k], then its segment's midpoint at out[k + 1] if split. */
+/* Writes vertex i at out[k] (at raw, its raw position, unless keep_vertices), then its segment's midpoint at
+ * out[k + 1] if split. */
 static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
-                          size_t i, ft_chain *out, ft_chain *base, size_t k)
+                          size_t i, const double *raw, ft_chain *out, ft_chain *base, size_t k)
 {
     size_t in_ = i + 1 < in->n ? i + 1 : 0;
-    double x = in->x[i], y = in->y[i];
-    if (!pp->keep_vertices)
-        (void)ft_dutton_raw_vertex(in, split, pp, i, &x, &y);
-    out->x[k] = x;
-    out->y[k] = y;
+    out->x[k] = pp->keep_vertices ? in->x[i] : raw[0];
+    out->y[k] = pp->keep_vertices ? in->y[i] : raw[1];
     if (base) {
         base->x[k] = in->x[i];
         base->y[k] = in->y[i];
@@ -222,7 +222,8 @@ static size_t emit_vertex(const ft_chain *in, const unsigned char *split, size_t
 }
 
 /* Vertices [lo, hi) are written from out position lo + (splits before lo): each thread counts the splits
- * of its block, waits for the others, and writes its block after the blocks before it. */
+ * of its block, waits for the others, and writes its block after the blocks before it, RAW_RUN vertices at a
+ * time. */
 static void emit_all(const ft_chain *in, const unsigned char *split, size_t nseg, const pass_params *pp,
                      ft_chain *out, ft_chain *base, size_t *counts, int nthreads)
 {
@@ -240,8 +241,14 @@ static void emit_all(const ft_chain *in, const unsigned char *split, size_t nseg
         size_t k = lo;
         for (size_t j = 0; j < t; j++)
             k += counts[j];
-        for (size_t i = lo; i < hi; i++)
-            k = emit_vertex(in, split, nseg, pp, i, out, base, k);
+        double raw[2 * RAW_RUN];
+        for (size_t r = lo; r < hi; r += RAW_RUN) {
+            size_t e = hi - r > RAW_RUN ? r + RAW_RUN : hi;
+            if (!pp->keep_vertices)
+                ft_dutton_raw_run(in, split, pp, r, e, raw);
+            for (size_t i = r; i < e; i++)
+                k = emit_vertex(in, split, nseg, pp, i, &raw[2 * (i - r)], out, base, k);
+        }
     }
 }
 

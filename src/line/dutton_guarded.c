@@ -62,6 +62,7 @@
 #endif
 
 #define FUSED_BLOCK (FT_SEGMENT_BLOCK / 2) /* input segments per block: the output's FT_SEGMENT_BLOCK, as move_guard.c */
+#define RAW_BLOCKS 256 /* blocks per run of raw positions (ft_dutton_raw_run: several vertices at a time) */
 
 /* One chain of the pass: the input the pass works on (densified or not), its split flags, its output. */
 typedef struct {
@@ -99,17 +100,21 @@ static inline void box_add(double box[4], double x, double y)
     box[3] = dmax(box[3], y);
 }
 
-/* The raw positions of block b's vertices but its last (the next block's first; an open chain's last block
- * writes the chain's last vertex too): a vertex that stays keeps its input position. */
-static void block_raw(const fused *F, size_t b)
+/* The raw positions of blocks [lo, hi)'s vertices but the last block's last (the next block's first; an open
+ * chain's last block writes the chain's last vertex too): a vertex that stays keeps its input position. The
+ * blocks of a chain hold consecutive vertices, so each chain's part is one run (ft_dutton_raw_run). */
+static void block_raw(const fused *F, size_t lo, size_t hi)
 {
     const ft_segment_blocks *g = &F->g;
-    const pass_chain *p = &F->pc[g->chain[b]];
-    size_t v0 = g->first[b], v1 = v0 + g->count[b];
-    if (!p->in->closed && v1 == p->in->n - 1)
-        v1++;
-    for (size_t v = v0; v < v1; v++)
-        (void)ft_dutton_raw_vertex(p->in, p->split, &F->pp, v, &p->raw[2 * v], &p->raw[2 * v + 1]);
+    for (size_t b = lo, e; b < hi; b = e) {
+        size_t c = g->chain[b];
+        const pass_chain *p = &F->pc[c];
+        e = g->chain_block[c + 1] < hi ? g->chain_block[c + 1] : hi;
+        size_t v0 = g->first[b], v1 = g->first[e - 1] + g->count[e - 1];
+        if (!p->in->closed && v1 == p->in->n - 1)
+            v1++;
+        ft_dutton_raw_run(p->in, p->split, &F->pp, v0, v1, p->raw + 2 * v0);
+    }
 }
 
 /* The widened box of block b's input vertices and their raw positions (block_raw, done for every block);
@@ -632,9 +637,10 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         first_outputs(&F);
         long long nbl = (long long)nb;
         double move = 0.0;
+        long long nrun = (nbl + RAW_BLOCKS - 1) / RAW_BLOCKS;
 #pragma omp parallel for schedule(static)
-        for (long long b = 0; b < nbl; b++)
-            block_raw(&F, (size_t)b);
+        for (long long r = 0; r < nrun; r++)
+            block_raw(&F, (size_t)r * RAW_BLOCKS, (size_t)(r + 1 < nrun ? (r + 1) * RAW_BLOCKS : nbl));
 #pragma omp parallel for schedule(static) reduction(max : move)
         for (long long b = 0; b < nbl; b++) {
             move = dmax(move, block_box(&F, (size_t)b, F.g.box + 4 * b));

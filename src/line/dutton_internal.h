@@ -78,6 +78,18 @@ static inline int ft_dutton_raw_vertex(const ft_chain *in, const unsigned char *
                           pp->uc, pp->bend_straight ? (i % 2 ? 1 : -1) : 0, x, y);
 }
 
+/** The raw positions (ft_dutton_raw_vertex) of vertices [v0, v1) of in: vertex v's at xy[2 (v - v0)] and
+ *  xy[2 (v - v0) + 1]. Several vertices at a time, with the very bits of ft_dutton_raw_vertex (dutton_raw.c). */
+void ft_dutton_raw_run(const ft_chain *in, const unsigned char *split, const ft_dutton_pass_params *pp, size_t v0,
+                       size_t v1, double *xy);
+
+/** The paths of ft_dutton_raw_run: the widest the processor has (the default), one vertex at a time, AVX2, AVX-512. */
+enum { FT_DUTTON_RAW_AUTO, FT_DUTTON_RAW_SCALAR, FT_DUTTON_RAW_AVX2, FT_DUTTON_RAW_AVX512 };
+
+/** Tests only: makes ft_dutton_raw_run take path (FT_DUTTON_RAW_*). Returns 1, or 0 (and changes nothing) if
+ *  the processor cannot run it. */
+int ft_dutton_raw_force(int path);
+
 /** 1 if the fused guarded pass below does with plan p what ft_line_pass_enhance and the crossing guard do: the
  *  pass moves only the input's vertices, never the new midpoints (their fixed places are what the fusion rests
  *  on). A plan whose pass moves the midpoints must give 0 here (ft_line_run_passes then takes the unfused
