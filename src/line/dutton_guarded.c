@@ -26,7 +26,8 @@
  * Order and threads, as in move_guard.c: blocks of FT_SEGMENT_BLOCK / 2 input segments (when every segment
  * is split, the very blocks of FT_SEGMENT_BLOCK output segments that move_guard.c cuts), chunks of
  * FT_GUARD_CHUNK blocks; the vertices of the blocks whose near lists stay within their chunk are walked chunk
- * by chunk in parallel, each chunk in vertex order, then the others serially in chain and vertex order. The
+ * by chunk in parallel, each chunk in vertex order, then the others in chain and vertex order (in parallel
+ * groups that touch no other group's vertices: guard_schedule.c, the same bits as serially). The
  * order depends on the data only: the same bits on any thread count. Where every segment is split (the
  * default window) and the boxes give the same near lists, it is move_guard.c's order, and the result its
  * bits (checked on the bench chain); where not, two competing moves may be settled the other way, with the
@@ -47,6 +48,7 @@
 #include "internal.h"
 #include "fracterra/line.h"
 #include "line/dutton_internal.h"
+#include "line/guard_schedule.h"
 #include "line/segment_contact.h"
 #include "line/segment_index.h"
 
@@ -421,6 +423,19 @@ static walk_fn pick_walk(void)
     return walk_blocks_c;
 }
 
+/* The walk of one non-local block, for the scheduler (guard_schedule.c). */
+typedef struct {
+    const fused *F;
+    const unsigned char *local;
+    walk_fn walk;
+} walk_ctx;
+
+static void walk_one(const void *ctx, size_t b, ft_line_guard_stats *s)
+{
+    const walk_ctx *w = ctx;
+    w->walk(w->F, w->local, 0, b, b + 1, s);
+}
+
 static void free_chains(pass_chain *pc, size_t n, int keep_out)
 {
     for (size_t c = 0; pc != NULL && c < n; c++) {
@@ -665,7 +680,8 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
             s.reduced += part[k].reduced;
             s.dropped += part[k].dropped;
         }
-        walk_blocks(&F, local, 0, 0, nb, &s);
+        walk_ctx wc = {&F, local, walk_blocks};
+        ft_guard_walk_nonlocal(&F.g, work, local, walk_one, &wc, &s);
         if (stats) {
             stats->moves += s.moves;
             stats->reduced += s.reduced;
