@@ -65,28 +65,37 @@ static inline uint32_t number_of(const numbering *nu, size_t b)
     return nu->rank[b / 64] + (uint32_t)__builtin_popcountll(below);
 }
 
-/* The root of x's tree: every link goes to a lower number, so the root is the group's least block. */
+/* The root of x's tree: every link goes to a lower number, so the root is the group's least block. The
+ * threads join trees at once: a parent only ever moves to a lower ancestor (path halving) and a root is
+ * linked by compare-and-swap, so every pointer read is an ancestor and no link is lost. */
 static inline uint32_t root_of(uint32_t *par, uint32_t x)
 {
-    while (par[x] != x) {
-        par[x] = par[par[x]]; /* path halving */
-        x = par[x];
+    for (;;) {
+        uint32_t p = __atomic_load_n(&par[x], __ATOMIC_RELAXED);
+        if (p == x)
+            return x;
+        uint32_t q = __atomic_load_n(&par[p], __ATOMIC_RELAXED);
+        if (q != p)
+            __atomic_store_n(&par[x], q, __ATOMIC_RELAXED); /* path halving */
+        x = q;
     }
-    return x;
 }
 
-/* Joins the tree of root r with the tree of block m if m is non-local; returns the joined tree's root. */
+/* Joins the tree of r with the tree of block m if m is non-local; returns the joined tree's root. */
 static inline uint32_t join(const numbering *nu, uint32_t *par, uint32_t r, size_t m)
 {
     if (!is_nonlocal(nu, m))
         return r;
-    uint32_t a = root_of(par, number_of(nu, m));
-    if (a == r)
-        return r;
-    if (a < r)
-        return par[r] = a;
-    par[a] = r;
-    return r;
+    uint32_t a = number_of(nu, m);
+    for (;;) {
+        r = root_of(par, r);
+        a = root_of(par, a);
+        if (a == r)
+            return r;
+        uint32_t hi = a > r ? a : r, lo = a > r ? r : a, expect = hi;
+        if (__atomic_compare_exchange_n(&par[hi], &expect, lo, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+            return lo;
+    }
 }
 
 /* Joins non-local block b (number i) with the non-local blocks whose vertices walking b reads: the two
@@ -95,7 +104,7 @@ static inline uint32_t join(const numbering *nu, uint32_t *par, uint32_t r, size
 static void join_reads(const ft_segment_blocks *g, const ft_chain *const *chains, const numbering *nu,
                        uint32_t *par, size_t b, uint32_t i)
 {
-    uint32_t r = root_of(par, i);
+    uint32_t r = i;
     size_t p = block_before(g, chains, b), q = block_after(g, chains, b);
     r = join(nu, par, r, p);
     r = join(nu, par, r, block_before(g, chains, p));
@@ -120,13 +129,17 @@ int ft_guard_schedule_build(ft_guard_schedule *s, const ft_segment_blocks *g, co
         free(nu.rank);
         return FT_E_NOMEM;
     }
-    for (size_t w = 0; w < nw; w++) {
+    long long nwl = (long long)nw;
+#pragma omp parallel for schedule(static)
+    for (long long w = 0; w < nwl; w++) {
         uint64_t bits = 0;
-        for (size_t k = 0, b = 64 * w; k < 64 && b < nb; k++, b++)
+        for (size_t k = 0, b = 64 * (size_t)w; k < 64 && b < nb; k++, b++)
             bits |= (uint64_t)!local[b] << k;
         nu.bits[w] = bits;
+    }
+    for (size_t w = 0; w < nw; w++) {
         nu.rank[w] = (uint32_t)nnl;
-        nnl += (size_t)__builtin_popcountll(bits);
+        nnl += (size_t)__builtin_popcountll(nu.bits[w]);
     }
     /* par: the union-find forest over the numbers, then each one's group; block: number to block */
     uint32_t *par = ft_malloc((nnl ? nnl : 1) * sizeof *par);
@@ -138,10 +151,15 @@ int ft_guard_schedule_build(ft_guard_schedule *s, const ft_segment_blocks *g, co
         ft_guard_schedule_free(s);
         return FT_E_NOMEM;
     }
-    for (size_t b = 0, i = 0; b < nb; b++)
-        if (!local[b])
-            par[i] = (uint32_t)i, s->block[i++] = (uint32_t)b;
-    for (size_t i = 0; i < nnl; i++)
+#pragma omp parallel for schedule(static)
+    for (long long w = 0; w < nwl; w++)
+        for (uint64_t bits = nu.bits[w], i = nu.rank[w]; bits != 0; bits &= bits - 1, i++) {
+            par[i] = (uint32_t)i;
+            s->block[i] = (uint32_t)(64 * (size_t)w + (size_t)__builtin_ctzll(bits));
+        }
+    long long nnll = (long long)nnl;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (long long i = 0; i < nnll; i++)
         join_reads(g, chains, &nu, par, s->block[i], (uint32_t)i);
     free(nu.bits);
     free(nu.rank);
