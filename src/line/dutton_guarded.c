@@ -423,17 +423,17 @@ static walk_fn pick_walk(void)
     return walk_blocks_c;
 }
 
-/* The walk of one non-local block, for the scheduler (guard_schedule.c). */
+/* The walk for the scheduler (guard_schedule.c). */
 typedef struct {
     const fused *F;
     const unsigned char *local;
     walk_fn walk;
 } walk_ctx;
 
-static void walk_one(const void *ctx, size_t b, ft_line_guard_stats *s)
+static void walk_range(const void *ctx, unsigned char want, size_t lo, size_t hi, ft_line_guard_stats *s)
 {
     const walk_ctx *w = ctx;
-    w->walk(w->F, w->local, 0, b, b + 1, s);
+    w->walk(w->F, w->local, want, lo, hi, s);
 }
 
 static void free_chains(pass_chain *pc, size_t n, int keep_out)
@@ -628,19 +628,16 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         rc = ft_segment_blocks_layout(&F.g, work, n, FUSED_BLOCK);
     size_t nb = F.g.nblock;
     unsigned char *local = NULL;
-    ft_line_guard_stats *part = NULL;
-    size_t nchunk = (nb + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     if (rc == FT_OK) {
         F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
         local = ft_malloc(nb ? nb : 1);
-        part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
         size_t nv = 0;
         for (size_t c = 0; c < n; c++)
             nv += F.pc[c].in->n;
         F.raw = raw_buffer(carry, nv, &raw_owned);
         for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
             F.pc[c].raw = F.raw + 2 * off;
-        if (F.ofirst == NULL || local == NULL || part == NULL || F.raw == NULL)
+        if (F.ofirst == NULL || local == NULL || F.raw == NULL)
             rc = FT_E_NOMEM;
     }
     if (rc == FT_OK) {
@@ -667,21 +664,9 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
-        walk_fn walk_blocks = pick_walk();
-        long long nk = (long long)nchunk;
-#pragma omp parallel for schedule(dynamic, 1)
-        for (long long k = 0; k < nk; k++) {
-            size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < nb ? b0 + FT_GUARD_CHUNK : nb;
-            walk_blocks(&F, local, 1, b0, b1, &part[k]);
-        }
+        walk_ctx wc = {&F, local, pick_walk()};
         ft_line_guard_stats s = {0, 0, 0, 0};
-        for (size_t k = 0; k < nchunk; k++) {
-            s.moves += part[k].moves;
-            s.reduced += part[k].reduced;
-            s.dropped += part[k].dropped;
-        }
-        walk_ctx wc = {&F, local, walk_blocks};
-        ft_guard_walk_nonlocal(&F.g, work, local, walk_one, &wc, &s);
+        ft_guard_walk(&F.g, work, local, walk_range, &wc, &s);
         if (stats) {
             stats->moves += s.moves;
             stats->reduced += s.reduced;
@@ -700,7 +685,6 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
             out[c] = NULL;
     free(work);
     free(local);
-    free(part);
     free(F.ofirst);
     if (raw_owned)
         free(F.raw);

@@ -22,6 +22,7 @@
 #include "internal.h"
 #include "line/guard_schedule.h"
 
+#include <sched.h>
 #include <stdlib.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -65,56 +66,52 @@ static inline uint32_t number_of(const numbering *nu, size_t b)
     return nu->rank[b / 64] + (uint32_t)__builtin_popcountll(below);
 }
 
-/* The root of x's tree: every link goes to a lower number, so the root is the group's least block. The
- * threads join trees at once: a parent only ever moves to a lower ancestor (path halving) and a root is
- * linked by compare-and-swap, so every pointer read is an ancestor and no link is lost. */
+/* The root of x's tree: every link goes to a lower number, so the root is the group's least block. */
 static inline uint32_t root_of(uint32_t *par, uint32_t x)
 {
-    for (;;) {
-        uint32_t p = __atomic_load_n(&par[x], __ATOMIC_RELAXED);
-        if (p == x)
-            return x;
-        uint32_t q = __atomic_load_n(&par[p], __ATOMIC_RELAXED);
-        if (q != p)
-            __atomic_store_n(&par[x], q, __ATOMIC_RELAXED); /* path halving */
-        x = q;
+    while (par[x] != x) {
+        par[x] = par[par[x]]; /* path halving */
+        x = par[x];
     }
+    return x;
 }
 
-/* Joins the tree of r with the tree of block m if m is non-local; returns the joined tree's root. */
-static inline uint32_t join(const numbering *nu, uint32_t *par, uint32_t r, size_t m)
+/* Block m read by the walk of a block whose tree's root is r: m's chunk widens the chunks read [*c0, *c1],
+ * and if m is non-local its tree is joined with r's. Returns the joined tree's root. */
+static inline uint32_t join(const numbering *nu, uint32_t *par, uint32_t r, size_t m, uint32_t *c0, uint32_t *c1)
 {
+    uint32_t c = (uint32_t)(m / FT_GUARD_CHUNK);
+    *c0 = c < *c0 ? c : *c0;
+    *c1 = c > *c1 ? c : *c1;
     if (!is_nonlocal(nu, m))
         return r;
-    uint32_t a = number_of(nu, m);
-    for (;;) {
-        r = root_of(par, r);
-        a = root_of(par, a);
-        if (a == r)
-            return r;
-        uint32_t hi = a > r ? a : r, lo = a > r ? r : a, expect = hi;
-        if (__atomic_compare_exchange_n(&par[hi], &expect, lo, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-            return lo;
-    }
+    uint32_t a = root_of(par, number_of(nu, m));
+    if (a == r)
+        return r;
+    if (a < r)
+        return par[r] = a;
+    par[a] = r;
+    return r;
 }
 
 /* Joins non-local block b (number i) with the non-local blocks whose vertices walking b reads: the two
  * before and after it along its chain, the blocks of its near list and the owners of their first vertices
- * (the block before, in the list already unless the list skips it or m opens its chain). */
+ * (the block before, in the list already unless the list skips it or m opens its chain). The chunks of b
+ * and of all the blocks read, local or not, widen [*c0, *c1]. */
 static void join_reads(const ft_segment_blocks *g, const ft_chain *const *chains, const numbering *nu,
-                       uint32_t *par, size_t b, uint32_t i)
+                       uint32_t *par, size_t b, uint32_t i, uint32_t *c0, uint32_t *c1)
 {
-    uint32_t r = i;
+    uint32_t r = join(nu, par, root_of(par, i), b, c0, c1); /* b's own chunk */
     size_t p = block_before(g, chains, b), q = block_after(g, chains, b);
-    r = join(nu, par, r, p);
-    r = join(nu, par, r, block_before(g, chains, p));
-    r = join(nu, par, r, q);
-    r = join(nu, par, r, block_after(g, chains, q));
+    r = join(nu, par, r, p, c0, c1);
+    r = join(nu, par, r, block_before(g, chains, p), c0, c1);
+    r = join(nu, par, r, q, c0, c1);
+    r = join(nu, par, r, block_after(g, chains, q), c0, c1);
     for (uint32_t e = g->near_start[b], e0 = e; e < g->near_start[b + 1]; e++) {
         size_t m = g->near[e];
-        r = join(nu, par, r, m);
+        r = join(nu, par, r, m, c0, c1);
         if (e == e0 || g->near[e - 1] != m - 1 || g->first[m] == 0)
-            r = join(nu, par, r, block_before(g, chains, m));
+            r = join(nu, par, r, block_before(g, chains, m), c0, c1);
     }
 }
 
@@ -129,55 +126,50 @@ int ft_guard_schedule_build(ft_guard_schedule *s, const ft_segment_blocks *g, co
         free(nu.rank);
         return FT_E_NOMEM;
     }
-    long long nwl = (long long)nw;
-#pragma omp parallel for schedule(static)
-    for (long long w = 0; w < nwl; w++) {
+    for (size_t w = 0; w < nw; w++) {
         uint64_t bits = 0;
-        for (size_t k = 0, b = 64 * (size_t)w; k < 64 && b < nb; k++, b++)
+        for (size_t k = 0, b = 64 * w; k < 64 && b < nb; k++, b++)
             bits |= (uint64_t)!local[b] << k;
         nu.bits[w] = bits;
-    }
-    for (size_t w = 0; w < nw; w++) {
         nu.rank[w] = (uint32_t)nnl;
-        nnl += (size_t)__builtin_popcountll(nu.bits[w]);
+        nnl += (size_t)__builtin_popcountll(bits);
     }
-    /* par: the union-find forest over the numbers, then each one's group; block: number to block */
-    uint32_t *par = ft_malloc((nnl ? nnl : 1) * sizeof *par);
-    s->block = ft_malloc((nnl ? nnl : 1) * sizeof *s->block);
-    if (par == NULL || s->block == NULL) {
-        free(nu.bits);
-        free(nu.rank);
-        free(par);
-        ft_guard_schedule_free(s);
-        return FT_E_NOMEM;
+    /* par: the union-find forest over the numbers, then each one's group; block: number to block; c0, c1:
+     * the chunks each one reads */
+    size_t nn = nnl ? nnl : 1;
+    uint32_t *par = ft_malloc(nn * sizeof *par), *c0 = ft_malloc(nn * sizeof *c0), *c1 = ft_malloc(nn * sizeof *c1);
+    s->block = ft_malloc(nn * sizeof *s->block);
+    if (par == NULL || c0 == NULL || c1 == NULL || s->block == NULL)
+        goto fail;
+    for (size_t b = 0, i = 0; b < nb; b++)
+        if (!local[b])
+            par[i] = (uint32_t)i, s->block[i++] = (uint32_t)b;
+    for (size_t i = 0; i < nnl; i++) {
+        c0[i] = UINT32_MAX;
+        c1[i] = 0;
+        join_reads(g, chains, &nu, par, s->block[i], (uint32_t)i, &c0[i], &c1[i]);
     }
-#pragma omp parallel for schedule(static)
-    for (long long w = 0; w < nwl; w++)
-        for (uint64_t bits = nu.bits[w], i = nu.rank[w]; bits != 0; bits &= bits - 1, i++) {
-            par[i] = (uint32_t)i;
-            s->block[i] = (uint32_t)(64 * (size_t)w + (size_t)__builtin_ctzll(bits));
-        }
-    long long nnll = (long long)nnl;
-#pragma omp parallel for schedule(dynamic, 256)
-    for (long long i = 0; i < nnll; i++)
-        join_reads(g, chains, &nu, par, s->block[i], (uint32_t)i);
-    free(nu.bits);
-    free(nu.rank);
     /* in number order: a root opens a group; any other number's parent is lower, so its entry already
      * holds the group of its root */
     for (size_t i = 0; i < nnl; i++)
         par[i] = par[i] == i ? (uint32_t)ngroup++ : par[par[i]];
     s->group_start = ft_calloc(ngroup + 1, sizeof *s->group_start);
-    uint32_t *order = ft_malloc((nnl ? nnl : 1) * sizeof *order);
-    if (s->group_start == NULL || order == NULL) {
-        free(par);
+    s->chunk_lo = ft_malloc((ngroup ? ngroup : 1) * sizeof *s->chunk_lo);
+    s->chunk_hi = ft_calloc(ngroup ? ngroup : 1, sizeof *s->chunk_hi);
+    uint32_t *order = ft_malloc(nn * sizeof *order);
+    if (s->group_start == NULL || s->chunk_lo == NULL || s->chunk_hi == NULL || order == NULL) {
         free(order);
-        ft_guard_schedule_free(s);
-        return FT_E_NOMEM;
+        goto fail;
     }
     s->ngroup = ngroup;
-    for (size_t i = 0; i < nnl; i++) /* group k's size at entry k + 1, then its start at entry k */
-        s->group_start[par[i] + 1]++;
+    for (size_t k = 0; k < ngroup; k++)
+        s->chunk_lo[k] = UINT32_MAX;
+    for (size_t i = 0; i < nnl; i++) { /* group k's size at entry k + 1, then its start at entry k */
+        uint32_t k = par[i];
+        s->group_start[k + 1]++;
+        s->chunk_lo[k] = c0[i] < s->chunk_lo[k] ? c0[i] : s->chunk_lo[k];
+        s->chunk_hi[k] = c1[i] > s->chunk_hi[k] ? c1[i] : s->chunk_hi[k];
+    }
     for (size_t k = 1; k <= ngroup; k++)
         s->group_start[k] += s->group_start[k - 1];
     for (size_t i = 0; i < nnl; i++) /* each group's blocks in block order; entry k moves on to its end */
@@ -187,14 +179,28 @@ int ft_guard_schedule_build(ft_guard_schedule *s, const ft_segment_blocks *g, co
     s->group_start[0] = 0;
     free(s->block);
     s->block = order;
+    free(nu.bits);
+    free(nu.rank);
     free(par);
+    free(c0);
+    free(c1);
     return FT_OK;
+fail:
+    free(nu.bits);
+    free(nu.rank);
+    free(par);
+    free(c0);
+    free(c1);
+    ft_guard_schedule_free(s);
+    return FT_E_NOMEM;
 }
 
 void ft_guard_schedule_free(ft_guard_schedule *s)
 {
     free(s->group_start);
     free(s->block);
+    free(s->chunk_lo);
+    free(s->chunk_hi);
     *s = (ft_guard_schedule){0};
 }
 
@@ -206,30 +212,67 @@ static void add_stats(ft_line_guard_stats *to, const ft_line_guard_stats *s)
     to->redrawn += s->redrawn;
 }
 
-void ft_guard_walk_nonlocal(const ft_segment_blocks *g, const ft_chain *const *chains, const unsigned char *local,
-                            ft_guard_walk_fn walk, const void *ctx, ft_line_guard_stats *s)
+/* The serial walk: the chunks' local blocks, then the others in block order. */
+static void walk_serial(const ft_segment_blocks *g, ft_guard_walk_fn walk, const void *ctx, ft_line_guard_stats *s)
 {
-    ft_guard_schedule sc = {0};
+    size_t nb = g->nblock;
+    for (size_t b0 = 0; b0 < nb; b0 += FT_GUARD_CHUNK)
+        walk(ctx, 1, b0, b0 + FT_GUARD_CHUNK < nb ? b0 + FT_GUARD_CHUNK : nb, s);
+    walk(ctx, 0, 0, nb, s);
+}
+
+/* Waits until *flag is set (by another thread, with release). */
+static void wait_for(const int *flag)
+{
+    for (unsigned spin = 0; !__atomic_load_n(flag, __ATOMIC_ACQUIRE); spin++)
+        if (spin >= 256)
+            sched_yield();
+}
+
+void ft_guard_walk(const ft_segment_blocks *g, const ft_chain *const *chains, const unsigned char *local,
+                   ft_guard_walk_fn walk, const void *ctx, ft_line_guard_stats *s)
+{
+    size_t nb = g->nblock, nchunk = (nb + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
-    if (threads == 1 || ft_guard_schedule_build(&sc, g, chains, local) != FT_OK) {
-        for (size_t b = 0; b < g->nblock; b++)
-            if (!local[b])
-                walk(ctx, b, s);
+    int *done = threads > 1 ? ft_calloc(nchunk + 1, sizeof *done) : NULL; /* per chunk; [nchunk]: built */
+    if (done == NULL) {
+        walk_serial(g, walk, ctx, s);
         return;
     }
-    long long ng = (long long)sc.ngroup;
+    ft_guard_schedule sc = {0};
+    int built = FT_OK;
+    size_t next = 0; /* the next item: 0 the schedule, 1 .. nchunk the chunks, then the groups */
 #pragma omp parallel
     {
         ft_line_guard_stats mine = {0, 0, 0, 0};
-#pragma omp for schedule(dynamic, 1) nowait
-        for (long long k = 0; k < ng; k++)
-            for (size_t i = sc.group_start[k]; i < sc.group_start[k + 1]; i++)
-                walk(ctx, sc.block[i], &mine);
-#pragma omp critical(ft_guard_walk_nonlocal)
+        for (;;) {
+            size_t k = __atomic_fetch_add(&next, 1, __ATOMIC_RELAXED);
+            if (k == 0) {
+                built = ft_guard_schedule_build(&sc, g, chains, local);
+                __atomic_store_n(&done[nchunk], 1, __ATOMIC_RELEASE);
+            } else if (k <= nchunk) {
+                size_t b0 = (k - 1) * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < nb ? b0 + FT_GUARD_CHUNK : nb;
+                walk(ctx, 1, b0, b1, &mine);
+                __atomic_store_n(&done[k - 1], 1, __ATOMIC_RELEASE);
+            } else {
+                wait_for(&done[nchunk]);
+                size_t j = k - nchunk - 1;
+                if (built != FT_OK || j >= sc.ngroup)
+                    break;
+                for (size_t c = sc.chunk_lo[j]; c <= sc.chunk_hi[j]; c++)
+                    wait_for(&done[c]);
+                for (size_t i = sc.group_start[j]; i < sc.group_start[j + 1]; i++)
+                    walk(ctx, 0, sc.block[i], sc.block[i] + 1, &mine);
+            }
+        }
+#pragma omp critical(ft_guard_walk)
         add_stats(s, &mine);
     }
+    if (built != FT_OK) /* no schedule: the chunks are walked, the others in block order */
+        walk(ctx, 0, 0, nb, s);
     ft_guard_schedule_free(&sc);
+    free(done);
 }

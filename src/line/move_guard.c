@@ -161,7 +161,7 @@ static void walk_blocks(const guard *G, const ft_chain *const *raw, const unsign
     }
 }
 
-/* The walk of one non-local block, for the scheduler (guard_schedule.c). */
+/* The walk for the scheduler (guard_schedule.c). */
 typedef struct {
     const guard *G;
     const ft_chain *const *raw;
@@ -169,10 +169,10 @@ typedef struct {
     int mode;
 } walk_ctx;
 
-static void walk_one(const void *ctx, size_t b, ft_line_guard_stats *s)
+static void walk_range(const void *ctx, unsigned char want, size_t lo, size_t hi, ft_line_guard_stats *s)
 {
     const walk_ctx *w = ctx;
-    walk_blocks(w->G, w->raw, w->local, 0, b, b + 1, w->mode, s);
+    walk_blocks(w->G, w->raw, w->local, want, lo, hi, w->mode, s);
 }
 
 static void add_stats(ft_line_guard_stats *to, const ft_line_guard_stats *s)
@@ -197,30 +197,17 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
     int rc = ft_segment_blocks_build(&g, (const ft_chain *const *)chains, raw, n, mode == FT_GUARD_MIRROR);
     if (rc != FT_OK)
         return rc;
-    size_t nchunk = (g.nblock + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     unsigned char *local = ft_malloc(g.nblock ? g.nblock : 1);
-    ft_line_guard_stats *part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
-    if (local == NULL || part == NULL) {
-        free(local);
-        free(part);
+    if (local == NULL) {
         ft_segment_blocks_free(&g);
         return FT_E_NOMEM;
     }
     guard G = {chains, &g};
     ft_segment_blocks_mark_local(&g, (const ft_chain *const *)chains, local);
-    long long nk = (long long)nchunk;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (long long k = 0; k < nk; k++) {
-        size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < g.nblock ? b0 + FT_GUARD_CHUNK : g.nblock;
-        walk_blocks(&G, raw, local, 1, b0, b1, mode, &part[k]);
-    }
-    ft_line_guard_stats s = {0, 0, 0, 0};
-    for (size_t k = 0; k < nchunk; k++)
-        add_stats(&s, &part[k]);
     walk_ctx wc = {&G, raw, local, mode};
-    ft_guard_walk_nonlocal(&g, (const ft_chain *const *)chains, local, walk_one, &wc, &s);
+    ft_line_guard_stats s = {0, 0, 0, 0};
+    ft_guard_walk(&g, (const ft_chain *const *)chains, local, walk_range, &wc, &s);
     free(local);
-    free(part);
     ft_segment_blocks_free(&g);
     if (stats)
         add_stats(stats, &s);

@@ -2,7 +2,7 @@
  * a long random walk that crosses back over itself (the bench chain's kind, 300,000 vertices: several chunks
  * of the walk, thousands of non-local blocks): every non-local block is in exactly one group, each group in
  * block order, and every non-local block whose vertices a block's walk reads (found here vertex by vertex)
- * is in that block's group; the unfused guard and the fused enhancement give the same bits and counts on 1
+ * is in that block's group, every block read in the chunks the group waits for; the unfused guard and the fused enhancement give the same bits and counts on 1
  * thread (the serial walk in block order) as on 2 and 3 (the groups in parallel).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
@@ -68,6 +68,17 @@ static size_t owner(const ft_segment_blocks *g, const ft_chain *ch, size_t c, si
     return g->chain_block[c] + s / FT_SEGMENT_BLOCK;
 }
 
+/* Block o, whose vertices non-local block b's walk reads (or b itself): if non-local, in b's group; local or
+ * not, in the chunks the group waits for. */
+static void read_in_group(const ft_guard_schedule *s, const unsigned char *local, const uint32_t *group, size_t b,
+                          size_t o)
+{
+    uint32_t k = group[b];
+    if (!local[o])
+        assert_int_equal(group[o], k);
+    assert_in_range(o / FT_GUARD_CHUNK, s->chunk_lo[k], s->chunk_hi[k]);
+}
+
 static void test_groups_hold_every_read(void **state)
 {
     (void)state;
@@ -109,20 +120,15 @@ static void test_groups_hold_every_read(void **state)
     for (size_t b = 0; b < g.nblock; b++) {
         if (local[b])
             continue;
+        read_in_group(&s, local, group, b, b);
         for (uint32_t e = g.near_start[b]; e < g.near_start[b + 1]; e++) {
             size_t m = g.near[e];
-            for (size_t u = g.first[m]; u <= g.first[m] + g.count[m]; u++) {
-                size_t o = owner(&g, c, 0, u);
-                if (!local[o])
-                    assert_int_equal(group[o], group[b]);
-            }
+            for (size_t u = g.first[m]; u <= g.first[m] + g.count[m]; u++)
+                read_in_group(&s, local, group, b, owner(&g, c, 0, u));
         }
         long long lo = (long long)g.first[b] - 1, hi = (long long)(g.first[b] + g.count[b]) + 2;
-        for (long long u = lo < 0 ? 0 : lo; u <= hi && u < (long long)c->n; u++) { /* open: no wrapping */
-            size_t o = owner(&g, c, 0, (size_t)u);
-            if (!local[o])
-                assert_int_equal(group[o], group[b]);
-        }
+        for (long long u = lo < 0 ? 0 : lo; u <= hi && u < (long long)c->n; u++) /* open: no wrapping */
+            read_in_group(&s, local, group, b, owner(&g, c, 0, (size_t)u));
     }
     ft_guard_schedule_free(&s);
     free(group);
