@@ -1,21 +1,30 @@
-/* fracterra — line/guard_schedule.c: the blocks that are not local to their chunk, the crossing guards'
- * second phase (move_guard.c, dutton_guarded.c), walked in parallel with the bits of the serial walk.
+/* fracterra — line/guard_schedule.c: the walk of the crossing guards (move_guard.c, dutton_guarded.c) over
+ * their blocks, in parallel, with the bits of the serial order: each chunk's local blocks, then the others.
  *
- * The guards walk first the local blocks, chunk by chunk in parallel, then the others (about a tenth of the
- * blocks on the bench chain) in block order; on two threads that serial phase was ~15 % of the fused pass's
- * wall time, the other core idle. Walking block b's moves reads the vertices owned by the blocks of its near
- * list and by the owners of their first vertices (the end points of the segments it tests), and by the
- * blocks up to two before and after it along its chain (its vertices' neighbours and theirs, which the hull
- * shortcut reads); it writes only the vertices b owns. The local blocks are finished: read only. Two
- * non-local blocks conflict when either is in the other's read set (the near lists are not symmetric: a reach
- * is the box of two blocks' boxes). The groups are the connected components of that relation (union-find,
- * each tree's root its least block): blocks of different groups never read what the other writes, so each
- * group walked in block order by one thread, the groups in parallel in any order, gives every block the very
- * positions the serial walk gives it: the same bits on any thread count, with no synchronisation but the
- * end. On the bench chain's three passes 716, 2559 and 5706 groups, the largest 7, 1 and 0.5 % of the work.
- * A schedule by levels (wave fronts of the conflict order: 89-173 levels, hundreds of blocks wide) was
- * tried first: on the shared two-core machine each level's barrier waited for a descheduled thread, and the
- * phase took up to 0.7 s instead of 0.04.
+ * The chunks' local blocks read and write only their own chunk's vertices, so the chunks run in parallel.
+ * The other blocks (about a tenth on the bench chain) were then walked serially in block order: on two
+ * threads ~15 % of the fused pass's wall time, the other core idle. Walking block b's moves reads the
+ * vertices owned by the blocks of its near list and by the owners of their first vertices (the end points of
+ * the segments it tests), and by the blocks up to two before and after it along its chain (its vertices'
+ * neighbours and theirs, which the hull shortcut reads); it writes only the vertices b owns. Two non-local
+ * blocks conflict when either is in the other's read set (both ways: the near lists are not symmetric, a
+ * reach being the box of two blocks' boxes). The groups are the connected components of that relation
+ * (union-find, each tree's root its least block): blocks of different groups never read what the other
+ * writes, so each group walked in block order by one thread, the groups in parallel in any order, gives
+ * every block the very positions the serial walk gives it, once the local blocks it reads are walked: a
+ * group waits for the chunks of its blocks and of every block they read (the local blocks of a chunk read
+ * its non-local blocks' vertices before those move). So the same bits on any thread count.
+ *
+ * One loop takes items from a shared counter: first the schedule's build (serial, overlapping the other
+ * threads' chunks), then the chunks, then the groups, each after the chunks it needs are done (a flag per
+ * chunk). There is no barrier but the loop's end: on the shared machine, a schedule by levels (wave fronts
+ * of the conflict order, 89-173 levels on the bench chain, a barrier each) and the groups in a loop of
+ * their own after the build's own parallel loops both lost more waiting for descheduled threads than they
+ * gained. On the bench chain's three passes: 26, 49 and 77 thousand non-local blocks in 716, 2559 and 5706
+ * groups, the largest 7, 1 and 0.5 % of the phase's work; the build, ~16 ms of CPU a call against ~85 ms
+ * of walking it schedules, runs while the other threads walk chunks. One thread walks in the serial order,
+ * with no schedule. Each thread counts the moves in its own counters (the per-chunk counters the guards had
+ * shared cache lines between the threads, written at every move).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
