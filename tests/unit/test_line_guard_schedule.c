@@ -2,8 +2,9 @@
  * a long random walk that crosses back over itself (the bench chain's kind, 300,000 vertices: several chunks
  * of the walk, thousands of non-local blocks): every non-local block is in exactly one group, each group in
  * block order, and every non-local block whose vertices a block's walk reads (found here vertex by vertex)
- * is in that block's group, every block read in the chunks the group waits for; the unfused guard and the fused enhancement give the same bits and counts on 1
- * thread (the serial walk in block order) as on 2 and 3 (the groups in parallel).
+ * is in that block's group, every block read in the chunks the group waits for; the unfused guard and the
+ * fused enhancement give the same bits and counts on 1 thread (the serial walk in block order) as on 2 and 3
+ * (the groups in parallel).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
@@ -103,7 +104,8 @@ static void test_groups_hold_every_read(void **state)
     assert_int_equal(s.group_start[s.ngroup], nnl); /* every one listed */
     for (size_t k = 0; k < s.ngroup; k++) {
         assert_true(s.group_start[k + 1] > s.group_start[k]);
-        largest = s.group_start[k + 1] - s.group_start[k] > largest ? s.group_start[k + 1] - s.group_start[k] : largest;
+        size_t size = s.group_start[k + 1] - s.group_start[k];
+        largest = size > largest ? size : largest;
         for (size_t i = s.group_start[k]; i < s.group_start[k + 1]; i++) {
             uint32_t b = s.block[i];
             assert_true(b < g.nblock);
