@@ -26,7 +26,8 @@
  * Order and threads, as in move_guard.c: blocks of FT_SEGMENT_BLOCK / 2 input segments (when every segment
  * is split, the very blocks of FT_SEGMENT_BLOCK output segments that move_guard.c cuts), chunks of
  * FT_GUARD_CHUNK blocks; the vertices of the blocks whose near lists stay within their chunk are walked chunk
- * by chunk in parallel, each chunk in vertex order, then the others serially in chain and vertex order. The
+ * by chunk in parallel, each chunk in vertex order, then the others in chain and vertex order (in parallel
+ * groups that touch no other group's vertices: guard_schedule.c, the same bits as serially). The
  * order depends on the data only: the same bits on any thread count. Where every segment is split (the
  * default window) and the boxes give the same near lists, it is move_guard.c's order, and the result its
  * bits (checked on the bench chain); where not, two competing moves may be settled the other way, with the
@@ -47,6 +48,7 @@
 #include "internal.h"
 #include "fracterra/line.h"
 #include "line/dutton_internal.h"
+#include "line/guard_schedule.h"
 #include "line/segment_contact.h"
 #include "line/segment_index.h"
 
@@ -426,6 +428,19 @@ static walk_fn pick_walk(void)
     return walk_blocks_c;
 }
 
+/* The walk for the scheduler (guard_schedule.c). */
+typedef struct {
+    const fused *F;
+    const unsigned char *local;
+    walk_fn walk;
+} walk_ctx;
+
+static void walk_range(const void *ctx, unsigned char want, size_t lo, size_t hi, ft_line_guard_stats *s)
+{
+    const walk_ctx *w = ctx;
+    w->walk(w->F, w->local, want, lo, hi, s);
+}
+
 static void free_chains(pass_chain *pc, size_t n, int keep_out)
 {
     for (size_t c = 0; pc != NULL && c < n; c++) {
@@ -618,19 +633,16 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         rc = ft_segment_blocks_layout(&F.g, work, n, FUSED_BLOCK);
     size_t nb = F.g.nblock;
     unsigned char *local = NULL;
-    ft_line_guard_stats *part = NULL;
-    size_t nchunk = (nb + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     if (rc == FT_OK) {
         F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
         local = ft_malloc(nb ? nb : 1);
-        part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
         size_t nv = 0;
         for (size_t c = 0; c < n; c++)
             nv += F.pc[c].in->n;
         F.raw = raw_buffer(carry, nv, &raw_owned);
         for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
             F.pc[c].raw = F.raw + 2 * off;
-        if (F.ofirst == NULL || local == NULL || part == NULL || F.raw == NULL)
+        if (F.ofirst == NULL || local == NULL || F.raw == NULL)
             rc = FT_E_NOMEM;
     }
     if (rc == FT_OK) {
@@ -658,20 +670,9 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     }
     if (rc == FT_OK) {
         ft_segment_blocks_mark_local(&F.g, work, local);
-        walk_fn walk_blocks = pick_walk();
-        long long nk = (long long)nchunk;
-#pragma omp parallel for schedule(dynamic, 1)
-        for (long long k = 0; k < nk; k++) {
-            size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < nb ? b0 + FT_GUARD_CHUNK : nb;
-            walk_blocks(&F, local, 1, b0, b1, &part[k]);
-        }
+        walk_ctx wc = {&F, local, pick_walk()};
         ft_line_guard_stats s = {0, 0, 0, 0};
-        for (size_t k = 0; k < nchunk; k++) {
-            s.moves += part[k].moves;
-            s.reduced += part[k].reduced;
-            s.dropped += part[k].dropped;
-        }
-        walk_blocks(&F, local, 0, 0, nb, &s);
+        ft_guard_walk(&F.g, work, local, walk_range, &wc, &s);
         if (stats) {
             stats->moves += s.moves;
             stats->reduced += s.reduced;
@@ -690,7 +691,6 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
             out[c] = NULL;
     free(work);
     free(local);
-    free(part);
     free(F.ofirst);
     if (raw_owned)
         free(F.raw);

@@ -25,13 +25,15 @@
  * its near list) is owned by a block of its own chunk (a vertex is owned by the block of the segment ending
  * at it). First the moves of the vertices of local blocks are walked, chunk by chunk in parallel, each chunk
  * in vertex order: a chunk reads and writes only its own vertices, so no chunk sees another's work; then the
- * other moves, serially in chain and vertex order. The order is thus fixed by the data alone and the result
- * is the same bits on any thread count (on the 1M-vertex bench chain 83-92 % of the blocks are local).
+ * other moves, in chain and vertex order (guard_schedule.c walks groups of them that touch no other group's
+ * vertices in parallel, with the bits of that order). The order is thus fixed by the data alone and the
+ * result is the same bits on any thread count (on the 1M-vertex bench chain 83-92 % of the blocks are local).
  *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #include "internal.h"
 #include "fracterra/line.h"
+#include "line/guard_schedule.h"
 #include "line/segment_contact.h"
 #include "line/segment_index.h"
 
@@ -159,6 +161,20 @@ static void walk_blocks(const guard *G, const ft_chain *const *raw, const unsign
     }
 }
 
+/* The walk for the scheduler (guard_schedule.c). */
+typedef struct {
+    const guard *G;
+    const ft_chain *const *raw;
+    const unsigned char *local;
+    int mode;
+} walk_ctx;
+
+static void walk_range(const void *ctx, unsigned char want, size_t lo, size_t hi, ft_line_guard_stats *s)
+{
+    const walk_ctx *w = ctx;
+    walk_blocks(w->G, w->raw, w->local, want, lo, hi, w->mode, s);
+}
+
 static void add_stats(ft_line_guard_stats *to, const ft_line_guard_stats *s)
 {
     to->moves += s->moves;
@@ -181,29 +197,17 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
     int rc = ft_segment_blocks_build(&g, (const ft_chain *const *)chains, raw, n, mode == FT_GUARD_MIRROR);
     if (rc != FT_OK)
         return rc;
-    size_t nchunk = (g.nblock + FT_GUARD_CHUNK - 1) / FT_GUARD_CHUNK;
     unsigned char *local = ft_malloc(g.nblock ? g.nblock : 1);
-    ft_line_guard_stats *part = ft_calloc(nchunk ? nchunk : 1, sizeof *part);
-    if (local == NULL || part == NULL) {
-        free(local);
-        free(part);
+    if (local == NULL) {
         ft_segment_blocks_free(&g);
         return FT_E_NOMEM;
     }
     guard G = {chains, &g};
     ft_segment_blocks_mark_local(&g, (const ft_chain *const *)chains, local);
-    long long nk = (long long)nchunk;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (long long k = 0; k < nk; k++) {
-        size_t b0 = (size_t)k * FT_GUARD_CHUNK, b1 = b0 + FT_GUARD_CHUNK < g.nblock ? b0 + FT_GUARD_CHUNK : g.nblock;
-        walk_blocks(&G, raw, local, 1, b0, b1, mode, &part[k]);
-    }
+    walk_ctx wc = {&G, raw, local, mode};
     ft_line_guard_stats s = {0, 0, 0, 0};
-    for (size_t k = 0; k < nchunk; k++)
-        add_stats(&s, &part[k]);
-    walk_blocks(&G, raw, local, 0, 0, g.nblock, mode, &s);
+    ft_guard_walk(&g, (const ft_chain *const *)chains, local, walk_range, &wc, &s);
     free(local);
-    free(part);
     ft_segment_blocks_free(&g);
     if (stats)
         add_stats(stats, &s);
