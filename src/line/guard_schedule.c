@@ -37,25 +37,6 @@
 #include <omp.h>
 #endif
 
-/* The block before m along its chain (a ring's first: its last; an open chain's first: m itself), the owner
- * of m's first vertex. */
-static inline size_t block_before(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
-{
-    uint32_t c = g->chain[m];
-    if (m > g->chain_block[c])
-        return m - 1;
-    return chains[c]->closed ? g->chain_block[c + 1] - 1 : m;
-}
-
-/* The block after m along its chain (a ring's last: its first; an open chain's last: m itself). */
-static inline size_t block_after(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
-{
-    uint32_t c = g->chain[m];
-    if (m + 1 < g->chain_block[c + 1])
-        return m + 1;
-    return chains[c]->closed ? g->chain_block[c] : m;
-}
-
 /* The non-local blocks numbered in block order: bit b % 64 of word b / 64 of bits is set for a non-local
  * block, whose number is rank[b / 64] + the bits below it; small enough to stay in cache, where an array
  * over every block would not. */
@@ -111,16 +92,16 @@ static void join_reads(const ft_segment_blocks *g, const ft_chain *const *chains
                        uint32_t *par, size_t b, uint32_t i, uint32_t *c0, uint32_t *c1)
 {
     uint32_t r = join(nu, par, root_of(par, i), b, c0, c1); /* b's own chunk */
-    size_t p = block_before(g, chains, b), q = block_after(g, chains, b);
+    size_t p = ft_segment_block_before(g, chains, b), q = ft_segment_block_after(g, chains, b);
     r = join(nu, par, r, p, c0, c1);
-    r = join(nu, par, r, block_before(g, chains, p), c0, c1);
+    r = join(nu, par, r, ft_segment_block_before(g, chains, p), c0, c1);
     r = join(nu, par, r, q, c0, c1);
-    r = join(nu, par, r, block_after(g, chains, q), c0, c1);
+    r = join(nu, par, r, ft_segment_block_after(g, chains, q), c0, c1);
     for (uint32_t e = g->near_start[b], e0 = e; e < g->near_start[b + 1]; e++) {
         size_t m = g->near[e];
         r = join(nu, par, r, m, c0, c1);
         if (e == e0 || g->near[e - 1] != m - 1 || g->first[m] == 0)
-            r = join(nu, par, r, block_before(g, chains, m), c0, c1);
+            r = join(nu, par, r, ft_segment_block_before(g, chains, m), c0, c1);
     }
 }
 

@@ -76,15 +76,6 @@ static void block_box(const ft_segment_blocks *g, const ft_chain *const *base, c
     ft_segment_box_widen(box);
 }
 
-/* The block after b along its chain (a ring's last: its first), or b itself at an open chain's end. */
-static inline size_t next_block(const ft_segment_blocks *g, const ft_chain *const *base, size_t b)
-{
-    uint32_t c = g->chain[b];
-    if (b + 1 < g->chain_block[c + 1])
-        return b + 1;
-    return base[c]->closed ? g->chain_block[c] : b;
-}
-
 typedef struct {
     double x0, y0, inv;
     size_t nx, ny;
@@ -213,7 +204,7 @@ static size_t near_blocks(const block_grid *G, const double *box, const double *
 static inline void reach_of(const ft_segment_blocks *g, const ft_chain *const *base, const double *box, size_t b,
                             double reach[4])
 {
-    const double *p = box + 4 * b, *q = box + 4 * next_block(g, base, b);
+    const double *p = box + 4 * b, *q = box + 4 * ft_segment_block_after(g, base, b);
     reach[0] = dmin(p[0], q[0]);
     reach[1] = dmin(p[1], q[1]);
     reach[2] = dmax(p[2], q[2]);
@@ -706,16 +697,6 @@ int ft_segment_blocks_build(ft_segment_blocks *g, const ft_chain *const *base, c
     return ft_segment_blocks_join(g, base);
 }
 
-/* The owner of block m's first vertex: the block before it, or at a chain's start m itself (open) or the
- * chain's last block (ring). Every other vertex of m's segments is owned by m. */
-static size_t first_vertex_owner(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
-{
-    uint32_t c = g->chain[m];
-    if (m > g->chain_block[c])
-        return m - 1;
-    return chains[c]->closed ? g->chain_block[c + 1] - 1 : m;
-}
-
 void ft_segment_blocks_mark_local(const ft_segment_blocks *g, const ft_chain *const *chains, unsigned char *local)
 {
     long long nb = (long long)g->nblock;
@@ -730,7 +711,7 @@ void ft_segment_blocks_mark_local(const ft_segment_blocks *g, const ft_chain *co
         for (uint32_t j = s; j < e && ok; j++) {
             size_t m = g->near[j];
             if (m == lo || g->first[m] == 0)
-                ok = first_vertex_owner(g, chains, m) / FT_GUARD_CHUNK == k;
+                ok = ft_segment_block_before(g, chains, m) / FT_GUARD_CHUNK == k;
         }
         local[b] = ok;
     }

@@ -83,6 +83,26 @@ static inline void ft_segment_box_widen(double box[4])
     box[3] += w;
 }
 
+/** The block before m along its chain, which owns m's first vertex: m - 1, or at a chain's start the chain's
+ *  last block (a ring) or m itself (an open chain). */
+static inline size_t ft_segment_block_before(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
+{
+    uint32_t c = g->chain[m];
+    if (m > g->chain_block[c])
+        return m - 1;
+    return chains[c]->closed ? g->chain_block[c + 1] - 1 : m;
+}
+
+/** The block after m along its chain: m + 1, or at a chain's end its first block (a ring) or m itself (an open
+ *  chain). */
+static inline size_t ft_segment_block_after(const ft_segment_blocks *g, const ft_chain *const *chains, size_t m)
+{
+    uint32_t c = g->chain[m];
+    if (m + 1 < g->chain_block[c + 1])
+        return m + 1;
+    return chains[c]->closed ? g->chain_block[c] : m;
+}
+
 /** Blocks per chunk of a guard's parallel walk: a fixed number, so the result does not depend on threads. */
 #define FT_GUARD_CHUNK 16384
 
