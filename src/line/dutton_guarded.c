@@ -10,9 +10,11 @@
  * output segment of input segment s (from V_s to M_s, from M_s to V_s+1) stays in the bounding box of V_s,
  * V_s+1 and their raw positions. So the index is built on the input's segments (half as many blocks as the
  * output's), from positions computed on the fly; the output chain is written once with the base geometry
- * and the walk moves its vertices in place: no base chain, no raw chain. The raw positions are computed once
- * per pass (block_raw) and read by the boxes and the walk; their buffer goes from pass to pass with the carry
- * (raw_buffer), so the later passes write into pages already touched.
+ * and the walk moves its vertices in place: no base chain, no raw chain. The raw positions are computed
+ * where they are read, a run of blocks at a time (run_raw): for the boxes, then again in the walk, into a
+ * buffer of the thread's that stays in the cache. A buffer of every raw position kept through the pass (and
+ * from pass to pass with the carry, sessions 10-11) cost more in page faults and memory traffic (and its
+ * growth by realloc a copy in repeated calls) than the second computation, ~1 ns a vertex (dutton_raw.c).
  *
  * From the second pass on, the near lists come from the pass before's index (ft_dutton_carry,
  * ft_segment_blocks_join_carried) instead of a grid: where every segment was split and nothing was dropped,
@@ -65,6 +67,7 @@
 
 #define FUSED_BLOCK (FT_SEGMENT_BLOCK / 2) /* input segments per block: the output's FT_SEGMENT_BLOCK, as move_guard.c */
 #define RAW_BLOCKS 256 /* blocks per run of raw positions (ft_dutton_raw_run: several vertices at a time) */
+#define RAW_RUN (RAW_BLOCKS * FUSED_BLOCK + 1) /* the vertices of a run of blocks, its end vertex included */
 
 /* One chain of the pass: the input the pass works on (densified or not), its split flags, its output. */
 typedef struct {
@@ -73,14 +76,12 @@ typedef struct {
     unsigned char *split;
     ft_chain *out;
     int all_split; /* every segment split: output segment s comes from input segment s / 2 */
-    double *raw;   /* x, y of each input vertex's raw position (its input position if it stays); in fused.raw */
 } pass_chain;
 
 typedef struct {
     pass_chain *pc;
     ft_segment_blocks g; /* blocks of the input segments */
     uint32_t *ofirst;    /* per block: the output index of its first vertex */
-    double *raw;         /* every chain's raw positions, computed once for the boxes and the walk */
     ft_dutton_pass_params pp;
 } fused;
 
@@ -102,26 +103,24 @@ static inline void box_add(double box[4], double x, double y)
     box[3] = dmax(box[3], y);
 }
 
-/* The raw positions of blocks [lo, hi)'s vertices but the last block's last (the next block's first; an open
- * chain's last block writes the chain's last vertex too): a vertex that stays keeps its input position. The
- * blocks of a chain hold consecutive vertices, so each chain's part is one run (ft_dutton_raw_run). */
-static void block_raw(const fused *F, size_t lo, size_t hi)
+/* The raw positions (x, y) of the vertices of blocks [lo, hi) of one chain, the last block's end vertex
+ * included (a ring's vertex n: its vertex 0), into xy from the first block's first vertex: a vertex that
+ * stays keeps its input position. Computed where they are read, a run of blocks at a time (the boxes, then
+ * the walk again): ~1 ns a vertex (ft_dutton_raw_run), less than the page faults and the memory traffic of
+ * a buffer of them kept through the pass. */
+static void run_raw(const fused *F, size_t lo, size_t hi, double *xy)
 {
     const ft_segment_blocks *g = &F->g;
-    for (size_t b = lo, e; b < hi; b = e) {
-        size_t c = g->chain[b];
-        const pass_chain *p = &F->pc[c];
-        e = g->chain_block[c + 1] < hi ? g->chain_block[c + 1] : hi;
-        size_t v0 = g->first[b], v1 = g->first[e - 1] + g->count[e - 1];
-        if (!p->in->closed && v1 == p->in->n - 1)
-            v1++;
-        ft_dutton_raw_run(p->in, p->split, &F->pp, v0, v1, p->raw + 2 * v0);
-    }
+    const pass_chain *p = &F->pc[g->chain[lo]];
+    size_t n = p->in->n, v0 = g->first[lo], v1 = g->first[hi - 1] + g->count[hi - 1];
+    ft_dutton_raw_run(p->in, p->split, &F->pp, v0, v1 < n ? v1 + 1 : n, xy);
+    if (v1 == n)
+        (void)ft_dutton_raw_vertex(p->in, p->split, &F->pp, 0, &xy[2 * (n - v0)], &xy[2 * (n - v0) + 1]);
 }
 
-/* The widened box of block b's input vertices and their raw positions (block_raw, done for every block);
+/* The widened box of block b's input vertices and their raw positions (raw: from its first vertex's, run_raw);
  * returns the largest move of its vertices along an axis. */
-static double block_box(const fused *F, size_t b, double box[4])
+static double block_box(const fused *F, size_t b, const double *raw, double box[4])
 {
     double move = 0.0;
     const ft_segment_blocks *g = &F->g;
@@ -131,9 +130,10 @@ static double block_box(const fused *F, size_t b, double box[4])
     box[2] = box[3] = -INFINITY;
     for (size_t v = v0; v <= v1; v++) {
         size_t i = v < n ? v : v - n;
+        const double *r = raw + 2 * (v - v0);
         box_add(box, p->in->x[i], p->in->y[i]);
-        box_add(box, p->raw[2 * i], p->raw[2 * i + 1]);
-        move = dmax(move, dmax(fabs(p->raw[2 * i] - p->in->x[i]), fabs(p->raw[2 * i + 1] - p->in->y[i])));
+        box_add(box, r[0], r[1]);
+        move = dmax(move, dmax(fabs(r[0] - p->in->x[i]), fabs(r[1] - p->in->y[i])));
     }
     ft_segment_box_widen(box);
     return move;
@@ -163,6 +163,24 @@ static void emit_base(const fused *F, size_t b)
         ox[k] = in->x[v1];
         oy[k] = in->y[v1];
     }
+}
+
+/* The boxes of blocks [lo, hi) (g->box) and their base output, their raw positions a run of one chain's blocks
+ * at a time; returns the largest move. */
+static double range_boxes(fused *F, size_t lo, size_t hi)
+{
+    double xy[2 * RAW_RUN], move = 0.0;
+    const ft_segment_blocks *g = &F->g;
+    for (size_t b = lo, e; b < hi; b = e) {
+        uint32_t c = g->chain[b];
+        e = g->chain_block[c + 1] < hi ? g->chain_block[c + 1] : hi;
+        run_raw(F, b, e, xy);
+        for (size_t k = b; k < e; k++) {
+            move = dmax(move, block_box(F, k, xy + 2 * (g->first[k] - g->first[b]), F->g.box + 4 * k));
+            emit_base(F, k);
+        }
+    }
+    return move;
 }
 
 /* The box test of ft_move_sweeps for the cnt (1..8) segments from s0 of x, y (segment s: vertex s to s + 1,
@@ -359,23 +377,33 @@ static inline __attribute__((always_inline)) void walk(const fused *F, const uns
     static const double ts[] = {1.0, 0.5, 0.25};
     const ft_segment_blocks *g = &F->g;
     near_cache nc;
+    double xy[2 * RAW_RUN];
+    size_t r0 = 0, r1 = 0; /* the blocks whose raw positions are in xy: a run of walked blocks of one chain */
     for (size_t b = lo; b < hi; b++) {
         if (local[b] != want)
             continue;
-        near_fill(g, b, &nc);
         size_t c = g->chain[b];
+        if (b >= r1) {
+            size_t end = g->chain_block[c + 1] < hi ? g->chain_block[c + 1] : hi;
+            end = end - b < RAW_BLOCKS ? end : b + RAW_BLOCKS;
+            for (r0 = b, r1 = b + 1; r1 < end && local[r1] == want;)
+                r1++;
+            run_raw(F, r0, r1, xy);
+        }
+        near_fill(g, b, &nc);
         const pass_chain *p = &F->pc[c];
-        size_t n = p->in->n, nout = p->out->n, v = g->first[b], v1 = v + g->count[b], k = F->ofirst[b];
+        size_t nout = p->out->n, v = g->first[b], v1 = v + g->count[b], k = F->ofirst[b];
+        const double *raw = xy + 2 * (v - g->first[r0]);
         double *ox = p->out->x, *oy = p->out->y;
-        for (; v <= v1; v++) {
-            size_t i = v < n ? v : 0, ki = k < nout ? k : 0;
+        for (; v <= v1; v++, raw += 2) {
+            size_t ki = k < nout ? k : 0;
             if (v < v1)
                 k += 1 + p->split[v];
             if (v == g->first[b] && (b > g->chain_block[c] || p->in->closed))
                 continue; /* owned by the block before */
-            double bx = ox[ki], by = oy[ki], dx = p->raw[2 * i] - bx, dy = p->raw[2 * i + 1] - by;
+            double bx = ox[ki], by = oy[ki], dx = raw[0] - bx, dy = raw[1] - by;
             if (dx == 0.0 && dy == 0.0)
-                continue; /* stays (block_raw), or moves by nothing */
+                continue; /* stays (run_raw), or moves by nothing */
             size_t ka = ki > 0 ? ki - 1 : nout - 1, kc = ki + 1 < nout ? ki + 1 : 0;
             double a[2] = {ox[ka], oy[ka]}, cc[2] = {ox[kc], oy[kc]}, b0[2] = {bx, by}, t = 0.0;
             for (int q = 0; q < 3; q++) {
@@ -511,8 +539,6 @@ struct ft_dutton_carry {
     ft_segment_wide wide; /* its wide lists; start NULL when there is nothing to carry */
     size_t *nout;         /* per chain: the vertices of its output */
     int halved;           /* every segment was split: the next pass's blocks are these halved */
-    double *raw;          /* the raw positions' buffer, kept from pass to pass (its pages are not fresh) */
-    size_t raw_cap;       /* its doubles */
 };
 
 ft_dutton_carry *ft_dutton_carry_create(void)
@@ -531,29 +557,9 @@ static void carry_clear(ft_dutton_carry *k)
 
 void ft_dutton_carry_free(ft_dutton_carry *k)
 {
-    if (k != NULL) {
+    if (k != NULL)
         carry_clear(k);
-        free(k->raw);
-    }
     free(k);
-}
-
-/* A buffer of 2 nv doubles for the raw positions: the carry's, grown as needed (realloc keeps the pages the
- * passes before touched), or a new one (*owned set) without a carry. */
-static double *raw_buffer(ft_dutton_carry *k, size_t nv, int *owned)
-{
-    size_t need = 2 * (nv ? nv : 1);
-    *owned = k == NULL;
-    if (k == NULL)
-        return ft_realloc_array(NULL, need, sizeof(double));
-    if (k->raw_cap < need) {
-        double *r = ft_realloc_array(k->raw, need, sizeof(double));
-        if (r == NULL)
-            return NULL;
-        k->raw = r;
-        k->raw_cap = need;
-    }
-    return k->raw;
 }
 
 /* Whether this pass's blocks are the carried pass's halved: the same chains, each the carried output itself
@@ -614,7 +620,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
                            ft_line_guard_stats *stats, ft_dutton_carry *carry, int passes_left)
 {
     ft_segment_wide wide = {0};
-    int keep = carry != NULL && passes_left > 0, raw_owned = 1;
+    int keep = carry != NULL && passes_left > 0;
     for (size_t c = 0; c < n; c++)
         out[c] = NULL;
     fused F = {0};
@@ -636,13 +642,7 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     if (rc == FT_OK) {
         F.ofirst = ft_malloc((nb ? nb : 1) * sizeof *F.ofirst);
         local = ft_malloc(nb ? nb : 1);
-        size_t nv = 0;
-        for (size_t c = 0; c < n; c++)
-            nv += F.pc[c].in->n;
-        F.raw = raw_buffer(carry, nv, &raw_owned);
-        for (size_t c = 0, off = 0; c < n && F.raw != NULL; off += F.pc[c].in->n, c++)
-            F.pc[c].raw = F.raw + 2 * off;
-        if (F.ofirst == NULL || local == NULL || F.raw == NULL)
+        if (F.ofirst == NULL || local == NULL)
             rc = FT_E_NOMEM;
     }
     if (rc == FT_OK) {
@@ -650,13 +650,10 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         long long nbl = (long long)nb;
         double move = 0.0;
         long long nrun = (nbl + RAW_BLOCKS - 1) / RAW_BLOCKS;
-#pragma omp parallel for schedule(static)
-        for (long long r = 0; r < nrun; r++)
-            block_raw(&F, (size_t)r * RAW_BLOCKS, (size_t)(r + 1 < nrun ? (r + 1) * RAW_BLOCKS : nbl));
 #pragma omp parallel for schedule(static) reduction(max : move)
-        for (long long b = 0; b < nbl; b++) {
-            move = dmax(move, block_box(&F, (size_t)b, F.g.box + 4 * b));
-            emit_base(&F, (size_t)b);
+        for (long long r = 0; r < nrun; r++) {
+            size_t lo = (size_t)r * RAW_BLOCKS, hi = r + 1 < nrun ? lo + RAW_BLOCKS : nb;
+            move = dmax(move, range_boxes(&F, lo, hi));
         }
         rc = 1;
         if (carry_fits(carry, &F, n))
@@ -692,8 +689,6 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
     free(work);
     free(local);
     free(F.ofirst);
-    if (raw_owned)
-        free(F.raw);
     ft_segment_blocks_free(&F.g);
     free_chains(F.pc, n, rc == FT_OK);
     return rc;
