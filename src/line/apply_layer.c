@@ -17,6 +17,7 @@
  */
 #include "internal.h"
 #include "fracterra/line.h"
+#include "line/guard_schedule.h"
 
 #include <inttypes.h>
 #include <stdio.h>
@@ -331,12 +332,8 @@ int ft_line_apply_layer_passes(ft_layer *l, ft_line_pass_fn pass, const void *ct
         ft_topology_free(l->topology);
         l->topology = NULL;
     }
-    if (rc == FT_OK && stats) {
-        stats->moves += st.moves;
-        stats->reduced += st.reduced;
-        stats->dropped += st.dropped;
-        stats->redrawn += st.redrawn;
-    }
+    if (rc == FT_OK && stats)
+        ft_line_guard_stats_add(stats, &st);
     return rc;
 }
 

@@ -670,11 +670,8 @@ int ft_dutton_pass_guarded(const ft_chain *const *in, size_t n, const ft_dutton_
         walk_ctx wc = {&F, local, pick_walk()};
         ft_line_guard_stats s = {0, 0, 0, 0};
         ft_guard_walk(&F.g, work, local, walk_range, &wc, &s);
-        if (stats) {
-            stats->moves += s.moves;
-            stats->reduced += s.reduced;
-            stats->dropped += s.dropped;
-        }
+        if (stats)
+            ft_line_guard_stats_add(stats, &s);
         for (size_t c = 0; c < n; c++)
             out[c] = F.pc[c].out;
     }

@@ -194,14 +194,6 @@ void ft_guard_schedule_free(ft_guard_schedule *s)
     *s = (ft_guard_schedule){0};
 }
 
-static void add_stats(ft_line_guard_stats *to, const ft_line_guard_stats *s)
-{
-    to->moves += s->moves;
-    to->reduced += s->reduced;
-    to->dropped += s->dropped;
-    to->redrawn += s->redrawn;
-}
-
 /* The serial walk: the chunks' local blocks, then the others in block order. */
 static void walk_serial(const ft_segment_blocks *g, ft_guard_walk_fn walk, const void *ctx, ft_line_guard_stats *s)
 {
@@ -259,7 +251,7 @@ void ft_guard_walk(const ft_segment_blocks *g, const ft_chain *const *chains, co
             }
         }
 #pragma omp critical(ft_guard_walk)
-        add_stats(s, &mine);
+        ft_line_guard_stats_add(s, &mine);
     }
     if (built != FT_OK) /* no schedule: the chunks are walked, the others in block order */
         walk(ctx, 0, 0, nb, s);

@@ -13,6 +13,15 @@
 #include "fracterra/line.h"
 #include "line/segment_index.h"
 
+/** Adds s's counts to *to (every guard and operation that reports moves). */
+static inline void ft_line_guard_stats_add(ft_line_guard_stats *to, const ft_line_guard_stats *s)
+{
+    to->moves += s->moves;
+    to->reduced += s->reduced;
+    to->dropped += s->dropped;
+    to->redrawn += s->redrawn;
+}
+
 /** The non-local blocks in groups: block[group_start[k] .. group_start[k + 1]) are group k's, in block
  *  order. Two non-local blocks one of which reads a vertex the other owns are in the same group; group k's
  *  blocks and the blocks they read lie in chunks chunk_lo[k] .. chunk_hi[k]. */

@@ -175,14 +175,6 @@ static void walk_range(const void *ctx, unsigned char want, size_t lo, size_t hi
     walk_blocks(w->G, w->raw, w->local, want, lo, hi, w->mode, s);
 }
 
-static void add_stats(ft_line_guard_stats *to, const ft_line_guard_stats *s)
-{
-    to->moves += s->moves;
-    to->reduced += s->reduced;
-    to->dropped += s->dropped;
-    to->redrawn += s->redrawn;
-}
-
 int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, size_t n, int mode,
                         ft_line_guard_stats *stats)
 {
@@ -210,6 +202,6 @@ int ft_line_guard_moves(ft_chain *const *chains, const ft_chain *const *raw, siz
     free(local);
     ft_segment_blocks_free(&g);
     if (stats)
-        add_stats(stats, &s);
+        ft_line_guard_stats_add(stats, &s);
     return FT_OK;
 }
